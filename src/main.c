@@ -16,6 +16,9 @@ static const np_cmd commands[] = {
     { "device", np_cmd_device, "act as a device: read vector lines, append the cycle model's results" },
     { "sweep", np_cmd_sweep, "exhaustive error sweep of one z slice (2^32 inputs) on all cores" },
     { "bench", np_cmd_bench, "benchmark the models and the sweep, print the figures" },
+    { "render", np_cmd_render, "render a scene with the float reference and the texture units (EXR + PNG)" },
+    { "report", np_cmd_report, "write reports: gate and latency estimates, error against run time" },
+    { "stream", np_cmd_stream, "stream vectors over USB to an FPGA board and verify the results" },
     { "help", cmd_help, "this list, or `noisepipe help COMMAND`" },
 };
 enum { N_COMMANDS = sizeof commands / sizeof commands[0] };
