@@ -2,6 +2,7 @@
 #include "np_classic.h"
 
 #include <stddef.h>
+#include <string.h>
 
 /*
  * Input word ruler (each of x, y, z):
@@ -37,22 +38,12 @@ const char *np_classic_cfg_check(const np_classic_cfg *cfg)
     return NULL;
 }
 
-/* 2^e for small |e|, exact, without libm. */
-static double pow2i(int e)
-{
-    double r = 1.0;
-    for (; e > 0; e--)
-        r *= 2.0;
-    for (; e < 0; e++)
-        r *= 0.5;
-    return r;
-}
 
 double np_classic_error_bound_lsb(const np_classic_cfg *cfg)
 {
     int f = (int)np_classic_out_frac(cfg);
-    double es = cfg->s_frac >= NP_CLASSIC_SNUM_BITS ? 0.0 : 3.0 * pow2i(f - (int)cfg->s_frac);
-    double el = pow2i(f - (int)cfg->lerp_frac - 1);
+    double es = cfg->s_frac >= NP_CLASSIC_SNUM_BITS ? 0.0 : 3.0 * np_pow2i(f - (int)cfg->s_frac);
+    double el = np_pow2i(f - (int)cfg->lerp_frac - 1);
     return 0.5 + 3.0 * (es + el);
 }
 
@@ -170,4 +161,145 @@ const np_stage_desc np_classic_stages[NP_CLASSIC_STAGES] = {
 int np_classic_pipe_init(np_pipe *p, const np_classic_cfg *cfg)
 {
     return np_pipe_init(p, np_classic_stages, NP_CLASSIC_STAGES, sizeof(np_classic_sig), cfg);
+}
+
+/* --- Datapath declaration --- */
+
+/* Append one op (when there is room) and count it. */
+static void put(np_op *ops, size_t max, size_t *n, np_op op)
+{
+    if (*n < max)
+        ops[*n] = op;
+    (*n)++;
+}
+
+#define OP(stage, sig, kind, count, a, b, out, sgn, level) \
+    put(ops, max, &n, (np_op){ stage, sig, kind, count, a, b, out, sgn, level })
+
+size_t np_classic_datapath(const np_classic_cfg *cfg, np_op *ops, size_t max)
+{
+    size_t n = 0;
+    unsigned ws = cfg->s_frac, wl = cfg->lerp_frac, nb = cfg->out_bits, f = nb - 2u;
+    unsigned sw = ws + 1u;   /* s: u(WS+1) Q1.WS */
+    /* L: cell + 1 (three 8-bit incrementers), 64 pattern lookups, an adder tree per corner. */
+    OP("L", NULL, NP_OP_ADD, 3, 8, 0, 0, 0, 0);
+    OP("L", NULL, NP_OP_LUT, 64, 3, 6, 0, 0, 1);
+    OP("L", NULL, NP_OP_ADD, 32, 6, 0, 0, 0, 2);
+    OP("L", NULL, NP_OP_ADD, 16, 6, 0, 0, 0, 3);
+    OP("L", "h", NP_OP_ADD, 8, 6, 0, 6, 0, 4);
+    OP("L", "s2", NP_OP_MUL, 3, 8, 8, 16, 0, 0);
+    OP("L", NULL, NP_OP_REG, 1, 3 * 8 + 8 * 6 + 3 * 16 + 1, 0, 0, 0, 0); /* u,v,w; h; squares; valid */
+    /* H: select p, q, r (3:1 muxes of s9 offsets), conditional negates, two additions. */
+    OP("H", NULL, NP_OP_MUX, 24, 9, 3, 0, 0, 0);
+    OP("H", NULL, NP_OP_NEG, 24, 9, 0, 0, 0, 1);
+    OP("H", NULL, NP_OP_ADD, 8, 10, 0, 0, 0, 2);
+    OP("H", "g", NP_OP_ADD, 8, NP_CLASSIC_G_BITS, 0, NP_CLASSIC_G_BITS, 1, 3);
+    /* S second half, in parallel: 768 - 2u, the 16 x 10 product, rounding to WS bits. */
+    OP("H", NULL, NP_OP_ADD, 3, 10, 0, 0, 0, 0);
+    OP("H", "snum", NP_OP_MUL, 3, 16, 10, NP_CLASSIC_SNUM_BITS, 0, 1);
+    if (ws < NP_CLASSIC_SNUM_BITS)
+        OP("H", "s", NP_OP_ADD, 3, sw, 0, sw, 0, 2);
+    OP("H", NULL, NP_OP_REG, 1, 8 * NP_CLASSIC_G_BITS + 3 * sw + 1, 0, 0, 0, 0);
+    /* I: three levels of (difference, product | sum, rounding). */
+    static const char *const names[3][4] = { { "diff1", "prod1", "sum1", "l1" },
+                                             { "diff2", "prod2", "sum2", "l2" },
+                                             { "diff3", "prod3", "sum3", "l3" } };
+    static const char *const mstage[3] = { "I1m", "I2m", "I3m" };
+    static const char *const astage[3] = { "I1a", "I2a", "I3a" };
+    /*
+     * Range of each level (same argument as the 1.5 bound of the function,
+     * np_classic.h): a level-n value interpolates along n axes, each of which
+     * contributes at most max_t (1 - s)t + s(1 - t) = 1/2, while the other
+     * axes contribute at most 1 each. So |l1| <= 2.5, |l2| <= 2, |l3| <= 1.5,
+     * |g| <= 3, and a difference b - a is at most twice the operands' bound.
+     * Integer bits (besides the sign) of each signal follow:
+     *   level  operand  |b-a|  diff   value
+     *   1      g  Q2    6      Q3     l1 Q2 (2.5)
+     *   2      l1 Q2    5      Q3     l2 Q2 (2, reachable)
+     *   3      l2 Q2    4      Q3     l3 Q1 (1.5)
+     * The product s (b - a) has |s| <= 1, so it needs no bit beyond the
+     * difference's: pw = dw + WS.
+     */
+    static const unsigned val_int[3] = { 2, 2, 1 };
+    for (unsigned lvl = 0; lvl < 3; lvl++) {
+        unsigned cnt = 4u >> lvl;                         /* 4, 2, 1 interpolators */
+        unsigned af = lvl == 0 ? NP_CLASSIC_FRAC_IN : wl; /* operand fraction bits */
+        unsigned aw = af + 3u;                            /* operand s(af+3) Q2.af */
+        unsigned dw = af + 4u;                            /* b - a: s(af+4) Q3.af */
+        unsigned pw = dw + ws;                            /* s (b - a): Q3.(af+WS) */
+        unsigned sumw = af + ws + 1u + val_int[lvl];      /* a + s (b - a), exact */
+        unsigned vw = wl + 1u + val_int[lvl];             /* rounded level value */
+        unsigned later = (lvl < 1 ? sw : 0u) + (lvl < 2 ? sw : 0u); /* sy, sz still needed */
+        OP(mstage[lvl], names[lvl][0], NP_OP_ADD, cnt, dw, 0, dw, 1, 0);
+        OP(mstage[lvl], names[lvl][1], NP_OP_MUL, cnt, sw, dw, pw, 1, 1);
+        OP(mstage[lvl], NULL, NP_OP_REG, 1, cnt * (pw + aw) + later + 1, 0, 0, 0, 0);
+        OP(astage[lvl], names[lvl][2], NP_OP_ADD, cnt, sumw, 0, sumw, 1, 0);
+        if (af + ws > wl) /* rounding adder spans the kept bits plus the round bit */
+            OP(astage[lvl], names[lvl][3], NP_OP_ADD, cnt, vw + 1u, 0, vw, 1, 1);
+        else
+            OP(astage[lvl], names[lvl][3], NP_OP_REG, 0, 0, 0, vw, 1, 1); /* wiring only */
+        OP(astage[lvl], NULL, NP_OP_REG, 1, cnt * vw + later + 1, 0, 0, 0, 0);
+    }
+    /* O: round to Q2.F, saturate to N bits (two comparisons, a 3:1 mux). */
+    if (wl > f)
+        OP("O", NULL, NP_OP_ADD, 1, f + 3u, 0, 0, 0, 0);
+    OP("O", NULL, NP_OP_CMP, 2, f + 3u, 0, 0, 0, 1);
+    OP("O", "f", NP_OP_MUX, 1, nb, 3, nb, 1, 2);
+    OP("O", NULL, NP_OP_REG, 1, nb + 1, 0, 0, 0, 0);
+    return n;
+}
+
+static void trace(np_trace *t, size_t n, const char *name, int64_t v)
+{
+    for (size_t i = 0; i < n; i++)
+        if (t[i].signal && strcmp(t[i].signal, name) == 0)
+            np_trace_add(&t[i], v);
+}
+
+void np_classic_trace(const np_classic_cfg *cfg, unsigned k, const np_classic_sig *s, np_trace *t,
+                      size_t n)
+{
+    const uint16_t in[3] = { s->x, s->y, s->z };
+    switch (k) {
+    case 0:
+        for (unsigned c = 0; c < 8; c++)
+            trace(t, n, "h", s->h[c]);
+        for (unsigned a = 0; a < 3; a++)
+            trace(t, n, "s2", s->s2[a]);
+        break;
+    case 1:
+        for (unsigned c = 0; c < 8; c++)
+            trace(t, n, "g", s->g[c]);
+        for (unsigned a = 0; a < 3; a++) {
+            trace(t, n, "snum", (int64_t)s->s2[a] * (768 - 2 * (int64_t)in_frac(in[a])));
+            trace(t, n, "s", s->s[a]);
+        }
+        break;
+    case 2: case 4: case 6: {
+        unsigned lvl = (k - 2u) / 2u, cnt = 4u >> lvl;
+        static const char *const dn[3] = { "diff1", "diff2", "diff3" };
+        static const char *const pn[3] = { "prod1", "prod2", "prod3" };
+        for (unsigned p = 0; p < cnt; p++) {
+            int64_t a = lvl == 0 ? s->g[2 * p] : lvl == 1 ? s->l1[2 * p] : s->l2[0];
+            int64_t b = lvl == 0 ? s->g[2 * p + 1] : lvl == 1 ? s->l1[2 * p + 1] : s->l2[1];
+            trace(t, n, dn[lvl], b - a);
+            trace(t, n, pn[lvl], s->prod[p]);
+        }
+        break;
+    }
+    case 3: case 5: case 7: {
+        unsigned lvl = (k - 3u) / 2u, cnt = 4u >> lvl;
+        static const char *const sn[3] = { "sum1", "sum2", "sum3" };
+        static const char *const ln[3] = { "l1", "l2", "l3" };
+        for (unsigned p = 0; p < cnt; p++) {
+            int64_t a = lvl == 0 ? s->g[2 * p] : lvl == 1 ? s->l1[2 * p] : s->l2[0];
+            trace(t, n, sn[lvl], np_shl(a, cfg->s_frac) + s->prod[p]);
+            trace(t, n, ln[lvl], lvl == 0 ? s->l1[p] : lvl == 1 ? s->l2[p] : s->l3);
+        }
+        break;
+    }
+    default:
+        trace(t, n, "f", s->out);
+        break;
+    }
 }

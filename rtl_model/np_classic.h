@@ -21,11 +21,13 @@
  *                         product u^2 (768 - 2u) = 2^24 s(u/256) rounded to WS
  *                         fraction bits (np_shr_round_half_up); WS = 24 is exact.
  *                         Range [0, 1]: rounding can reach 1.0 for u = 255.
- *   l1[4]      s(WL+3) Q2.WL  x-interpolations (corners paired along x),
- *   l2[2]      s(WL+3) Q2.WL  y-interpolations, l3: the z-interpolation.
+ *   l1[4]      s(WL+3) Q2.WL  x-interpolations (corners paired along x), |l1| <= 2.5
+ *   l2[2]      s(WL+3) Q2.WL  y-interpolations, |l2| <= 2
+ *   l3         s(WL+2) Q1.WL  the z-interpolation, |l3| <= 1.5 (range argument below)
  *                         lerp(s, a, b) = round(a + s (b - a)) to WL fraction
  *                         bits, rounding once after the exact product-sum.
- *                         |value| <= 3 (convex combinations of |g| <= 3).
+ *                         (The C model holds every level in int64_t; the
+ *                         hardware widths are np_classic_datapath()'s.)
  *   out        sN  Q2.(N-2)  round(l3) to F = N - 2 fraction bits, saturated to
  *                         N bits (never reached: |noise| <= 1.5, see below).
  *
@@ -49,6 +51,7 @@
 
 #include <stdint.h>
 
+#include "np_datapath.h"
 #include "np_fixed.h"
 #include "np_hash.h"
 #include "np_pipe.h"
@@ -175,5 +178,22 @@ extern const np_stage_desc np_classic_stages[NP_CLASSIC_STAGES];
 
 /* A pipe running the classic unit; cfg must outlive it. 0, or -1 on no memory. */
 int np_classic_pipe_init(np_pipe *p, const np_classic_cfg *cfg);
+
+/* --- Datapath declaration (np_datapath.h) --- */
+
+/*
+ * The operators and register bits of every stage, for cfg. Writes up to max
+ * entries to ops and returns the full count. Traced signal names: "s2", "g",
+ * "snum", "s", "diff1", "prod1", "sum1", "l1", "diff2", "prod2", "sum2",
+ * "l2", "diff3", "prod3", "sum3", "l3", "f".
+ */
+size_t np_classic_datapath(const np_classic_cfg *cfg, np_op *ops, size_t max);
+
+/*
+ * Widen the traces t[0..n) whose names match the signals that stage k
+ * produced in bundle s (call after applying np_classic_stages[k].fn).
+ */
+void np_classic_trace(const np_classic_cfg *cfg, unsigned k, const np_classic_sig *s, np_trace *t,
+                      size_t n);
 
 #endif /* NP_CLASSIC_H */

@@ -107,10 +107,91 @@ static inline int64_t np_sat_u(int64_t v, unsigned n)
     return v > hi ? hi : (v < 0 ? 0 : v);
 }
 
+/*
+ * 2^e as a double, exact for |e| <= 1022, without libm: error bounds and
+ * LSB weights (rtl_model is libc only).
+ */
+static inline double np_pow2i(int e)
+{
+    double r = 1.0;
+    for (; e > 0; e--)
+        r *= 2.0;
+    for (; e < 0; e++)
+        r *= 0.5;
+    return r;
+}
+
 /* Does v fit an n-bit two's-complement signal? Used by width checks. */
 static inline int np_fits_s(int64_t v, unsigned n) { return np_sat_s(v, n) == v; }
 
 /* Does v fit an n-bit unsigned signal? */
 static inline int np_fits_u(int64_t v, unsigned n) { return v >= 0 && np_sat_u(v, n) == v; }
+
+
+/*
+ * --- 128-bit containers (added for the texture units, np_fdiff / np_texel) ---
+ *
+ * Some set-up datapaths are wider than 64 bits (a 32-bit-fraction coordinate
+ * cubed is 96 fraction bits). They are modelled in GCC/Clang's 128-bit
+ * integers, a compiler type (no library), with the same conventions: a
+ * signal of width n <= 128 is held sign-extended (np_sext128) and every
+ * rounding rule below exists once.
+ *
+ * Modular exactness: products and sums of two's-complement words taken mod
+ * 2^128 (unsigned arithmetic, never signed overflow) give the low 128 bits of
+ * the true integer result. np_round_wrap128 then extracts the low n bits of a
+ * rounded right shift, which depend only on those low bits when sh + n <= 128.
+ * A datapath that needs only the low n bits of its result (a wrapping
+ * accumulator) can thus be computed exactly without 256-bit arithmetic.
+ */
+typedef __int128 np_s128;
+typedef unsigned __int128 np_u128;
+
+/* NP_MASK128(n): the low n bits set, 0 <= n <= 127. */
+#define NP_MASK128(n) ((np_u128)(((np_u128)1 << (n)) - 1u))
+
+/* The low n bits of v as an n-bit two's-complement value (1 <= n <= 128). */
+static inline np_s128 np_sext128(np_u128 v, unsigned n)
+{
+    if (n >= 128)
+        return (np_s128)v;
+    np_u128 m = (np_u128)1 << (n - 1u);
+    np_u128 t = v & NP_MASK128(n);
+    return (np_s128)(t ^ m) - (np_s128)m;
+}
+
+/* Arithmetic shift right (0 <= sh <= 127): floor(v / 2^sh), no signed shift. */
+static inline np_s128 np_asr128(np_s128 v, unsigned sh)
+{
+    np_u128 u = (np_u128)v;
+    np_u128 sign = (np_u128)0 - (u >> 127);
+    if (sh == 0)
+        return v;
+    return (np_s128)((u >> sh) | (sign & ~(~(np_u128)0 >> sh)));
+}
+
+/* Shift left by sh (0 <= sh <= 127), modulo 2^128 (no signed-overflow UB). */
+static inline np_s128 np_shl128(np_s128 v, unsigned sh) { return (np_s128)((np_u128)v << sh); }
+
+/*
+ * Round to nearest, ties toward +infinity, dropping sh fraction bits, and
+ * keep an n-bit two's-complement result: the low n bits of
+ * floor(V / 2^sh + 1/2), where V is the true (unbounded) integer whose low
+ * 128 bits are v. Exact for every V when sh + n <= 128 (precondition).
+ * In hardware: add 2^(sh-1), drop sh bits, drop the carry out of bit n-1.
+ * Error bound: |result - V / 2^sh| <= 1/2 result LSB (modulo 2^n).
+ */
+static inline np_s128 np_round_wrap128(np_u128 v, unsigned sh, unsigned n)
+{
+    np_u128 t = sh == 0 ? v : (v + ((np_u128)1 << (sh - 1u))) >> sh;
+    return np_sext128(t, n);
+}
+
+/* Wrap a value to an n-bit two's-complement signal (1 <= n <= 128). */
+static inline np_s128 np_wrap_s128(np_s128 v, unsigned n) { return np_sext128((np_u128)v, n); }
+
+/* Modular product and sum (mod 2^128) of two's-complement words. */
+static inline np_s128 np_mul128(np_s128 a, np_s128 b) { return (np_s128)((np_u128)a * (np_u128)b); }
+static inline np_s128 np_add128(np_s128 a, np_s128 b) { return (np_s128)((np_u128)a + (np_u128)b); }
 
 #endif /* NP_FIXED_H */

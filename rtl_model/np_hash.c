@@ -36,7 +36,7 @@ uint8_t np_hash6(uint8_t i, uint8_t j, uint8_t k)
 
 np_grad np_grad_decode(uint8_t h)
 {
-    unsigned b = (h >> POS_HASH_ROT) & ((1u << SIZE_HASH_ROT) - 1u);
+    unsigned b = (unsigned)(h >> POS_HASH_ROT) & ((1u << SIZE_HASH_ROT) - 1u);
     unsigned b2 = bit_of(h, POS_HASH_TWO);
     unsigned b3 = bit_of(h, POS_HASH_S3), b4 = bit_of(h, POS_HASH_S4), b5 = bit_of(h, POS_HASH_S5);
     /* Axis index (0 = x, 1 = y, 2 = z) that p, q and r select. */

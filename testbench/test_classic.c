@@ -345,7 +345,75 @@ static int cfg_validation(void)
     return 0;
 }
 
+/*
+ * The datapath declaration (np_classic_datapath, which the gate report
+ * prices) against the model: trace every declared signal over random and
+ * boundary inputs; a declared width must hold the traced range, and may be
+ * wider than needed by at most NP_WIDTH_MARGIN bits (the margin covers the
+ * extreme values that random inputs do not reach but the error argument
+ * allows, e.g. |l| up to 3 while traces see about 2.3).
+ */
+enum { NP_WIDTH_MARGIN = 1 };
+
+static int datapath_widths(void)
+{
+    static const np_classic_cfg cfgs[] = { { 8, 12, 11 }, { 8, 6, 6 }, { 12, 16, 15 }, { 16, 20, 19 }, { 8, 24, 10 } };
+    np_rng r;
+    np_rng_seed(&r, 5);
+    for (unsigned c = 0; c < sizeof cfgs / sizeof cfgs[0]; c++) {
+        const np_classic_cfg *cfg = &cfgs[c];
+        np_op ops[64];
+        size_t nops = np_classic_datapath(cfg, ops, 64);
+        NP_CHECK(nops <= 64, "declaration too long");
+        np_trace t[64];
+        size_t nt = 0;
+        for (size_t i = 0; i < nops; i++)
+            if (ops[i].signal && ops[i].out) {
+                t[nt].signal = ops[i].signal;
+                t[nt].samples = 0;
+                t[nt].lo = t[nt].hi = 0;
+                nt++;
+            }
+        for (unsigned n = 0; n < 400000; n++) {
+            np_classic_sig s;
+            memset(&s, 0, sizeof s);
+            uint64_t v = np_rng_next(&r);
+            if (n < 8192) { /* fractions 0 / 1 / 0x80 / 0xff in every mix, cells along a diagonal */
+                static const uint8_t fr[4] = { 0x00, 0x01, 0x80, 0xff };
+                s.x = (uint16_t)((n >> 6 & 0xffu) << 8 | fr[n & 3u]);
+                s.y = (uint16_t)((n >> 6 & 0xffu) << 8 | fr[n >> 2 & 3u]);
+                s.z = (uint16_t)((n >> 5 & 0xffu) << 8 | fr[n >> 4 & 3u]);
+            } else {
+                s.x = (uint16_t)v;
+                s.y = (uint16_t)(v >> 16);
+                s.z = (uint16_t)(v >> 32);
+            }
+            for (unsigned k = 0; k < NP_CLASSIC_STAGES; k++) {
+                np_classic_stages[k].fn(cfg, &s);
+                np_classic_trace(cfg, k, &s, t, nt);
+            }
+        }
+        for (size_t i = 0, ti = 0; i < nops; i++) {
+            if (!(ops[i].signal && ops[i].out))
+                continue;
+            np_trace *tr = &t[ti++];
+            unsigned need = np_bits_for_range(tr->lo, tr->hi, ops[i].out_signed);
+            NP_CHECK(tr->samples > 0, "signal %s never traced", tr->signal);
+            NP_CHECK(need <= ops[i].out, "cfg %u: %s declared %u bits, needs %u ([%lld, %lld])", c,
+                     tr->signal, ops[i].out, need, (long long)tr->lo, (long long)tr->hi);
+            NP_CHECK(ops[i].out - need <= NP_WIDTH_MARGIN, "cfg %u: %s declared %u bits, needs only %u", c,
+                     tr->signal, ops[i].out, need);
+            if (c == 0)
+                printf("  %-6s declared %2u%s, traced [%lld, %lld] needs %2u\n", tr->signal, ops[i].out,
+                       ops[i].out_signed ? "s" : "u", (long long)tr->lo, (long long)tr->hi, need);
+        }
+    }
+    puts("every declared signal width holds its traced range, within a margin of 1 bit (5 configurations)");
+    return 0;
+}
+
 static const np_test_case cases[] = {
+    { "datapath_widths", datapath_widths },
     { "kat", kat },
     { "lattice_points_zero", lattice_points_zero },
     { "ref_properties", ref_properties },
