@@ -1,2 +1,646 @@
 /* SPDX-License-Identifier: MIT */
-#include "np_vec.h"
+/* The exhaustive error sweep (np_sweep.h): statistics, blocks, journal, threads. */
+#include "np_sweep.h"
+
+#include <errno.h>
+#include <inttypes.h>
+#include <math.h>
+#include <pthread.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "np_cli.h"
+#include "np_fixed.h"
+
+/* ---------------------------------------------------------------- statistics */
+
+void np_sweep_stats_init(np_sweep_stats *s)
+{
+    memset(s, 0, sizeof *s);
+    s->max_err = -1.0;
+}
+
+/* Is input (x1, y1) before (x0, y0) in the order that picks the reported maximum? */
+static int before(uint16_t x1, uint16_t y1, uint16_t x0, uint16_t y0)
+{
+    return x1 < x0 || (x1 == x0 && y1 < y0);
+}
+
+static void take_max(np_sweep_stats *s, double e, uint16_t x, uint16_t y)
+{
+    if (e > s->max_err || (e == s->max_err && before(x, y, s->max_x, s->max_y))) {
+        s->max_err = e;
+        s->max_x = x;
+        s->max_y = y;
+    }
+}
+
+void np_sweep_stats_merge(np_sweep_stats *into, const np_sweep_stats *from)
+{
+    into->n += from->n;
+    into->cr += from->cr;
+    into->over += from->over;
+    into->sum += from->sum;
+    into->sum2 += from->sum2;
+    for (unsigned b = 0; b < NP_SWEEP_HIST_BINS; b++)
+        into->hist[b] += from->hist[b];
+    if (from->n)
+        take_max(into, from->max_err, from->max_x, from->max_y);
+}
+
+static int same_double(double a, double b) { return memcmp(&a, &b, sizeof a) == 0; }
+
+int np_sweep_stats_equal(const np_sweep_stats *a, const np_sweep_stats *b)
+{
+    return a->n == b->n && a->cr == b->cr && a->over == b->over &&
+           same_double(a->max_err, b->max_err) && a->max_x == b->max_x && a->max_y == b->max_y &&
+           same_double(a->sum, b->sum) && same_double(a->sum2, b->sum2) &&
+           memcmp(a->hist, b->hist, sizeof a->hist) == 0;
+}
+
+/* ------------------------------------------------------------------ the unit */
+
+const char *np_sweep_unit_check(const np_unit *u, const void *cfg)
+{
+    np_unit_fields f;
+    u->fields(cfg, &f);
+    if (f.n_in != 3)
+        return "the sweep needs a unit with three inputs (x, y, z)";
+    for (unsigned k = 0; k < 3; k++)
+        if (f.in[k].bits != 16 || f.in[k].is_signed)
+            return "the sweep needs u16 inputs x, y, z";
+    if (f.n_out < 1)
+        return "the unit has no output";
+    for (unsigned k = 0; k < f.n_out; k++)
+        if (f.out[k].bits > (f.out[k].is_signed ? 32u : 31u))
+            return "the sweep handles output fields of at most 32 bits";
+    return NULL;
+}
+
+void np_sweep_rows_generic(const np_unit *u, const void *cfg, uint16_t x0, uint16_t y0,
+                           uint16_t z, unsigned rows, unsigned what, int32_t *code, double *ref)
+{
+    np_unit_fields f;
+    u->fields(cfg, &f);
+    for (unsigned r = 0; r < rows; r++)
+        for (unsigned t = 0; t < NP_SWEEP_ROW; t++) {
+            uint64_t in[NP_UNIT_MAX_FIELDS] = { (uint64_t)x0 + t, (uint64_t)y0 + r, z };
+            uint64_t out[NP_UNIT_MAX_FIELDS];
+            double rv[NP_UNIT_MAX_FIELDS];
+            if (what & NP_SWEEP_MODEL)
+                u->eval(cfg, in, out);
+            if (what & NP_SWEEP_REF)
+                u->ref(cfg, in, rv);
+            for (unsigned k = 0; k < f.n_out; k++) {
+                size_t i = ((size_t)k * rows + r) * NP_SWEEP_ROW + t;
+                if (what & NP_SWEEP_MODEL)
+                    code[i] = (int32_t)(f.out[k].is_signed ? np_sext(out[k], f.out[k].bits)
+                                                           : (int64_t)out[k]);
+                if (what & NP_SWEEP_REF)
+                    ref[i] = rv[k];
+            }
+        }
+}
+
+/* ---------------------------------------------------------------- one block */
+
+/* What a block needs to know about the unit, looked up once. */
+typedef struct sweep_unit {
+    const np_unit *u;
+    const void *cfg;
+    int kernel;
+    unsigned n_out;
+    double scale[NP_UNIT_MAX_FIELDS]; /* 2^F of each output field: real value -> LSB */
+    double tol;
+} sweep_unit;
+
+static void sweep_unit_init(sweep_unit *su, const np_unit *u, const void *cfg, int use_kernel)
+{
+    np_unit_fields f;
+    u->fields(cfg, &f);
+    su->u = u;
+    su->cfg = cfg;
+    su->kernel = use_kernel && u->sweep_rows != NULL;
+    su->n_out = f.n_out;
+    for (unsigned k = 0; k < f.n_out; k++)
+        su->scale[k] = ldexp(1.0, (int)f.out[k].frac);
+    su->tol = u->tolerance_lsb;
+}
+
+/* A thread's scratch: one kernel call's outputs and one row's errors. */
+typedef struct sweep_buf {
+    int32_t *code;
+    double *ref;
+    double e[NP_SWEEP_ROW];
+    unsigned char cr[NP_SWEEP_ROW];
+} sweep_buf;
+
+static int buf_init(sweep_buf *b, unsigned n_out)
+{
+    size_t n = (size_t)n_out * NP_SWEEP_ROWS * NP_SWEEP_ROW;
+    b->code = malloc(n * sizeof *b->code);
+    b->ref = malloc(n * sizeof *b->ref);
+    return b->code && b->ref ? 0 : -1;
+}
+
+static void buf_free(sweep_buf *b)
+{
+    free(b->code);
+    free(b->ref);
+}
+
+/*
+ * Running sums of a block, one per lane: the lanes let the compiler
+ * vectorise the hot loop while the order of every double addition stays
+ * the one written here (no reassociation: no fast-math).
+ */
+enum { LANES = 8 };
+typedef struct block_acc {
+    double sum[LANES], sum2[LANES];
+    np_sweep_stats s; /* everything but sum and sum2 */
+} block_acc;
+
+/* A kernel call's histogram, in interleaved copies so that consecutive increments rarely wait on each other. */
+enum { HIST_WAYS = 4 };
+typedef uint32_t call_hist[HIST_WAYS][NP_SWEEP_HIST_BINS];
+
+/* Errors and correctly-rounded flags of row r of the kernel's output. */
+NP_SWEEP_INLINE void row_errors(const sweep_unit *su, const sweep_buf *b, unsigned r, double *e,
+                                unsigned char *crm)
+{
+    for (unsigned f = 0; f < su->n_out; f++) {
+        size_t base = ((size_t)f * NP_SWEEP_ROWS + r) * NP_SWEEP_ROW;
+        const int32_t *code = b->code + base;
+        const double *ref = b->ref + base;
+        double scale = su->scale[f];
+        for (unsigned t = 0; t < NP_SWEEP_ROW; t++) {
+            unsigned char ok;
+            double d = np_sweep_error(code[t], ref[t], scale, &ok);
+            if (f == 0) {
+                e[t] = d;
+                crm[t] = ok;
+            } else {
+                e[t] = d <= e[t] ? e[t] : d; /* a NaN wins */
+                crm[t] &= ok;
+            }
+        }
+    }
+}
+
+NP_SWEEP_INLINE void acc_row(np_sweep_stats *s, double *sum, double *sum2, call_hist hist,
+                             const double *e, const unsigned char *crm, double tol, uint16_t x0,
+                             uint16_t y)
+{
+    double mx[LANES];
+    for (unsigned j = 0; j < LANES; j++)
+        mx[j] = -1.0;
+    for (unsigned t = 0; t < NP_SWEEP_ROW; t += LANES)
+        for (unsigned j = 0; j < LANES; j++) {
+            double v = e[t + j];
+            sum[j] += v;
+            sum2[j] += v * v;
+            mx[j] = v > mx[j] ? v : mx[j];
+        }
+    unsigned cr = 0, over = 0;
+    for (unsigned t = 0; t < NP_SWEEP_ROW; t++) {
+        cr += (unsigned)crm[t];
+        over += (unsigned)!(e[t] <= tol);
+    }
+    for (unsigned t = 0; t < NP_SWEEP_ROW; t += HIST_WAYS)
+        for (unsigned w = 0; w < HIST_WAYS; w++) {
+            double q = e[t + w] * (double)NP_SWEEP_HIST_PER_LSB;
+            unsigned bin = q < (double)(NP_SWEEP_HIST_BINS - 1) ? (unsigned)q : NP_SWEEP_HIST_BINS - 1u;
+            hist[w][bin]++;
+        }
+    s->n += (uint64_t)NP_SWEEP_ROW;
+    s->cr += (uint64_t)cr;
+    s->over += (uint64_t)over;
+    double m = mx[0];
+    for (unsigned j = 1; j < LANES; j++)
+        m = mx[j] > m ? mx[j] : m;
+    if (m >= s->max_err) {
+        unsigned t = 0;
+        while (t + 1 < NP_SWEEP_ROW && e[t] != m) /* first input of the row at m */
+            t++;
+        take_max(s, m, (uint16_t)(x0 + t), y);
+    }
+}
+
+/* Statistics of the NP_SWEEP_ROWS rows of one kernel call, rows y0, y0 + 1, ... */
+NP_SWEEP_CLONES static void acc_rows(const sweep_unit *su, sweep_buf *b, block_acc *a, uint16_t x0,
+                                     uint16_t y0)
+{
+    double sum[LANES], sum2[LANES]; /* in registers for the call */
+    call_hist hist;
+    memcpy(sum, a->sum, sizeof sum);
+    memcpy(sum2, a->sum2, sizeof sum2);
+    memset(hist, 0, sizeof hist);
+    for (unsigned r = 0; r < NP_SWEEP_ROWS; r++) {
+        row_errors(su, b, r, b->e, b->cr);
+        acc_row(&a->s, sum, sum2, hist, b->e, b->cr, su->tol, x0, (uint16_t)(y0 + r));
+    }
+    memcpy(a->sum, sum, sizeof sum);
+    memcpy(a->sum2, sum2, sizeof sum2);
+    for (unsigned w = 0; w < HIST_WAYS; w++)
+        for (unsigned k = 0; k < NP_SWEEP_HIST_BINS; k++)
+            a->s.hist[k] += (uint64_t)hist[w][k];
+}
+
+static void block_run(const sweep_unit *su, sweep_buf *b, uint16_t z, unsigned xcell,
+                      np_sweep_stats *out)
+{
+    block_acc a;
+    memset(&a, 0, sizeof a);
+    np_sweep_stats_init(&a.s);
+    uint16_t x0 = (uint16_t)(xcell * NP_SWEEP_ROW);
+    for (unsigned y0 = 0; y0 < 65536u; y0 += NP_SWEEP_ROWS) {
+        unsigned what = NP_SWEEP_MODEL | NP_SWEEP_REF;
+        if (su->kernel)
+            su->u->sweep_rows(su->cfg, x0, (uint16_t)y0, z, NP_SWEEP_ROWS, what, b->code, b->ref);
+        else
+            np_sweep_rows_generic(su->u, su->cfg, x0, (uint16_t)y0, z, NP_SWEEP_ROWS, what,
+                                  b->code, b->ref);
+        acc_rows(su, b, &a, x0, (uint16_t)y0);
+    }
+    a.s.sum = a.s.sum2 = 0.0;
+    for (unsigned j = 0; j < LANES; j++) {
+        a.s.sum += a.sum[j];
+        a.s.sum2 += a.sum2[j];
+    }
+    *out = a.s;
+}
+
+int np_sweep_block(const np_unit *u, const void *cfg, uint16_t z, unsigned xcell, int use_kernel,
+                   np_sweep_stats *out)
+{
+    sweep_unit su;
+    sweep_buf b;
+    sweep_unit_init(&su, u, cfg, use_kernel);
+    int rc = buf_init(&b, su.n_out);
+    if (rc == 0)
+        block_run(&su, &b, z, xcell, out);
+    buf_free(&b);
+    return rc;
+}
+
+/* ---------------------------------------------------------------- journal */
+
+/*
+ * A journal is text: four header lines naming what was swept, then one line
+ * per completed block, in the order blocks completed, each ending with an
+ * FNV-1a checksum of the rest of the line:
+ *
+ *   noisepipe-sweep-journal 1
+ *   unit classic3
+ *   config out_bits=8 s_frac=12 lerp_frac=11
+ *   z 0x0000
+ *   block 17 n=16777216 cr=... over=0 max=0x1.4p-1 at=0x1134,0x9a01 sum=0x1.8p+21
+ *     sum2=0x1.2p+20 hist=c0,c1,...,c32 check=1a2b3c4d        (one line)
+ *
+ * Counts are decimal, doubles C99 hex (%a), so a resumed block merges to the
+ * same bits as a computed one. A last line without its newline is what a
+ * killed run leaves behind: resuming cuts it off and computes that block again.
+ */
+#define JOURNAL_MAGIC "noisepipe-sweep-journal 1"
+enum { HEADER_LINES = 4, JLINE_MAX = 1024 };
+
+static uint32_t fnv1a(const char *s, size_t n)
+{
+    uint32_t h = 2166136261u;
+    for (size_t i = 0; i < n; i++)
+        h = (h ^ (uint32_t)(uint8_t)s[i]) * 16777619u;
+    return h;
+}
+
+static void journal_header(const np_sweep_opts *o, char lines[HEADER_LINES][JLINE_MAX])
+{
+    char cfgtext[JLINE_MAX - 16];
+    o->unit->cfg_format(o->cfg, cfgtext, sizeof cfgtext);
+    snprintf(lines[0], JLINE_MAX, "%s", JOURNAL_MAGIC);
+    snprintf(lines[1], JLINE_MAX, "unit %s", o->unit->name);
+    snprintf(lines[2], JLINE_MAX, "config %s", cfgtext);
+    snprintf(lines[3], JLINE_MAX, "z 0x%04x", (unsigned)o->z);
+}
+
+/* The block line, with its newline; its length. */
+static size_t block_line(char *buf, unsigned blk, const np_sweep_stats *s)
+{
+    int n = snprintf(buf, JLINE_MAX,
+                     "block %u n=%" PRIu64 " cr=%" PRIu64 " over=%" PRIu64
+                     " max=%a at=0x%04x,0x%04x sum=%a sum2=%a hist=",
+                     blk, s->n, s->cr, s->over, s->max_err, (unsigned)s->max_x,
+                     (unsigned)s->max_y, s->sum, s->sum2);
+    size_t len = (size_t)n;
+    for (unsigned b = 0; b < NP_SWEEP_HIST_BINS; b++)
+        len += (size_t)snprintf(buf + len, JLINE_MAX - len, "%s%" PRIu64, b ? "," : "", s->hist[b]);
+    len += (size_t)snprintf(buf + len, JLINE_MAX - len, " check=%08" PRIx32 "\n", fnv1a(buf, len));
+    return len;
+}
+
+/* Parse one block line (without its newline); 0, or -1 when malformed. */
+static int parse_block(const char *line, unsigned *blk, np_sweep_stats *s)
+{
+    const char *ck = strstr(line, " check=");
+    if (!ck || strlen(ck) != 15)
+        return -1;
+    char *end;
+    unsigned long want = strtoul(ck + 7, &end, 16);
+    if (*end != '\0' || (uint32_t)want != fnv1a(line, (size_t)(ck - line)))
+        return -1;
+    unsigned b, mx, my;
+    int used = -1;
+    np_sweep_stats_init(s);
+    if (sscanf(line,
+               "block %u n=%" SCNu64 " cr=%" SCNu64 " over=%" SCNu64
+               " max=%la at=0x%x,0x%x sum=%la sum2=%la hist=%n",
+               &b, &s->n, &s->cr, &s->over, &s->max_err, &mx, &my, &s->sum, &s->sum2,
+               &used) != 9 ||
+        used < 0)
+        return -1;
+    const char *p = line + used;
+    uint64_t total = 0;
+    for (unsigned k = 0; k < NP_SWEEP_HIST_BINS; k++) {
+        if (k > 0 && *p++ != ',')
+            return -1;
+        if (*p < '0' || *p > '9')
+            return -1;
+        s->hist[k] = strtoull(p, &end, 10);
+        total += s->hist[k];
+        p = end;
+    }
+    if (p != ck || b >= NP_SWEEP_CELLS || mx > 0xffffu || my > 0xffffu ||
+        s->n != NP_SWEEP_BLOCK_INPUTS || total != s->n || s->cr > s->n || s->over > s->n)
+        return -1;
+    s->max_x = (uint16_t)mx;
+    s->max_y = (uint16_t)my;
+    *blk = b;
+    return 0;
+}
+
+/* The run's shared state. */
+typedef struct sweep_run {
+    const np_sweep_opts *o;
+    sweep_unit su;
+    np_sweep_stats blk[NP_SWEEP_CELLS];
+    unsigned char have[NP_SWEEP_CELLS];
+    unsigned todo[NP_SWEEP_CELLS], n_todo, next;
+    pthread_mutex_t mu;
+    FILE *jf;
+    int failed;
+    char err[512];
+    np_progress prog;
+    uint64_t done;
+} sweep_run;
+
+static int fail(char *err, size_t errlen, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+static int fail(char *err, size_t errlen, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err, errlen, fmt, ap);
+    va_end(ap);
+    return -1;
+}
+
+/*
+ * Read a journal to resume: check its header against this run, load its
+ * blocks into run->blk/have, cut a torn last line off. Opens run->jf for
+ * appending. A missing file is started afresh.
+ */
+static int journal_resume(sweep_run *run, char *err, size_t errlen)
+{
+    const char *path = run->o->journal;
+    char hdr[HEADER_LINES][JLINE_MAX];
+    journal_header(run->o, hdr);
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        if (errno != ENOENT)
+            return fail(err, errlen, "cannot read journal %s: %s", path, strerror(errno));
+        return 1; /* start it */
+    }
+    size_t cap = 1 << 16, len = 0;
+    char *text = malloc(cap + 1);
+    for (size_t got; text && (got = fread(text + len, 1, cap - len, f)) > 0;) {
+        len += got;
+        if (len == cap) {
+            char *t = realloc(text, 2 * cap + 1);
+            if (!t) {
+                free(text);
+                text = NULL;
+                break;
+            }
+            text = t;
+            cap *= 2;
+        }
+    }
+    int rd_err = ferror(f);
+    fclose(f);
+    if (!text)
+        return fail(err, errlen, "cannot read journal %s: out of memory", path);
+    if (rd_err) {
+        free(text);
+        return fail(err, errlen, "cannot read journal %s", path);
+    }
+    text[len] = '\0';
+
+    int rc = 0;
+    size_t pos = 0, keep = 0; /* keep: bytes of whole lines */
+    unsigned lineno = 0;
+    char msg[JLINE_MAX * 2 + 128];
+    while (pos < len && rc == 0) {
+        char *nl = memchr(text + pos, '\n', len - pos);
+        if (!nl)
+            break; /* torn last line */
+        *nl = '\0';
+        const char *line = text + pos;
+        lineno++;
+        if (lineno <= HEADER_LINES) {
+            if (strcmp(line, hdr[lineno - 1]) != 0) {
+                if (lineno == 1)
+                    snprintf(msg, sizeof msg, "%s is not a noisepipe sweep journal", path);
+                else
+                    snprintf(msg, sizeof msg,
+                             "journal %s was written for '%s', this run is '%s': not resuming "
+                             "(use another journal file)",
+                             path, line, hdr[lineno - 1]);
+                snprintf(err, errlen, "%s", msg);
+                rc = -1;
+            }
+        } else {
+            unsigned b;
+            np_sweep_stats s;
+            if (parse_block(line, &b, &s) != 0) {
+                snprintf(err, errlen, "journal %s, line %u: malformed block line", path, lineno);
+                rc = -1;
+            } else if (run->have[b] && !np_sweep_stats_equal(&run->blk[b], &s)) {
+                snprintf(err, errlen, "journal %s, line %u: block %u appears twice with different statistics",
+                         path, lineno, b);
+                rc = -1;
+            } else {
+                run->blk[b] = s;
+                run->have[b] = 1;
+            }
+        }
+        pos = (size_t)(nl - text) + 1;
+        keep = pos;
+    }
+    free(text);
+    if (rc != 0)
+        return rc;
+    if (lineno < HEADER_LINES)
+        return fail(err, errlen, "journal %s: incomplete header%s", path,
+                    len ? "" : " (empty file)");
+    if (keep < len) {
+        fprintf(stderr, "noisepipe sweep: journal %s: dropping an incomplete last line (%zu bytes)\n",
+                path, len - keep);
+        if (truncate(path, (off_t)keep) != 0)
+            return fail(err, errlen, "cannot truncate journal %s: %s", path, strerror(errno));
+    }
+    run->jf = fopen(path, "ab");
+    if (!run->jf)
+        return fail(err, errlen, "cannot append to journal %s: %s", path, strerror(errno));
+    return 0;
+}
+
+static int journal_flush(FILE *f) { return fflush(f) != 0 || fsync(fileno(f)) != 0 ? -1 : 0; }
+
+static int journal_start(sweep_run *run, char *err, size_t errlen)
+{
+    const char *path = run->o->journal;
+    char hdr[HEADER_LINES][JLINE_MAX];
+    journal_header(run->o, hdr);
+    run->jf = fopen(path, "wbx"); /* never overwrite a journal */
+    if (!run->jf) {
+        if (errno == EEXIST)
+            return fail(err, errlen, "journal %s exists: pass --resume to continue it, or remove it",
+                        path);
+        return fail(err, errlen, "cannot create journal %s: %s", path, strerror(errno));
+    }
+    for (unsigned k = 0; k < HEADER_LINES; k++)
+        fprintf(run->jf, "%s\n", hdr[k]);
+    if (journal_flush(run->jf) != 0)
+        return fail(err, errlen, "cannot write journal %s: %s", path, strerror(errno));
+    return 0;
+}
+
+/* ---------------------------------------------------------------- threads */
+
+static void *worker(void *arg)
+{
+    sweep_run *run = arg;
+    sweep_buf b;
+    int ok = buf_init(&b, run->su.n_out) == 0;
+    pthread_mutex_lock(&run->mu);
+    if (!ok && !run->failed) {
+        run->failed = 1;
+        snprintf(run->err, sizeof run->err, "out of memory");
+    }
+    while (ok && !run->failed && run->next < run->n_todo) {
+        unsigned blk = run->todo[run->next++];
+        pthread_mutex_unlock(&run->mu);
+        np_sweep_stats s;
+        block_run(&run->su, &b, run->o->z, blk, &s);
+        pthread_mutex_lock(&run->mu);
+        run->blk[blk] = s;
+        run->have[blk] = 1;
+        run->done += s.n;
+        if (run->jf) {
+            char line[JLINE_MAX];
+            size_t n = block_line(line, blk, &s);
+            if (fwrite(line, 1, n, run->jf) != n || journal_flush(run->jf) != 0) {
+                run->failed = 1;
+                snprintf(run->err, sizeof run->err, "cannot write journal %s: %s", run->o->journal,
+                         strerror(errno));
+            }
+        }
+        if (run->o->progress)
+            np_progress_update(&run->prog, run->done);
+    }
+    pthread_mutex_unlock(&run->mu);
+    buf_free(&b);
+    return NULL;
+}
+
+static unsigned online_cpus(void)
+{
+    long n = sysconf(_SC_NPROCESSORS_ONLN);
+    return n < 1 ? 1u : n > NP_SWEEP_CELLS ? (unsigned)NP_SWEEP_CELLS : (unsigned)n;
+}
+
+int np_sweep_run(const np_sweep_opts *o, np_sweep_result *res, char *err, size_t errlen)
+{
+    memset(res, 0, sizeof *res);
+    np_sweep_stats_init(&res->total);
+    if (o->x_first >= o->x_end || o->x_end > NP_SWEEP_CELLS)
+        return fail(err, errlen, "x cells %u:%u: need A < B <= 256", o->x_first, o->x_end);
+    const char *why = np_sweep_unit_check(o->unit, o->cfg);
+    if (why)
+        return fail(err, errlen, "unit %s: %s", o->unit->name, why);
+
+    sweep_run *run = calloc(1, sizeof *run);
+    if (!run)
+        return fail(err, errlen, "out of memory");
+    run->o = o;
+    sweep_unit_init(&run->su, o->unit, o->cfg, o->use_kernel);
+    int rc = 0;
+    if (o->journal) {
+        rc = o->resume ? journal_resume(run, err, errlen) : journal_start(run, err, errlen);
+        if (rc == 1)
+            rc = journal_start(run, err, errlen);
+    }
+    if (rc != 0) {
+        if (run->jf)
+            fclose(run->jf);
+        free(run);
+        return -1;
+    }
+
+    for (unsigned b = o->x_first; b < o->x_end; b++) {
+        if (run->have[b])
+            res->blocks_resumed++;
+        else
+            run->todo[run->n_todo++] = b;
+    }
+    res->blocks = o->x_end - o->x_first;
+    res->kernel = run->su.kernel;
+    unsigned nt = o->threads ? o->threads : online_cpus();
+    if (nt > run->n_todo)
+        nt = run->n_todo;
+    res->threads = nt;
+
+    double t0 = np_now();
+    if (o->progress)
+        np_progress_start(&run->prog, "sweep", (uint64_t)run->n_todo * NP_SWEEP_BLOCK_INPUTS);
+    pthread_mutex_init(&run->mu, NULL);
+    pthread_t tid[NP_SWEEP_CELLS];
+    unsigned started = 0;
+    for (; started < nt; started++)
+        if (pthread_create(&tid[started], NULL, worker, run) != 0)
+            break;
+    if (started == 0 && run->n_todo > 0)
+        worker(run); /* no thread could start: do the work here */
+    for (unsigned k = 0; k < started; k++)
+        pthread_join(tid[k], NULL);
+    pthread_mutex_destroy(&run->mu);
+    if (o->progress)
+        np_progress_end(&run->prog);
+    res->seconds = np_now() - t0;
+    res->computed = run->done;
+
+    if (run->jf && fclose(run->jf) != 0 && !run->failed) {
+        run->failed = 1;
+        snprintf(run->err, sizeof run->err, "cannot close journal %s", o->journal);
+    }
+    if (run->failed) {
+        snprintf(err, errlen, "%s", run->err);
+        free(run);
+        return -1;
+    }
+    for (unsigned b = o->x_first; b < o->x_end; b++)
+        np_sweep_stats_merge(&res->total, &run->blk[b]);
+    free(run);
+    return 0;
+}

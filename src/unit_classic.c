@@ -6,6 +6,7 @@
 
 #include "np_classic.h"
 #include "np_ref.h"
+#include "np_sweep.h"
 #include "np_unit.h"
 
 /* The registry's configuration block: the model's, plus which widths were set by hand. */
@@ -117,6 +118,11 @@ static void ref(const void *cfg, const uint64_t *in, double *out)
 
 static double error_bound(const void *cfg) { return np_classic_error_bound_lsb(&((const classic_cfg *)cfg)->c); }
 
+static size_t datapath(const void *cfg, np_op *ops, size_t max)
+{
+    return np_classic_datapath(&((const classic_cfg *)cfg)->c, ops, max);
+}
+
 static int pipe_init(np_pipe *p, const void *cfg) { return np_classic_pipe_init(p, &((const classic_cfg *)cfg)->c); }
 
 static void sig_set_in(void *sig, const uint64_t *in)
@@ -172,6 +178,173 @@ static size_t boundary(const void *cfg, uint64_t (*in)[NP_UNIT_MAX_FIELDS], size
     return n;
 }
 
+/* --- The exhaustive sweep's kernel (np_unit.sweep_rows) --- */
+
+/*
+ * The float reference's s-curve and interpolation: the expressions of
+ * ref_classic.c, the same operations in the same order, so the same doubles
+ * (with -ffp-contract=off; testbench/test_sweep.c compares every bit with
+ * np_ref_classic3_q88).
+ */
+static double ref_scurve(double t) { return t * t * (3.0 - 2.0 * t); }
+static double ref_lerp(double t, double a, double b) { return a + t * (b - a); }
+
+/*
+ * The reference gradient of one corner along a row (dv, dw fixed, du the
+ * corner-relative x offset varying) as g = c1 + (c2 + s * du), the very
+ * double np_ref_grad(h, du, dv, dw) returns, signed zeros included.
+ * np_ref_grad adds two or three terms p, q, r, each an offset or its
+ * negation (multiplying by a coefficient +-1.0 from np_ref_grad gives the
+ * same bits); its sums are exact (multiples of 2^-8 below 4), so only the
+ * sign of a zero sum depends on the order, and IEEE addition is commutative:
+ *   three terms (Appendix B: b == 0): p + (q + r) = z' + (x' + y')
+ *                                     = c1 + (c2 + s du), c1 = z', c2 = y';
+ *   two terms, one of them x':        x' + o = c1 + (-0 + s du), c1 = o
+ *                                     (-0 + a == a for every a);
+ *   two terms, no x':                 y' + z' = c1 + (-0 + s du), c1 = y' + z',
+ *                                     s = +-0 with s du == -0 for every du of
+ *                                     the corner (du >= 0 at cx = 0, < 0 at 1).
+ */
+typedef struct ref_corner {
+    double c1, c2, s;
+} ref_corner;
+
+/* The gradient's coefficients, probed from np_ref_grad: a[0..2] for x, y, z, each +-1 or +-0. */
+typedef struct ref_coef {
+    double a[3];
+} ref_coef;
+
+static ref_coef ref_coef_of(unsigned h)
+{
+    ref_coef k = { { np_ref_grad(h, 1.0, 0.0, 0.0), np_ref_grad(h, 0.0, 1.0, 0.0),
+                     np_ref_grad(h, 0.0, 0.0, 1.0) } };
+    return k;
+}
+
+static ref_corner ref_corner_row(const ref_coef *g, unsigned cx, double dv, double dw)
+{
+    double ax = g->a[0], ay = g->a[1], az = g->a[2];
+    ref_corner k;
+    if (ax != 0.0 && ay != 0.0 && az != 0.0) {
+        k.c1 = az * dw;
+        k.c2 = ay * dv;
+        k.s = ax;
+    } else if (ax != 0.0) {
+        k.c1 = ay != 0.0 ? ay * dv : az * dw;
+        k.c2 = -0.0;
+        k.s = ax;
+    } else {
+        k.c1 = ay * dv + az * dw;
+        k.c2 = -0.0;
+        k.s = cx ? 0.0 : -0.0;
+    }
+    return k;
+}
+
+/*
+ * The model over rows of one cell: np_classic_eval_in_cell per input, the
+ * model's own inline datapath, so the arithmetic has one definition. Inlined
+ * into the two callers below so that, where the widths are constants, they
+ * fold and the loop over the x fraction vectorises.
+ */
+NP_SWEEP_INLINE void model_rows(const np_classic_cfg *cfg, const np_classic_cell *cell, uint8_t v0,
+                                uint8_t w, unsigned rows, int32_t *code)
+{
+    for (unsigned r = 0; r < rows; r++) {
+        int32_t *out = code + (size_t)r * NP_SWEEP_ROW;
+        uint8_t v = (uint8_t)(v0 + r);
+        for (unsigned t = 0; t < NP_SWEEP_ROW; t++)
+            out[t] = np_classic_eval_in_cell(cfg, cell, (uint8_t)t, v, w);
+    }
+}
+
+/*
+ * The widths the model loop is specialised for: the default's. Used only
+ * when a configuration equals it field for field, so it cannot make a result
+ * wrong; if the default changes, the default merely runs the general loop.
+ */
+static const np_classic_cfg fast_cfg = { .out_bits = 8, .s_frac = 12, .lerp_frac = 11 };
+
+static int is_fast_cfg(const np_classic_cfg *c)
+{
+    return c->out_bits == fast_cfg.out_bits && c->s_frac == fast_cfg.s_frac &&
+           c->lerp_frac == fast_cfg.lerp_frac;
+}
+
+NP_SWEEP_CLONES static void model_rows_fast(const np_classic_cell *cellp, uint8_t v0, uint8_t w,
+                                            unsigned rows, int32_t *code)
+{
+    const np_classic_cell cell = *cellp;
+    model_rows(&fast_cfg, &cell, v0, w, rows, code);
+}
+
+NP_SWEEP_CLONES static void model_rows_any(const np_classic_cfg *cfgp,
+                                           const np_classic_cell *cellp, uint8_t v0, uint8_t w,
+                                           unsigned rows, int32_t *code)
+{
+    /* Local copies: the stores to code[] cannot alias them, so they stay loop-invariant. */
+    const np_classic_cfg cfg = *cfgp;
+    const np_classic_cell cell = *cellp;
+    model_rows(&cfg, &cell, v0, w, rows, code);
+}
+
+/*
+ * The reference over rows of cell (i, j, k): the in-cell form of
+ * np_ref_classic3 with the hash, the s-curves and the gradients' y and z
+ * terms hoisted out of the row.
+ */
+NP_SWEEP_CLONES static void ref_rows(uint8_t i, uint8_t j, uint8_t k, uint8_t v0, uint8_t w,
+                                     unsigned rows, double *ref)
+{
+    ref_coef co[8];
+    for (unsigned c = 0; c < 8; c++)
+        co[c] = ref_coef_of(np_hash6((uint8_t)(i + (c & 1u)), (uint8_t)(j + (c >> 1 & 1u)),
+                                     (uint8_t)(k + (c >> 2 & 1u))));
+    double du0[NP_SWEEP_ROW], sx[NP_SWEEP_ROW];
+    for (unsigned t = 0; t < NP_SWEEP_ROW; t++) {
+        du0[t] = (double)t / 256.0; /* x - floor(x) of np_ref_classic3, exact */
+        sx[t] = ref_scurve(du0[t]);
+    }
+    double dw = (double)w / 256.0, sz = ref_scurve(dw);
+    for (unsigned r = 0; r < rows; r++) {
+        double dv = (double)(uint8_t)(v0 + r) / 256.0, sy = ref_scurve(dv);
+        ref_corner kc[8];
+        for (unsigned c = 0; c < 8; c++)
+            kc[c] = ref_corner_row(&co[c], c & 1u, (c & 2u) ? dv - 1.0 : dv,
+                                   (c & 4u) ? dw - 1.0 : dw);
+        double *out = ref + (size_t)r * NP_SWEEP_ROW;
+        for (unsigned t = 0; t < NP_SWEEP_ROW; t++) {
+            double u0 = du0[t], u1 = u0 - 1.0, s = sx[t], g[8];
+            for (unsigned c = 0; c < 8; c++)
+                g[c] = kc[c].c1 + (kc[c].c2 + kc[c].s * ((c & 1u) ? u1 : u0));
+            double a = ref_lerp(s, g[0], g[1]), b = ref_lerp(s, g[2], g[3]);
+            double c0 = ref_lerp(sy, a, b);
+            a = ref_lerp(s, g[4], g[5]);
+            b = ref_lerp(s, g[6], g[7]);
+            double c1 = ref_lerp(sy, a, b);
+            out[t] = ref_lerp(sz, c0, c1);
+        }
+    }
+}
+
+static void sweep_rows(const void *cfgv, uint16_t x0, uint16_t y0, uint16_t z, unsigned rows,
+                       unsigned what, int32_t *code, double *ref)
+{
+    const np_classic_cfg *cfg = &((const classic_cfg *)cfgv)->c;
+    uint8_t i = (uint8_t)(x0 >> 8), j = (uint8_t)(y0 >> 8), k = (uint8_t)(z >> 8);
+    uint8_t v0 = (uint8_t)y0, w = (uint8_t)z;
+    if (what & NP_SWEEP_MODEL) {
+        np_classic_cell cell;
+        np_classic_cell_setup(i, j, k, &cell);
+        if (is_fast_cfg(cfg))
+            model_rows_fast(&cell, v0, w, rows, code);
+        else
+            model_rows_any(cfg, &cell, v0, w, rows, code);
+    }
+    if (what & NP_SWEEP_REF)
+        ref_rows(i, j, k, v0, w, rows, ref);
+}
+
 const np_unit np_unit_classic3 = {
     .name = "classic3",
     .summary = "classic 3-D gradient noise, 8.8 inputs, L/H/S/I pipeline (Perlin, Noise Hardware)",
@@ -188,4 +361,6 @@ const np_unit np_unit_classic3 = {
     .sig_set_in = sig_set_in,
     .sig_get_out = sig_get_out,
     .boundary = boundary,
+    .datapath = datapath,
+    .sweep_rows = sweep_rows,
 };
