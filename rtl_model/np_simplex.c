@@ -1,0 +1,738 @@
+/* SPDX-License-Identifier: MIT */
+#include "np_simplex.h"
+
+#include <stddef.h>
+#include <string.h>
+
+static unsigned umax(unsigned a, unsigned b) { return a > b ? a : b; }
+
+np_simplex_cfg np_simplex_cfg_default(unsigned out_bits, unsigned dout_bits, unsigned deriv)
+{
+    np_simplex_cfg c;
+    unsigned fd = dout_bits >= 2u ? dout_bits - 2u : 0u;
+    c.out_bits = out_bits;
+    c.dout_bits = dout_bits;
+    c.deriv = deriv ? 1u : 0u;
+    c.t_frac = out_bits + 7u;
+    c.p_frac = out_bits + 4u;
+    c.k_frac = out_bits + 6u;
+    if (c.deriv) {
+        c.t_frac = umax(c.t_frac, fd + 10u);
+        c.p_frac = umax(c.p_frac, fd + 8u);
+        c.k_frac = umax(c.k_frac, fd + 7u);
+    }
+    if (c.t_frac > NP_SIMPLEX_WT_MAX)
+        c.t_frac = NP_SIMPLEX_WT_MAX;
+    if (c.p_frac > NP_SIMPLEX_WP_MAX)
+        c.p_frac = NP_SIMPLEX_WP_MAX;
+    if (c.k_frac > NP_SIMPLEX_WK_MAX)
+        c.k_frac = NP_SIMPLEX_WK_MAX;
+    return c;
+}
+
+const char *np_simplex_cfg_check(const np_simplex_cfg *cfg)
+{
+    if (cfg->out_bits < NP_SIMPLEX_OUT_MIN || cfg->out_bits > NP_SIMPLEX_OUT_MAX)
+        return "out_bits must be 4..20";
+    if (cfg->dout_bits < NP_SIMPLEX_DOUT_MIN || cfg->dout_bits > NP_SIMPLEX_OUT_MAX)
+        return "dout_bits must be 5..20";
+    if (cfg->deriv > 1u)
+        return "deriv must be 0 or 1";
+    if (cfg->t_frac < 1u || cfg->t_frac > NP_SIMPLEX_WT_MAX)
+        return "t_frac must be 1..30";
+    if (cfg->p_frac < 1u || cfg->p_frac > NP_SIMPLEX_WP_MAX)
+        return "p_frac must be 1..32";
+    if (cfg->k_frac < 1u || cfg->k_frac > NP_SIMPLEX_WK_MAX)
+        return "k_frac must be 1..26";
+    return NULL;
+}
+
+
+/* Constants of the argument in np_simplex.h (upper bounds, rounded up). */
+#define BOUND_TAU_MAX 0.84375       /* tau(0) */
+#define BOUND_GD_MAX 4.0249224      /* sqrt(3 * 5.4) >= |G . d'| in the support */
+#define BOUND_S_MAX 1.6981          /* |S| <= 4 * 0.42451 */
+#define BOUND_Q_MAX 3.7093          /* |Q_a| <= 4 * 0.92731 */
+#define BOUND_M_E 11.6913           /* 5/4 sqrt(3) * 5.4: e-coefficient of m_a */
+#define BOUND_M_P 4.9047            /* 5/4 * 2.32379 + 1 (m rounding) + 1 (e_a rounding) */
+#define BOUND_KF 0.68189671         /* 2^23 / 12301875, rounded up */
+#define BOUND_KD 2.04569011         /* 2^23 / 4100625, rounded up */
+
+double np_simplex_error_bound_lsb(const np_simplex_cfg *cfg, int deriv_field)
+{
+    double e = np_pow2i(-(int)cfg->t_frac - 1), p = np_pow2i(-(int)cfg->p_frac - 1),
+           k = np_pow2i(-(int)cfg->k_frac - 1);
+    double e4 = e * (2.0 * BOUND_TAU_MAX * BOUND_TAU_MAX + e) + e;
+    if (!deriv_field) {
+        double ef = 4.0 * (e4 * BOUND_GD_MAX + p);
+        return 0.5 + np_pow2i((int)np_simplex_f_frac(cfg)) * (BOUND_KF * ef + k * (BOUND_S_MAX + ef));
+    }
+    double ed = 4.0 * (e4 + BOUND_M_E * e + BOUND_M_P * p);
+    return 0.5 + np_pow2i((int)np_simplex_d_frac(cfg)) * (BOUND_KD * ed + k * (BOUND_Q_MAX + ed));
+}
+
+/*
+ * Input word ruler (each of x, y, z), as the skew sees it:
+ *   15            8 7             0
+ *  +---------------+---------------+
+ *  |  integer (u8) | fraction (u8) |     value = word / 256
+ *  +---------------+---------------+
+ * The skewed cell is not the high byte: it is floor((4x + y + z) / 768).
+ */
+
+void np_simplex_eval(const np_simplex_cfg *cfg, uint16_t x, uint16_t y, uint16_t z,
+                     np_simplex_out *out)
+{
+    const uint16_t in[3] = { x, y, z };
+    uint32_t cell[3];
+    int32_t off[3];
+    for (unsigned a = 0; a < 3; a++)
+        cell[a] = np_simplex_cell(np_simplex_skew(in[a], in[(a + 1u) % 3u], in[(a + 2u) % 3u]));
+    uint32_t n = cell[0] + cell[1] + cell[2];
+    for (unsigned a = 0; a < 3; a++)
+        off[a] = np_simplex_offset(in[a], cell[a], n);
+    uint8_t hi, lo;
+    np_simplex_rank(off[0], off[1], off[2], &hi, &lo);
+
+    int64_t s = 0, qs[3] = { 0, 0, 0 };
+    for (unsigned c = 0; c < 4; c++) {
+        unsigned mask = np_simplex_corner_mask(hi, lo, c);
+        int32_t d[3];
+        for (unsigned a = 0; a < 3; a++)
+            d[a] = np_simplex_corner_d(off[a], mask >> a & 1u, c);
+        np_grad g = np_grad_decode(np_simplex_corner_hash(cell, mask));
+        int32_t gd = np_simplex_gdot(g, d);
+        uint32_t t = np_simplex_kernel_t(np_simplex_r2(d));
+        uint32_t tau2 = np_simplex_tau2(cfg, t);
+        uint32_t tau4 = np_simplex_tau4(cfg, tau2);
+        s += np_simplex_fterm(cfg, tau4, gd);
+        if (cfg->deriv) {
+            int64_t q = np_simplex_qterm(cfg, np_simplex_tau3(tau2, t), gd);
+            const int coef[3] = { g.cx, g.cy, g.cz };
+            for (unsigned a = 0; a < 3; a++)
+                qs[a] += np_simplex_eterm(cfg, tau4, coef[a]) - np_simplex_mterm(q, d[a]);
+        }
+    }
+    out->f = np_simplex_out_f(cfg, np_simplex_kf(cfg), s);
+    int64_t kd = np_simplex_kd(cfg);
+    for (unsigned a = 0; a < 3; a++)
+        out->df[a] = cfg->deriv ? np_simplex_out_d(cfg, kd, qs[a]) : 0;
+}
+
+/* --- Pipeline stages: the same primitives, split at the register banks. --- */
+
+static np_simplex_sig *sig_of(void *s) { return (np_simplex_sig *)s; }
+
+/* SK: skewed numerators and the skewed cell. */
+static void stage_sk(const void *cfgv, void *sv)
+{
+    (void)cfgv;
+    np_simplex_sig *s = sig_of(sv);
+    const uint16_t in[3] = { s->x, s->y, s->z };
+    for (unsigned a = 0; a < 3; a++) {
+        s->sk[a] = np_simplex_skew(in[a], in[(a + 1u) % 3u], in[(a + 2u) % 3u]);
+        s->cell[a] = np_simplex_cell(s->sk[a]);
+    }
+}
+
+/* RK: exact unskewed offsets and the ranking (three comparators). */
+static void stage_rk(const void *cfgv, void *sv)
+{
+    (void)cfgv;
+    np_simplex_sig *s = sig_of(sv);
+    const uint16_t in[3] = { s->x, s->y, s->z };
+    uint32_t n = s->cell[0] + s->cell[1] + s->cell[2];
+    for (unsigned a = 0; a < 3; a++)
+        s->off[a] = np_simplex_offset(in[a], s->cell[a], n);
+    np_simplex_rank(s->off[0], s->off[1], s->off[2], &s->hi, &s->lo);
+}
+
+/* CH: the four corners: offsets, hashes, gradients, G . D. */
+static void stage_ch(const void *cfgv, void *sv)
+{
+    (void)cfgv;
+    np_simplex_sig *s = sig_of(sv);
+    for (unsigned c = 0; c < 4; c++) {
+        unsigned mask = np_simplex_corner_mask(s->hi, s->lo, c);
+        for (unsigned a = 0; a < 3; a++)
+            s->d[c][a] = np_simplex_corner_d(s->off[a], mask >> a & 1u, c);
+        s->h[c] = np_simplex_corner_hash(s->cell, mask);
+        s->g[c] = np_grad_decode(s->h[c]);
+        s->gd[c] = np_simplex_gdot(s->g[c], s->d[c]);
+    }
+}
+
+/* KT: squared length and the kernel variable T (support decided here, exactly). */
+static void stage_kt(const void *cfgv, void *sv)
+{
+    (void)cfgv;
+    np_simplex_sig *s = sig_of(sv);
+    for (unsigned c = 0; c < 4; c++) {
+        s->r2[c] = np_simplex_r2(s->d[c]);
+        s->t[c] = np_simplex_kernel_t(s->r2[c]);
+    }
+}
+
+/* P2: tau^2. */
+static void stage_p2(const void *cfgv, void *sv)
+{
+    np_simplex_sig *s = sig_of(sv);
+    for (unsigned c = 0; c < 4; c++)
+        s->tau2[c] = np_simplex_tau2(cfgv, s->t[c]);
+}
+
+/* P4: tau^4 and (derivative) tau^3. */
+static void stage_p4(const void *cfgv, void *sv)
+{
+    const np_simplex_cfg *cfg = cfgv;
+    np_simplex_sig *s = sig_of(sv);
+    for (unsigned c = 0; c < 4; c++) {
+        s->tau4[c] = np_simplex_tau4(cfg, s->tau2[c]);
+        s->tau3[c] = cfg->deriv ? np_simplex_tau3(s->tau2[c], s->t[c]) : 0u;
+    }
+}
+
+/* M: the f terms; (derivative) q and the G_a tau^4 terms. */
+static void stage_m(const void *cfgv, void *sv)
+{
+    const np_simplex_cfg *cfg = cfgv;
+    np_simplex_sig *s = sig_of(sv);
+    for (unsigned c = 0; c < 4; c++) {
+        s->fc[c] = np_simplex_fterm(cfg, s->tau4[c], s->gd[c]);
+        if (cfg->deriv) {
+            const int coef[3] = { s->g[c].cx, s->g[c].cy, s->g[c].cz };
+            s->q[c] = np_simplex_qterm(cfg, s->tau3[c], s->gd[c]);
+            for (unsigned a = 0; a < 3; a++)
+                s->e[c][a] = np_simplex_eterm(cfg, s->tau4[c], coef[a]);
+        }
+    }
+}
+
+/* M2 (derivative only): m_a = 5/4 q d'_a. */
+static void stage_m2(const void *cfgv, void *sv)
+{
+    (void)cfgv;
+    np_simplex_sig *s = sig_of(sv);
+    for (unsigned c = 0; c < 4; c++)
+        for (unsigned a = 0; a < 3; a++)
+            s->m[c][a] = np_simplex_mterm(s->q[c], s->d[c][a]);
+}
+
+/* A: the sums over the four corners. */
+static void stage_a(const void *cfgv, void *sv)
+{
+    const np_simplex_cfg *cfg = cfgv;
+    np_simplex_sig *s = sig_of(sv);
+    s->s = s->fc[0] + s->fc[1] + s->fc[2] + s->fc[3];
+    for (unsigned a = 0; a < 3; a++) {
+        s->qs[a] = 0;
+        if (cfg->deriv)
+            for (unsigned c = 0; c < 4; c++)
+                s->qs[a] += s->e[c][a] - s->m[c][a];
+    }
+}
+
+/* O: constant multiply, round, saturate. */
+static void stage_o(const void *cfgv, void *sv)
+{
+    const np_simplex_cfg *cfg = cfgv;
+    np_simplex_sig *s = sig_of(sv);
+    s->f = np_simplex_out_f(cfg, np_simplex_kf(cfg), s->s);
+    int64_t kd = np_simplex_kd(cfg);
+    for (unsigned a = 0; a < 3; a++)
+        s->df[a] = cfg->deriv ? np_simplex_out_d(cfg, kd, s->qs[a]) : 0;
+}
+
+const np_stage_desc np_simplex_stages_d[NP_SIMPLEX_STAGES_D] = {
+    { "SK", stage_sk }, { "RK", stage_rk }, { "CH", stage_ch }, { "KT", stage_kt },
+    { "P2", stage_p2 }, { "P4", stage_p4 }, { "M", stage_m },   { "M2", stage_m2 },
+    { "A", stage_a },   { "O", stage_o },
+};
+
+const np_stage_desc np_simplex_stages_f[NP_SIMPLEX_STAGES_F] = {
+    { "SK", stage_sk }, { "RK", stage_rk }, { "CH", stage_ch }, { "KT", stage_kt },
+    { "P2", stage_p2 }, { "P4", stage_p4 }, { "M", stage_m },   { "A", stage_a },
+    { "O", stage_o },
+};
+
+int np_simplex_pipe_init(np_pipe *p, const np_simplex_cfg *cfg)
+{
+    return np_pipe_init(p, np_simplex_stage_table(cfg), np_simplex_stage_count(cfg),
+                        sizeof(np_simplex_sig), cfg);
+}
+
+/* --- Datapath declaration --- */
+
+/* Append one op (when there is room) and count it. */
+static void put(np_op *ops, size_t max, size_t *n, np_op op)
+{
+    if (*n < max)
+        ops[*n] = op;
+    (*n)++;
+}
+
+#define OP(stage, sig, kind, count, a, b, out, sgn, level) \
+    put(ops, max, &n, (np_op){ stage, sig, kind, count, a, b, out, sgn, level })
+
+/*
+ * Range constants (upper bounds, rounded up). Per corner, the maxima over
+ * s = |d'|^2 in [0, 5.4) with tau = 5 (5.4 - s) / 32 of np_simplex.h; the
+ * sums from OUTPUT RANGE (the output bounds that simplex.max_magnitude
+ * recomputes over every local configuration) divided by the constants.
+ */
+#define RANGE_FC 0.42451  /* tau^4 |G.d'| */
+#define RANGE_Q 0.57546   /* tau^3 |G.d'| */
+#define RANGE_M 0.74068   /* 5/4 tau^3 |G.d'| |d'_a| */
+#define RANGE_EM 0.92731  /* |tau^4 G_a - 5/4 tau^3 (G.d') d'_a| */
+#define RANGE_S 0.50952   /* |S| = |f| / Kf <= 0.347438 / Kf */
+#define RANGE_QS 0.85095  /* |Q_a| = |df_a| / Kd <= 1.740774 / Kd */
+#define TAU3_E 1.84375    /* |tau3' - tau^3| <= (tau + 1) e */
+#define M_P_PRE 2.9047    /* p-coefficient of the m_a error before m's own rounding */
+enum {
+    GD_MAX = 2660,        /* |gd| <= |D|_1 <= sqrt(3) |D| <= sqrt(3) 1536 = 2660.4 (|d| <= 1) */
+    GD_BITS = 13,         /* so gd is s13 */
+    CELL_LIVE = 8,        /* the bits of a cell index read after SK (the hash reads it mod 256) */
+    IN_LIVE = 11,         /* the bits of an input word read after SK: 6a mod 2^12 needs a mod 2^11 */
+    GRAD_BITS = 6         /* a corner's gradient index h */
+};
+
+/* Widths of an unsigned / a signed (symmetric) word of magnitude at most v. */
+static unsigned ubits(uint64_t v) { return np_bits_for_range(0, (int64_t)v, 0); }
+static unsigned sbits(uint64_t v) { return np_bits_for_range(-(int64_t)v, (int64_t)v, 1); }
+static uint64_t umin64(uint64_t a, uint64_t b) { return a < b ? a : b; }
+
+/* ceil(v 2^f) for v >= 0: a real bound as a word bound in Q.f. */
+static uint64_t word_bound(double v, unsigned f)
+{
+    double x = v * np_pow2i((int)f);
+    uint64_t u = (uint64_t)x;
+    return (double)u < x ? u + 1u : u;
+}
+
+/*
+ * A bound on |np_simplex_requant(v, from, to)| from a bound b on |v|: the
+ * rounding is monotone, and for x >= 0, -requant(x) <= requant(-x).
+ */
+static uint64_t requant_bound(uint64_t b, unsigned from, unsigned to)
+{
+    return from >= to ? np_shr_round_half_up_u(b, from - to) : b << (to - from);
+}
+
+/* Widths of the rounded datapath for cfg (the range argument of each is at its use). */
+typedef struct sx_widths {
+    unsigned tsq, tau2, t4p, tau4, t3p, tau3;                 /* unsigned */
+    unsigned fcp, fc, qp, q, e, q5, mp, m, em, s, qs;         /* signed */
+    unsigned fprod, fr, dprod, dr;                            /* signed */
+    uint64_t smax, qsmax;                                     /* word bounds of S, Q_a */
+} sx_widths;
+
+static void widths_of(const np_simplex_cfg *cfg, sx_widths *w)
+{
+    unsigned wt = cfg->t_frac, wp = cfg->p_frac, wk = cfg->k_frac;
+    double e = np_pow2i(-(int)wt - 1), p = np_pow2i(-(int)wp - 1);
+    double e4 = e * (2.0 * BOUND_TAU_MAX * BOUND_TAU_MAX + e) + e;
+    /*
+     * tau2, tau4 and tau3 are monotone in T (every rounding is), and
+     * T <= T_VERTEX (|d| = 0; reached at the origin): their largest words
+     * are exactly those at T_VERTEX.
+     */
+    uint64_t tv = NP_SIMPLEX_T_VERTEX;
+    uint64_t t2 = np_simplex_tau2(cfg, (uint32_t)tv);
+    uint64_t t4 = np_simplex_tau4(cfg, (uint32_t)t2);
+    uint64_t t3 = np_simplex_tau3((uint32_t)t2, (uint32_t)tv);
+    w->tsq = ubits(tv * tv);
+    w->tau2 = ubits(t2);
+    w->t4p = ubits(t2 * t2);
+    w->tau4 = ubits(t4);
+    w->t3p = ubits(t2 * tv);
+    w->tau3 = ubits(t3);
+    /*
+     * The terms: the per-corner maximum of the real function plus the
+     * rounding errors of the ERROR BOUND argument (tau4' <= tau^4 + e4,
+     * tau3' <= tau^3 + (tau + 1) e, |G.d'| <= 4.0249 where T > 0), and never
+     * more than the largest power times GD_MAX (what counts when WT is so
+     * small that e4 is large). fc, q, e in Q.WP; the products in Q.(WT+9).
+     */
+    uint64_t fcp = umin64(word_bound(RANGE_FC + BOUND_GD_MAX * e4, wt + NP_SIMPLEX_GD_FRAC), t4 * GD_MAX);
+    uint64_t fc = requant_bound(fcp, wt + NP_SIMPLEX_GD_FRAC, wp);
+    uint64_t qp = umin64(word_bound(RANGE_Q + BOUND_GD_MAX * TAU3_E * e, wt + NP_SIMPLEX_GD_FRAC), t3 * GD_MAX);
+    uint64_t q = requant_bound(qp, wt + NP_SIMPLEX_GD_FRAC, wp);
+    uint64_t ev = requant_bound(t4, wt, wp);
+    uint64_t q5 = 5u * q;
+    /* 5 q D in Q.(WP+11): 5/4 |q' d'_a| <= RANGE_M + (error of m before its rounding) */
+    uint64_t mp = umin64(word_bound(RANGE_M + BOUND_M_E * e + M_P_PRE * p, wp + NP_SIMPLEX_GD_FRAC + NP_SIMPLEX_M_SHIFT),
+                         q5 * NP_SIMPLEX_UNIT);
+    uint64_t m = np_shr_round_half_up_u(mp, NP_SIMPLEX_GD_FRAC + NP_SIMPLEX_M_SHIFT);
+    uint64_t em = umin64(word_bound(RANGE_EM + e4 + p + BOUND_M_E * e + (M_P_PRE + 1.0) * p, wp), ev + m);
+    /* The sums: the output bounds over Kf, Kd plus E_f, E_d; never more than four terms. */
+    uint64_t sm = umin64(word_bound(RANGE_S + 4.0 * (e4 * BOUND_GD_MAX + p), wp), 4u * fc);
+    uint64_t qs = umin64(word_bound(RANGE_QS + 4.0 * (e4 + BOUND_M_E * e + BOUND_M_P * p), wp), 4u * em);
+    uint64_t fprod = (uint64_t)np_simplex_kf(cfg) * sm, dprod = (uint64_t)np_simplex_kd(cfg) * qs;
+    w->fcp = sbits(fcp);
+    w->fc = sbits(fc);
+    w->qp = sbits(qp);
+    w->q = sbits(q);
+    w->e = sbits(ev);
+    w->q5 = sbits(q5);
+    w->mp = sbits(mp);
+    w->m = sbits(m);
+    w->em = sbits(em);
+    w->s = sbits(sm);
+    w->qs = sbits(qs);
+    w->smax = sm;
+    w->qsmax = qs;
+    w->fprod = sbits(fprod);
+    w->fr = sbits(requant_bound(fprod, wk + wp, np_simplex_f_frac(cfg)));
+    w->dprod = sbits(dprod);
+    w->dr = sbits(requant_bound(dprod, wk + wp, np_simplex_d_frac(cfg)));
+}
+
+/*
+ * O: count multipliers by the constant k as shift-adds. The operands are
+ * the operand (|v| <= vmax) shifted to each non-zero digit of k's canonical
+ * signed-digit form, summed pairwise, lowest digits first, in a tree. An
+ * adder of two partial sums whose lowest set bits are l1 < l2 spans the
+ * result's bits from l2 up (the bits below l2 are the first operand's:
+ * wiring); a partial sum of the terms T is bounded by vmax * sum 2^s over T,
+ * the whole product by k vmax (width bits, named sig). Returns the tree's
+ * depth in levels.
+ */
+static unsigned const_mul(np_op *ops, size_t max, size_t *n, unsigned count, uint64_t k, uint64_t vmax,
+                          unsigned width, const char *sig)
+{
+    enum { MAX_DIGITS = 40 };
+    unsigned low[MAX_DIGITS], terms = 0, lvl = 0;
+    uint64_t mag[MAX_DIGITS];
+    for (unsigned pos = 0; k && terms < MAX_DIGITS; pos++, k >>= 1)
+        if (k & 1u) {
+            low[terms] = pos;
+            mag[terms++] = vmax << pos;
+            k = (k & 2u) ? k + 1u : k - 1u; /* digit -1 or +1 */
+        }
+    if (terms <= 1u) { /* a power of two (or 0): wiring */
+        put(ops, max, n, (np_op){ "O", sig, NP_OP_REG, 0, 0, 0, width, 1, 0 });
+        return 0;
+    }
+    while (terms > 1u) {
+        unsigned next = 0, w[MAX_DIGITS / 2], nw = 0;
+        for (unsigned i = 0; i + 1u < terms; i += 2u) {
+            uint64_t m = mag[i] + mag[i + 1u];
+            unsigned rw = terms == 2u ? width : sbits(m);
+            w[nw++] = rw > low[i + 1u] ? rw - low[i + 1u] : 1u;
+            low[next] = low[i];
+            mag[next++] = m;
+        }
+        if (terms & 1u) {
+            low[next] = low[terms - 1u];
+            mag[next++] = mag[terms - 1u];
+        }
+        for (unsigned i = 0; i < nw;) { /* one op per run of equal widths */
+            unsigned j = i;
+            while (j < nw && w[j] == w[i])
+                j++;
+            put(ops, max, n, (np_op){ "O", next == 1u ? sig : NULL, NP_OP_ADD, count * (j - i), w[i], 0,
+                                      next == 1u ? width : 0u, 1, lvl });
+            i = j;
+        }
+        terms = next;
+        lvl++;
+    }
+    return lvl;
+}
+
+/*
+ * O: round the product (kept bits plus the round bit) to the output width
+ * and saturate, unless the range argument shows the rounded word already
+ * fits (then the saturation can never act and is left out, bits unchanged).
+ */
+static void out_round(np_op *ops, size_t max, size_t *n, unsigned count, unsigned drop, unsigned rw,
+                      unsigned ow, const char *sig, unsigned lvl)
+{
+    int sat = rw > ow;
+    if (drop > 0u)
+        put(ops, max, n, (np_op){ "O", sat ? NULL : sig, NP_OP_ADD, count, rw + 1u, 0, sat ? 0u : ow, 1, lvl });
+    else if (!sat)
+        put(ops, max, n, (np_op){ "O", sig, NP_OP_REG, 0, 0, 0, ow, 1, lvl }); /* wiring only */
+    if (sat) {
+        put(ops, max, n, (np_op){ "O", NULL, NP_OP_CMP, 2u * count, rw, 0, 0, 0, lvl + 1u });
+        put(ops, max, n, (np_op){ "O", sig, NP_OP_MUX, count, ow, 3, ow, 1, lvl + 2u });
+    }
+}
+
+/* A rounding that drops sh bits: an adder over the kept bits plus the round bit, or wiring. */
+#define ROUND(stage, sig, count, sh, vw, level)                          \
+    do {                                                                \
+        if ((sh) > 0)                                                   \
+            OP(stage, sig, NP_OP_ADD, count, (vw) + 1u, 0, vw, 1, level); \
+        else                                                            \
+            OP(stage, sig, NP_OP_REG, 0, 0, 0, vw, 1, level);           \
+    } while (0)
+
+size_t np_simplex_datapath(const np_simplex_cfg *cfg, np_op *ops, size_t max)
+{
+    size_t n = 0;
+    sx_widths w;
+    widths_of(cfg, &w);
+    unsigned dv = cfg->deriv, wt = cfg->t_frac, wp = cfg->p_frac, wk = cfg->k_frac;
+    unsigned nb = cfg->out_bits, nd = cfg->dout_bits, ob = NP_SIMPLEX_OFF_BITS;
+    /* Carried for the derivative only: D to M2, each corner's gradient index to M (e_a). */
+    unsigned d_live = dv ? 4u * 3u * ob : 0u, h_live = dv ? 4u * GRAD_BITS : 0u;
+
+    /*
+     * SK. SX = 4a + (b + c): b + c <= 2 * 65535 (u17), SX <= 6 * 65535 = 393210
+     * < 2^19 (u19). Then i = floor(SX / 768) = (683 nn) >> 11 with
+     * nn = SX >> 8 <= 1535 (u11), 683 nn = 2 (32 - 1)(2 (4 + 1) + 1) nn + nn
+     * as four shift-adds in series: 5 nn <= 7675 (u13), 11 nn <= 16885 (u15),
+     * 341 nn <= 523435 < 2^19 (u19), 683 nn <= 1048405 < 2^20 (u20).
+     */
+    OP("SK", "bc", NP_OP_ADD, 3, 17, 0, 17, 0, 0);
+    OP("SK", "sk", NP_OP_ADD, 3, NP_SIMPLEX_SKEW_BITS, 0, NP_SIMPLEX_SKEW_BITS, 0, 1);
+    OP("SK", "n5", NP_OP_ADD, 3, 13, 0, 13, 0, 2);
+    OP("SK", "n11", NP_OP_ADD, 3, 15, 0, 15, 0, 3);
+    OP("SK", "n341", NP_OP_ADD, 3, 19, 0, 19, 0, 4);
+    OP("SK", "n683", NP_OP_ADD, 3, 20, 0, 20, 0, 5);
+    /*
+     * Live after SK: each input word mod 2^11 (all that U mod 2^12 reads) and
+     * each cell mod 256 (bit 8 is never read: the hash takes the cell mod 256,
+     * U its residues mod 8 and mod 16).
+     */
+    OP("SK", NULL, NP_OP_REG, 1, 3 * IN_LIVE + 3 * CELL_LIVE + 1, 0, 0, 0, 0);
+
+    /*
+     * RK. U = 6a - 1536 i + 256 n lies in (-512, 1280) (u in (-1/3, 5/6)), so
+     * s12 holds it and it is computed mod 2^12 exactly: U[7:0] = (6a)[7:0],
+     * U[11:8] = (6a)[11:8] + (n - 2 (3i mod 8)) mod 16, with 6a mod 2^12 =
+     * 2 ((2a + a) mod 2^11), 3i mod 8 = (2i + i) mod 8, n mod 16 =
+     * (i + j + k) mod 16. The far-corner cells (cell + 1) mod 256 are formed
+     * here too (they read only the cell), which keeps CH to eight levels.
+     */
+    OP("RK", NULL, NP_OP_ADD, 3, 11, 0, 0, 0, 0);             /* (2a + a) mod 2^11 */
+    OP("RK", NULL, NP_OP_ADD, 3, 3, 0, 0, 0, 0);              /* 3i mod 8 */
+    OP("RK", NULL, NP_OP_ADD, 1, 4, 0, 0, 0, 0);              /* (i + j) mod 16 */
+    OP("RK", NULL, NP_OP_ADD, 3, CELL_LIVE, 0, 0, 0, 0);      /* cell + 1 mod 256 */
+    OP("RK", NULL, NP_OP_ADD, 1, 4, 0, 0, 0, 1);              /* n mod 16 */
+    OP("RK", NULL, NP_OP_ADD, 3, 4, 0, 0, 0, 2);              /* (n - 6i) mod 16 */
+    OP("RK", "off", NP_OP_ADD, 3, 4, 0, ob, 1, 3);            /* U[11:8] */
+    /* Appendix B's ranking: three comparators, then the corner masks of corners 1 and 2. */
+    OP("RK", NULL, NP_OP_CMP, 3, ob, 0, 0, 0, 4);
+    OP("RK", NULL, NP_OP_LUT, 1, 3, 6, 0, 0, 5);
+    OP("RK", NULL, NP_OP_REG, 1, 3 * ob + 6 + 2 * 3 * CELL_LIVE + 1, 0, 0, 0, 0); /* U; masks; cell, cell + 1 */
+
+    /*
+     * CH. D_c = U - 1536 A + 256 c for corners 1..3 (corner 0's is U): |D| <= 1536
+     * (|d| <= 1, the longest simplex edge), s12, so D[7:0] = U[7:0] and
+     * D[11:8] = U[11:8] + (c - 6 A_a) mod 16, the constant picked by the mask
+     * bit. Hash: corner cells (cell or cell + 1 by the mask: corners 1, 2),
+     * then per corner 8 lookups 3 -> 6 and 7 six-bit adders (4, 2, 1), as in
+     * classic3. G . D: -D formed beside the hash, then per axis a 3:1 select of
+     * D_a, -D_a or 0 by the gradient coefficient (np_grad_decode's bit logic,
+     * not counted, as in classic3), and two additions:
+     * |D_x c_x + D_y c_y| <= sqrt(2) 1536 = 2172 (s13), |gd| <= 2660 (s13).
+     */
+    OP("CH", NULL, NP_OP_MUX, 6, CELL_LIVE, 2, 0, 0, 0);
+    OP("CH", "d", NP_OP_ADD, 9, 4, 0, ob, 1, 0);
+    OP("CH", NULL, NP_OP_LUT, 32, 3, 6, 0, 0, 1);
+    OP("CH", NULL, NP_OP_ADD, 16, 6, 0, 0, 0, 2);
+    OP("CH", NULL, NP_OP_NEG, 12, ob, 0, 0, 0, 2);
+    OP("CH", NULL, NP_OP_ADD, 8, 6, 0, 0, 0, 3);
+    OP("CH", "h", NP_OP_ADD, 4, 6, 0, 6, 0, 4);
+    OP("CH", NULL, NP_OP_MUX, 12, ob, 3, 0, 0, 5);
+    OP("CH", "gd2", NP_OP_ADD, 4, GD_BITS, 0, GD_BITS, 1, 6);
+    OP("CH", "gd", NP_OP_ADD, 4, GD_BITS, 0, GD_BITS, 1, 7);
+    OP("CH", NULL, NP_OP_REG, 1, 4 * 3 * ob + 4 * GD_BITS + h_live + 1, 0, 0, 0, 0); /* D; gd; (h) */
+
+    /*
+     * KT. D_a^2 <= 1536^2 = 2359296 < 2^22 (u22, a 12 x 12 multiplier: no
+     * squarer in the cost model); R2 and its partial sum <= 1536^2 (u22);
+     * 5 R2 = 4 R2 + R2 <= 11796480 < 2^24 (u24); 7077888 - 5 R2 in
+     * [-4718592, 7077888] (s24); T = the clamp at 0 by the sign bit (u23).
+     */
+    OP("KT", "dsq", NP_OP_MUL, 12, ob, ob, NP_SIMPLEX_R2_BITS, 0, 0);
+    OP("KT", "r2p", NP_OP_ADD, 4, NP_SIMPLEX_R2_BITS, 0, NP_SIMPLEX_R2_BITS, 0, 1);
+    OP("KT", "r2", NP_OP_ADD, 4, NP_SIMPLEX_R2_BITS, 0, NP_SIMPLEX_R2_BITS, 0, 2);
+    OP("KT", "r2x5", NP_OP_ADD, 4, NP_SIMPLEX_TD_BITS, 0, NP_SIMPLEX_TD_BITS, 0, 3);
+    OP("KT", "td", NP_OP_ADD, 4, NP_SIMPLEX_TD_BITS, 0, NP_SIMPLEX_TD_BITS, 1, 4);
+    OP("KT", "t", NP_OP_MUX, 4, NP_SIMPLEX_T_BITS, 2, NP_SIMPLEX_T_BITS, 0, 5);
+    OP("KT", NULL, NP_OP_REG, 1, 4 * NP_SIMPLEX_T_BITS + 4 * GD_BITS + d_live + h_live + 1, 0, 0, 0, 0);
+
+    /*
+     * P2, P4. T^2 <= 7077888^2 < 2^46 (u46). The powers' largest words are
+     * those at T = 7077888 (widths_of): tau2 ~ 0.7119, tau4 ~ 0.5068,
+     * tau3 ~ 0.6007, each u(WT); the products tau2^2 and tau2 T at their
+     * exact maxima. Each rounding drops at least one bit (46 - WT, WT, 23).
+     */
+    OP("P2", "tsq", NP_OP_MUL, 4, NP_SIMPLEX_T_BITS, NP_SIMPLEX_T_BITS, w.tsq, 0, 0);
+    OP("P2", "tau2", NP_OP_ADD, 4, w.tau2 + 1u, 0, w.tau2, 0, 1);
+    OP("P2", NULL, NP_OP_REG, 1,
+       4 * w.tau2 + 4 * GD_BITS + (dv ? 4u * NP_SIMPLEX_T_BITS : 0u) + d_live + h_live + 1, 0, 0, 0, 0);
+    OP("P4", "tau4p", NP_OP_MUL, 4, w.tau2, w.tau2, w.t4p, 0, 0);
+    OP("P4", "tau4", NP_OP_ADD, 4, w.tau4 + 1u, 0, w.tau4, 0, 1);
+    if (dv) {
+        OP("P4", "tau3p", NP_OP_MUL, 4, w.tau2, NP_SIMPLEX_T_BITS, w.t3p, 0, 0);
+        OP("P4", "tau3", NP_OP_ADD, 4, w.tau3 + 1u, 0, w.tau3, 0, 1);
+    }
+    OP("P4", NULL, NP_OP_REG, 1, 4 * w.tau4 + 4 * GD_BITS + (dv ? 4u * w.tau3 : 0u) + d_live + h_live + 1, 0, 0,
+       0, 0);
+
+    /*
+     * M. fc = round(tau4 gd): product and fc from widths_of (|tau4' G.d'| <=
+     * 0.4245 + 4.0249 e4, so fc is sWP when that is < 1/2). Derivative:
+     * q = round(tau3 gd) alike (<= 0.5755 + ...: s(WP+1)); e_a = G_a tau4 as a
+     * 3:1 select of round(tau4), round(-tau4) and 0 (two roundings per corner,
+     * shared by the three axes; |e| <= round(max tau4) ~ 0.5068: s(WP+1)).
+     */
+    unsigned shp = wt + NP_SIMPLEX_GD_FRAC > wp ? wt + NP_SIMPLEX_GD_FRAC - wp : 0u;
+    OP("M", "fcp", NP_OP_MUL, 4, w.tau4, GD_BITS, w.fcp, 1, 0);
+    ROUND("M", "fc", 4, shp, w.fc, 1);
+    if (dv) {
+        OP("M", "qp", NP_OP_MUL, 4, w.tau3, GD_BITS, w.qp, 1, 0);
+        ROUND("M", "q", 4, shp, w.q, 1);
+        OP("M", NULL, NP_OP_NEG, 4, w.tau4 + 1u, 0, 0, 0, 0);
+        if (wt > wp)
+            OP("M", NULL, NP_OP_ADD, 8, w.e + 1u, 0, 0, 0, 1);
+        OP("M", "e", NP_OP_MUX, 12, w.e, 3, w.e, 1, 2);
+    }
+    OP("M", NULL, NP_OP_REG, 1, 4 * w.fc + (dv ? 4u * w.q + 12u * w.e : 0u) + d_live + 1, 0, 0, 0, 0);
+
+    /*
+     * M2 (derivative only). 5q = 4q + q (|5q| <= 5 max |q|); 5 q D in
+     * Q.(WP+11): 5/4 |q' d'_a| <= 0.7407 + 11.6913 e + 2.9047 p; m = that
+     * rounded by 11 bits (s(WP+1)).
+     */
+    if (dv) {
+        OP("M2", "q5", NP_OP_ADD, 4, w.q5, 0, w.q5, 1, 0);
+        OP("M2", "mp", NP_OP_MUL, 12, w.q5, ob, w.mp, 1, 1);
+        OP("M2", "m", NP_OP_ADD, 12, w.m + 1u, 0, w.m, 1, 2);
+        OP("M2", NULL, NP_OP_REG, 1, 4 * w.fc + 12 * w.e + 12 * w.m + 1, 0, 0, 0, 0);
+    }
+
+    /*
+     * A. S = sum of 4 fc: |S| <= 0.5095 + E_f (s(WP+1) while that is < 1);
+     * Q_a = sum of 4 (e_a - m_a): |e_a - m_a| <= 0.9273 + errors,
+     * |Q_a| <= 0.8510 + E_d (s(WP+1)). Each tree adds mod 2^width: partial
+     * sums may wrap, the final one fits, so it is exact.
+     */
+    OP("A", NULL, NP_OP_ADD, 2, w.s, 0, 0, 0, 0);
+    OP("A", "s", NP_OP_ADD, 1, w.s, 0, w.s, 1, 1);
+    if (dv) {
+        OP("A", "em", NP_OP_ADD, 12, w.em, 0, w.em, 1, 0);
+        OP("A", NULL, NP_OP_ADD, 6, w.qs, 0, 0, 0, 1);
+        OP("A", "qs", NP_OP_ADD, 3, w.qs, 0, w.qs, 1, 2);
+    }
+    OP("A", NULL, NP_OP_REG, 1, w.s + (dv ? 3u * w.qs : 0u) + 1, 0, 0, 0, 0);
+
+    /*
+     * O. Kf' S and (derivative) Kd' Q_a as shift-adds of the constants' CSD
+     * digits: |Kf' S| <= Kf' max |S|, |Kd' Q| <= Kd' max |Q|; then rounding
+     * by WK + WP - F bits (F = N, ND - 2); the rounded words' bounds give
+     * the saturation's need.
+     */
+    unsigned lf = const_mul(ops, max, &n, 1, (uint64_t)np_simplex_kf(cfg), w.smax, w.fprod, "fprod");
+    unsigned ld = dv ? const_mul(ops, max, &n, 3, (uint64_t)np_simplex_kd(cfg), w.qsmax, w.dprod, "dprod") : 0u;
+    unsigned lr = lf > ld ? lf : ld;
+    unsigned ff = np_simplex_f_frac(cfg), fd = np_simplex_d_frac(cfg);
+    out_round(ops, max, &n, 1, wk + wp > ff ? wk + wp - ff : 0u, w.fr, nb, "f", lr);
+    if (dv)
+        out_round(ops, max, &n, 3, wk + wp > fd ? wk + wp - fd : 0u, w.dr, nd, "df", lr);
+    OP("O", NULL, NP_OP_REG, 1, nb + (dv ? 3u * nd : 0u) + 1, 0, 0, 0, 0);
+    return n;
+}
+
+static void trace(np_trace *t, size_t n, const char *name, int64_t v)
+{
+    for (size_t i = 0; i < n; i++)
+        if (t[i].signal && strcmp(t[i].signal, name) == 0)
+            np_trace_add(&t[i], v);
+}
+
+void np_simplex_trace(const np_simplex_cfg *cfg, unsigned k, const np_simplex_sig *s, np_trace *t,
+                      size_t n)
+{
+    if (k >= np_simplex_stage_count(cfg))
+        return;
+    const char *st = np_simplex_stage_table(cfg)[k].name;
+    const uint16_t in[3] = { s->x, s->y, s->z };
+    if (strcmp(st, "SK") == 0) {
+        for (unsigned a = 0; a < 3; a++) {
+            int64_t nn = s->sk[a] >> NP_SIMPLEX_FRAC_IN;
+            trace(t, n, "bc", (int64_t)in[(a + 1u) % 3u] + in[(a + 2u) % 3u]);
+            trace(t, n, "sk", s->sk[a]);
+            trace(t, n, "n5", 5 * nn);
+            trace(t, n, "n11", 11 * nn);
+            trace(t, n, "n341", 341 * nn);
+            trace(t, n, "n683", 683 * nn);
+        }
+    } else if (strcmp(st, "RK") == 0) {
+        for (unsigned a = 0; a < 3; a++)
+            trace(t, n, "off", s->off[a]);
+    } else if (strcmp(st, "CH") == 0) {
+        for (unsigned c = 0; c < 4; c++) {
+            for (unsigned a = 0; a < 3; a++)
+                trace(t, n, "d", s->d[c][a]);
+            trace(t, n, "h", s->h[c]);
+            trace(t, n, "gd2", (int64_t)s->g[c].cx * s->d[c][0] + (int64_t)s->g[c].cy * s->d[c][1]);
+            trace(t, n, "gd", s->gd[c]);
+        }
+    } else if (strcmp(st, "KT") == 0) {
+        for (unsigned c = 0; c < 4; c++) {
+            for (unsigned a = 0; a < 3; a++)
+                trace(t, n, "dsq", (int64_t)s->d[c][a] * s->d[c][a]);
+            trace(t, n, "r2p", (int64_t)s->d[c][0] * s->d[c][0] + (int64_t)s->d[c][1] * s->d[c][1]);
+            trace(t, n, "r2", s->r2[c]);
+            trace(t, n, "r2x5", (int64_t)NP_SIMPLEX_R2_SCALE * s->r2[c]);
+            trace(t, n, "td", (int64_t)NP_SIMPLEX_T_VERTEX - (int64_t)NP_SIMPLEX_R2_SCALE * s->r2[c]);
+            trace(t, n, "t", s->t[c]);
+        }
+    } else if (strcmp(st, "P2") == 0) {
+        for (unsigned c = 0; c < 4; c++) {
+            trace(t, n, "tsq", (int64_t)((uint64_t)s->t[c] * s->t[c]));
+            trace(t, n, "tau2", s->tau2[c]);
+        }
+    } else if (strcmp(st, "P4") == 0) {
+        for (unsigned c = 0; c < 4; c++) {
+            trace(t, n, "tau4p", (int64_t)((uint64_t)s->tau2[c] * s->tau2[c]));
+            trace(t, n, "tau4", s->tau4[c]);
+            if (cfg->deriv) {
+                trace(t, n, "tau3p", (int64_t)((uint64_t)s->tau2[c] * s->t[c]));
+                trace(t, n, "tau3", s->tau3[c]);
+            }
+        }
+    } else if (strcmp(st, "M") == 0) {
+        for (unsigned c = 0; c < 4; c++) {
+            trace(t, n, "fcp", (int64_t)s->tau4[c] * s->gd[c]);
+            trace(t, n, "fc", s->fc[c]);
+            if (cfg->deriv) {
+                trace(t, n, "qp", (int64_t)s->tau3[c] * s->gd[c]);
+                trace(t, n, "q", s->q[c]);
+                for (unsigned a = 0; a < 3; a++)
+                    trace(t, n, "e", s->e[c][a]);
+            }
+        }
+    } else if (strcmp(st, "M2") == 0) {
+        for (unsigned c = 0; c < 4; c++) {
+            int64_t q5 = np_shl(s->q[c], NP_SIMPLEX_M_SHIFT) + s->q[c];
+            trace(t, n, "q5", q5);
+            for (unsigned a = 0; a < 3; a++) {
+                trace(t, n, "mp", q5 * s->d[c][a]);
+                trace(t, n, "m", s->m[c][a]);
+            }
+        }
+    } else if (strcmp(st, "A") == 0) {
+        trace(t, n, "s", s->s);
+        if (cfg->deriv) {
+            for (unsigned c = 0; c < 4; c++)
+                for (unsigned a = 0; a < 3; a++)
+                    trace(t, n, "em", s->e[c][a] - s->m[c][a]);
+            for (unsigned a = 0; a < 3; a++)
+                trace(t, n, "qs", s->qs[a]);
+        }
+    } else { /* O */
+        trace(t, n, "fprod", np_simplex_kf(cfg) * s->s);
+        trace(t, n, "f", s->f);
+        if (cfg->deriv)
+            for (unsigned a = 0; a < 3; a++) {
+                trace(t, n, "dprod", np_simplex_kd(cfg) * s->qs[a]);
+                trace(t, n, "df", s->df[a]);
+            }
+    }
+}

@@ -1,0 +1,286 @@
+/* SPDX-License-Identifier: MIT */
+/* The simplex noise unit (rtl_model/np_simplex.h) in the unit registry. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "np_ref.h"
+#include "np_simplex.h"
+#include "np_unit.h"
+
+/* The registry's configuration block: the model's, plus which widths were set by hand. */
+typedef struct simplex_cfg {
+    np_simplex_cfg c;
+    unsigned char t_set, p_set, k_set;
+} simplex_cfg;
+_Static_assert(sizeof(simplex_cfg) <= NP_UNIT_CFG_MAX, "configuration block too large");
+
+enum { DEFAULT_OUT_BITS = 16, DEFAULT_DOUT_BITS = 16, DEFAULT_DERIV = 1 };
+
+static void cfg_default(void *cfg)
+{
+    simplex_cfg *k = cfg;
+    memset(k, 0, sizeof *k);
+    k->c = np_simplex_cfg_default(DEFAULT_OUT_BITS, DEFAULT_DOUT_BITS, DEFAULT_DERIV);
+}
+
+static int parse_uint(const char *v, unsigned lo, unsigned hi, unsigned *out)
+{
+    char *end;
+    unsigned long n = strtoul(v, &end, 10);
+    if (*v == '\0' || *end != '\0' || *v == '-' || n < lo || n > hi)
+        return -1;
+    *out = (unsigned)n;
+    return 0;
+}
+
+/* Re-derive the widths not set by hand after an output width or deriv changed. */
+static void refresh_defaults(simplex_cfg *k)
+{
+    np_simplex_cfg d = np_simplex_cfg_default(k->c.out_bits, k->c.dout_bits, k->c.deriv);
+    if (!k->t_set)
+        k->c.t_frac = d.t_frac;
+    if (!k->p_set)
+        k->c.p_frac = d.p_frac;
+    if (!k->k_set)
+        k->c.k_frac = d.k_frac;
+}
+
+static int cfg_set(void *cfg, const char *key, const char *value, char *err, size_t errlen)
+{
+    simplex_cfg *k = cfg;
+    unsigned n;
+    if (strcmp(key, "out_bits") == 0 || strcmp(key, "dout_bits") == 0) {
+        if (parse_uint(value, key[0] == 'o' ? NP_SIMPLEX_OUT_MIN : NP_SIMPLEX_DOUT_MIN, NP_SIMPLEX_OUT_MAX, &n) != 0)
+            goto range;
+        if (key[0] == 'o')
+            k->c.out_bits = n;
+        else
+            k->c.dout_bits = n;
+        refresh_defaults(k);
+        return 0;
+    }
+    if (strcmp(key, "deriv") == 0) {
+        if (parse_uint(value, 0, 1, &n) != 0)
+            goto range;
+        k->c.deriv = n;
+        refresh_defaults(k);
+        return 0;
+    }
+    if (strcmp(key, "t_frac") == 0) {
+        if (parse_uint(value, 1, NP_SIMPLEX_WT_MAX, &n) != 0)
+            goto range;
+        k->c.t_frac = n;
+        k->t_set = 1;
+        return 0;
+    }
+    if (strcmp(key, "p_frac") == 0) {
+        if (parse_uint(value, 1, NP_SIMPLEX_WP_MAX, &n) != 0)
+            goto range;
+        k->c.p_frac = n;
+        k->p_set = 1;
+        return 0;
+    }
+    if (strcmp(key, "k_frac") == 0) {
+        if (parse_uint(value, 1, NP_SIMPLEX_WK_MAX, &n) != 0)
+            goto range;
+        k->c.k_frac = n;
+        k->k_set = 1;
+        return 0;
+    }
+    snprintf(err, errlen,
+             "unknown configuration key '%s' for unit simplex3 (keys: out_bits, dout_bits, deriv, "
+             "t_frac, p_frac, k_frac)",
+             key);
+    return -1;
+range:
+    snprintf(err, errlen,
+             "%s=%s: out of range (out_bits 4..20, dout_bits 5..20, deriv 0..1, t_frac 1..30, "
+             "p_frac 1..32, k_frac 1..26)",
+             key, value);
+    return -1;
+}
+
+static void cfg_format(const void *cfg, char *buf, size_t len)
+{
+    const simplex_cfg *k = cfg;
+    snprintf(buf, len, "out_bits=%u dout_bits=%u deriv=%u t_frac=%u p_frac=%u k_frac=%u",
+             k->c.out_bits, k->c.dout_bits, k->c.deriv, k->c.t_frac, k->c.p_frac, k->c.k_frac);
+}
+
+static const char *cfg_check(const void *cfg) { return np_simplex_cfg_check(&((const simplex_cfg *)cfg)->c); }
+
+static void set_field(np_field *f, const char *name, unsigned bits, int sgn, unsigned frac,
+                      const char *fmt)
+{
+    snprintf(f->name, sizeof f->name, "%s", name);
+    f->bits = bits;
+    f->is_signed = sgn;
+    f->frac = frac;
+    snprintf(f->format, sizeof f->format, "%s", fmt);
+}
+
+static void fields(const void *cfg, np_unit_fields *f)
+{
+    const simplex_cfg *k = cfg;
+    static const char *const dnames[3] = { "dfdx", "dfdy", "dfdz" };
+    char fmt[32];
+    memset(f, 0, sizeof *f);
+    f->n_in = 3;
+    f->n_out = k->c.deriv ? 4u : 1u;
+    set_field(&f->in[0], "x", 16, 0, 8, "u16 Q8.8");
+    set_field(&f->in[1], "y", 16, 0, 8, "u16 Q8.8");
+    set_field(&f->in[2], "z", 16, 0, 8, "u16 Q8.8");
+    snprintf(fmt, sizeof fmt, "s%u Q-1.%u", k->c.out_bits, np_simplex_f_frac(&k->c));
+    set_field(&f->out[0], "f", k->c.out_bits, 1, np_simplex_f_frac(&k->c), fmt);
+    if (k->c.deriv) {
+        snprintf(fmt, sizeof fmt, "s%u Q1.%u", k->c.dout_bits, np_simplex_d_frac(&k->c));
+        for (unsigned a = 0; a < 3; a++)
+            set_field(&f->out[1 + a], dnames[a], k->c.dout_bits, 1, np_simplex_d_frac(&k->c), fmt);
+    }
+}
+
+static void put_out(const np_simplex_cfg *c, const np_simplex_out *o, uint64_t *out)
+{
+    out[0] = np_trunc_u((uint64_t)(int64_t)o->f, c->out_bits);
+    if (c->deriv)
+        for (unsigned a = 0; a < 3; a++)
+            out[1 + a] = np_trunc_u((uint64_t)(int64_t)o->df[a], c->dout_bits);
+}
+
+static void eval(const void *cfg, const uint64_t *in, uint64_t *out)
+{
+    const simplex_cfg *k = cfg;
+    np_simplex_out o;
+    np_simplex_eval(&k->c, (uint16_t)in[0], (uint16_t)in[1], (uint16_t)in[2], &o);
+    put_out(&k->c, &o, out);
+}
+
+static void ref(const void *cfg, const uint64_t *in, double *out)
+{
+    const simplex_cfg *k = cfg;
+    double g[3];
+    out[0] = np_ref_simplex3_q88((uint16_t)in[0], (uint16_t)in[1], (uint16_t)in[2], g);
+    if (k->c.deriv)
+        for (unsigned a = 0; a < 3; a++)
+            out[1 + a] = g[a];
+}
+
+static double error_bound(const void *cfg)
+{
+    const simplex_cfg *k = cfg;
+    double bf = np_simplex_error_bound_lsb(&k->c, 0);
+    double bd = k->c.deriv ? np_simplex_error_bound_lsb(&k->c, 1) : 0.0;
+    return bf > bd ? bf : bd;
+}
+
+static size_t datapath(const void *cfg, np_op *ops, size_t max)
+{
+    return np_simplex_datapath(&((const simplex_cfg *)cfg)->c, ops, max);
+}
+
+static int pipe_init(np_pipe *p, const void *cfg) { return np_simplex_pipe_init(p, &((const simplex_cfg *)cfg)->c); }
+
+static void sig_set_in(void *sig, const uint64_t *in)
+{
+    np_simplex_sig *s = sig;
+    memset(s, 0, sizeof *s);
+    s->x = (uint16_t)in[0];
+    s->y = (uint16_t)in[1];
+    s->z = (uint16_t)in[2];
+}
+
+static void sig_get_out(const void *cfg, const void *sig, uint64_t *out)
+{
+    const simplex_cfg *k = cfg;
+    const np_simplex_sig *s = sig;
+    np_simplex_out o;
+    o.f = s->f;
+    for (unsigned a = 0; a < 3; a++)
+        o.df[a] = s->df[a];
+    put_out(&k->c, &o, out);
+}
+
+/*
+ * Hand-annotated boundary inputs (x, y, z as u16 Q8.8 words). Notation: U, V,
+ * W are the exact offsets from corner 0 in units of 1/1536 (np_simplex.h),
+ * (i, j, k) the skewed cell, T the exact kernel variable of a corner.
+ */
+static const uint16_t boundary_table[][3] = {
+    /* 0 and 0xffff per axis, every combination. */
+    { 0x0000, 0x0000, 0x0000 }, /* origin: U=V=W=0 (u=v=w tie), corner 0 at d=0: f=0, df=8*0.6^4*G */
+    { 0xffff, 0x0000, 0x0000 }, /* x at its maximum: cell (341,85,85) */
+    { 0x0000, 0xffff, 0x0000 }, /* y at its maximum */
+    { 0x0000, 0x0000, 0xffff }, /* z at its maximum */
+    { 0xffff, 0xffff, 0x0000 }, /* x, y at their maximum: u=v face */
+    { 0xffff, 0x0000, 0xffff }, /* x, z: u=w face */
+    { 0x0000, 0xffff, 0xffff }, /* y, z: v=w face */
+    { 0xffff, 0xffff, 0xffff }, /* largest input: cell (511,511,511), hashed as (255,255,255); u=v=w */
+    /* Simplex faces: the exact tie, then one input step either side (Appendix B's tie rule decides). */
+    { 0x1234, 0x1234, 0x0abc }, /* u=v face (X=Y) with w below: hi=0 by the tie rule */
+    { 0x1235, 0x1234, 0x0abc }, /* u just above v */
+    { 0x1233, 0x1234, 0x0abc }, /* u just below v: the other simplex */
+    { 0x0abc, 0x5678, 0x5678 }, /* v=w face (Y=Z) with u below */
+    { 0x0abc, 0x5679, 0x5678 }, /* v just above w */
+    { 0x0abc, 0x5677, 0x5678 }, /* v just below w */
+    { 0x9abc, 0x3def, 0x9abc }, /* u=w face (X=Z) with v below */
+    { 0x9abd, 0x3def, 0x9abc }, /* u just above w */
+    { 0x9abb, 0x3def, 0x9abc }, /* u just below w */
+    { 0x4321, 0x4321, 0x4321 }, /* u=v=w: the main diagonal, all three ties at once */
+    { 0x4322, 0x4321, 0x4321 }, /* u above the others */
+    { 0x4321, 0x4322, 0x4321 }, /* v above the others */
+    { 0x4321, 0x4321, 0x4322 }, /* w above the others */
+    { 0x4320, 0x4321, 0x4321 }, /* u below the others */
+    { 0xf6b0, 0xf6b0, 0xee28 }, /* u=v tie on a z' cell face too (an edge): Appendix B's limits differ by 161 LSB */
+    { 0xf6b1, 0xf6b0, 0xee28 }, /* u just above v, cell (490,490,482) */
+    { 0xf6af, 0xf6b0, 0xee28 }, /* u just below v: cell (490,490,481), another simplex and hash */
+    /* Kernel support: t = 0 is unreachable from 8.8 inputs (np_simplex.h); the nearest T on either side. */
+    { 0x0efe, 0x0f00, 0x0f18 }, /* corner 1 at T = 48, the smallest t > 0 (+4.1e-6): tau2 rounds to 0 */
+    { 0x0eff, 0x0f00, 0x0f18 }, /* one step in x: corner 1 at T = -14772, out of the support */
+    { 0x0efd, 0x0f00, 0x0f18 }, /* one step back: corner 1 at T = 14508 */
+    { 0x0ebc, 0x0f8d, 0x0f8f }, /* corner 1 at T = -72, the largest t < 0 (-6.1e-6) */
+    { 0x0ebd, 0x0f8d, 0x0f8f }, /* one step in x: corner 1 at T = 8868, in the support */
+    { 0x0ebb, 0x0f8d, 0x0f8f }, /* one step back: corner 1 at T = -9372 */
+    /* Largest magnitudes. */
+    { 0x0640, 0x0040, 0x0340 }, /* cell centre U=V=W=384, gradients aligned: f = -0.347438, the bound; df = 0 */
+    { 0xe1ea, 0xcc99, 0xfd3a }, /* largest |df| seen in 1e6 random inputs: df/dy = 1.7226 */
+    /* Skewed cell wrap: the hash reads the cell mod 256. */
+    { 0x7fff, 0x7fff, 0x7fff }, /* cell (255,255,255), just below the wrap */
+    { 0x8000, 0x8000, 0x8000 }, /* cell (256,256,256) hashed as (0,0,0): same bits as the origin */
+    { 0xbfff, 0x0000, 0x0000 }, /* i = 255 (4x+y+z = 196604) */
+    { 0xc000, 0x0000, 0x0000 }, /* i = 256 exactly (4x+y+z = 196608): the hash's i wraps to 0 */
+    { 0x0000, 0xa000, 0x8000 }, /* j = 256 exactly (4y+x+z = 196608), i = 96, k = 224 */
+    /* Input wrap: 0xffff -> 0x0000 on one axis (no tiling at 256: the output jumps). */
+    { 0xffff, 0x1357, 0x2468 }, /* x = 256 - 1/256 */
+    { 0x0000, 0x1357, 0x2468 }, /* x = 0: not the continuation of the line above */
+};
+enum { N_TABLE = sizeof boundary_table / sizeof boundary_table[0] };
+
+static size_t boundary(const void *cfg, uint64_t (*in)[NP_UNIT_MAX_FIELDS], size_t max)
+{
+    (void)cfg;
+    for (size_t n = 0; n < N_TABLE && n < max; n++)
+        for (unsigned a = 0; a < 3; a++)
+            in[n][a] = boundary_table[n][a];
+    return N_TABLE;
+}
+
+const np_unit np_unit_simplex3 = {
+    .name = "simplex3",
+    .summary = "3-D simplex noise with analytic derivative, 8.8 inputs, exact skew/rank "
+               "(Perlin, Noise Hardware, Appendix B)",
+    .cfg_default = cfg_default,
+    .cfg_set = cfg_set,
+    .cfg_format = cfg_format,
+    .cfg_check = cfg_check,
+    .fields = fields,
+    .eval = eval,
+    .ref = ref,
+    .tolerance_lsb = 1.0,
+    .error_bound_lsb = error_bound,
+    .pipe_init = pipe_init,
+    .sig_set_in = sig_set_in,
+    .sig_get_out = sig_get_out,
+    .boundary = boundary,
+    .datapath = datapath,
+};
