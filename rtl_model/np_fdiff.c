@@ -1,0 +1,531 @@
+/* SPDX-License-Identifier: MIT */
+#include "np_fdiff.h"
+
+#include <stddef.h>
+#include <string.h>
+
+/* Index of the quadric's bit in the set-up masks. */
+enum { SETUP_QUAD_BIT = 8 };
+
+np_fdiff_cfg np_fdiff_cfg_default(void)
+{
+    np_fdiff_cfg c;
+    c.idx_int = 10;
+    c.w_frac = 12;
+    /*
+     * 44 guard bits (F = 56), no re-set-up interval. The drift bound
+     * (np_fdiff.h) then keeps up to four octaves at the steepest colour map
+     * (255 LSB per index unit) within 1 LSB over any run of up to 65,535
+     * steps: 0.5 + 255 (4 * 2^-57 B3(65535) + 2^-13) = 0.86 LSB. Measured
+     * (test fdiff.guard_search): 41 bits are the fewest that keep every stiff
+     * case within 1 LSB, 42 the fewest the bound guarantees for one octave;
+     * docs/fdiff.md shows what fewer bits do.
+     */
+    c.guard = 44;
+    c.resetup = 0;
+    c.setup_mults = 2;
+    c.mult_lat = 2;
+    return c;
+}
+
+const char *np_fdiff_cfg_check(const np_fdiff_cfg *c)
+{
+    if (c->idx_int < NP_TEX_IDX_INT_MIN || c->idx_int > 11)
+        return "idx_int must be 1..11 (the exact set-up needs 1 + idx_int + 116 <= 128)";
+    if (c->w_frac < NP_TEX_W_FRAC_MIN || c->w_frac > NP_TEX_W_FRAC_MAX)
+        return "w_frac must be 1..24";
+    if (c->guard > NP_FDIFF_GUARD_MAX || np_fdiff_width(c) > 127)
+        return "guard too large: 1 + idx_int + w_frac + guard must be <= 127";
+    if (c->setup_mults < 1 || c->setup_mults > NP_FDIFF_MULTS_MAX)
+        return "setup_mults must be 1..64";
+    if (c->mult_lat < 1 || c->mult_lat > NP_FDIFF_LAT_MAX)
+        return "mult_lat must be 1..16";
+    return NULL;
+}
+
+/* One cell: hash and coefficient adders (2), difference adders and round/load (2). */
+const np_tex_sched np_fdiff_sched_cell = { "cell", 4, 4, { 4, 14, 6, 4 } };
+/* Quadric: M_q s, M_q ds (18); s.M_q s, s.M_q ds, ds.M_q ds, b.s, b.ds (15); sum, round/load. */
+const np_tex_sched np_fdiff_sched_quad = { "quadric", 2, 2, { 18, 15 } };
+
+double np_fdiff_drift_bound_noise(unsigned F, uint64_t m)
+{
+    double k = (double)m;
+    return np_pow2i(-(int)F - 1) * (1.0 + k + k * (k - 1.0) / 2.0 + k * (k - 1.0) * (k - 2.0) / 6.0);
+}
+
+double np_fdiff_drift_bound_quad(unsigned F, uint64_t m)
+{
+    double k = (double)m;
+    return np_pow2i(-(int)F - 1) * (1.0 + k + k * (k - 1.0) / 2.0);
+}
+
+/* Modular multiply-add shorthands of the set-up engine (np_fixed.h: exact mod 2^128). */
+static np_s128 mul(np_s128 a, np_s128 b) { return np_mul128(a, b); }
+static np_s128 add(np_s128 a, np_s128 b) { return np_add128(a, b); }
+static np_s128 shl(np_s128 a, unsigned s) { return np_shl128(a, s); }
+
+static void cell_setup(const np_fdiff_cfg *cfg, const np_tex_regs *r, unsigned oct, const uint64_t u[3],
+                       const int64_t du[3], np_s128 d[4], np_s128 exact[4], np_fdiff_setup_sig *sig)
+{
+    uint8_t n[8];
+    np_tex_lattice(np_tex_cell(u[0]), np_tex_cell(u[1]), np_tex_cell(u[2]), n);
+    /*
+     * The seed's corners N0..N7 (Section 3): N0 (0,0,0), N1 (1,0,0),
+     * N2 (1,1,0), N3 (0,1,0), N4 (0,0,1), N5 (1,0,1), N6 (1,1,1), N7 (0,1,1);
+     * ours are c = 4cz + 2cy + cx.
+     */
+    const int64_t N0 = n[0], N1 = n[1], N2 = n[3], N3 = n[2], N4 = n[4], N5 = n[5], N6 = n[7],
+                  N7 = n[6];
+    /* The Appendix's coefficients, s10 Q3.6, exact. */
+    const int64_t ca = N0, cb = N1 - N0, cc = N3 - N0, cd = N4 - N0, ce = N0 - N1 + N2 - N3,
+                  cf = N7 - N4 - N3 + N0, cg = N5 - N4 - N1 + N0, ch = N4 - N5 + N6 - N7 - ce;
+    /* Fractions u32 Q0.32 and steps s40 Q7.32. */
+    const np_s128 fu = np_tex_frac(u[0]), fv = np_tex_frac(u[1]), fw = np_tex_frac(u[2]);
+    const np_s128 dU = du[0], dV = du[1], dW = du[2];
+    const unsigned C = NP_TEX_FC;
+
+    /* Level 1 (Q.64). */
+    np_s128 uv = mul(fu, fv), udv = mul(fu, dV), vdu = mul(fv, dU), dudv = mul(dU, dV);
+    np_s128 cross = add(udv, vdu);
+    /* Level 2 (Q.70): P = a + bU + cV + eUV and R = d + fV + gU + hUV as p0 + p1 k + p2 k^2. */
+    np_s128 p0 = add(add(shl(ca, 2u * C), shl(add(mul(cb, fu), mul(cc, fv)), C)), mul(ce, uv));
+    np_s128 p1 = add(shl(add(mul(cb, dU), mul(cc, dV)), C), mul(ce, cross));
+    np_s128 p2 = mul(ce, dudv);
+    np_s128 r0 = add(add(shl(cd, 2u * C), shl(add(mul(cf, fv), mul(cg, fu)), C)), mul(ch, uv));
+    np_s128 r1 = add(shl(add(mul(cf, dV), mul(cg, dU)), C), mul(ch, cross));
+    np_s128 r2 = mul(ch, dudv);
+    if (sig) {
+        const int64_t co[8] = { ca, cb, cc, cd, ce, cf, cg, ch };
+        memcpy(sig->coef, co, sizeof co);
+        sig->uv = uv;
+        sig->cross = cross;
+        sig->dudv = dudv;
+        sig->p[0] = p0;
+        sig->p[1] = p1;
+        sig->p[2] = p2;
+        sig->r[0] = r0;
+        sig->r[1] = r1;
+        sig->r[2] = r2;
+    }
+    /* Level 3 (Q.102): n = P + W R with W = fw + k dw. */
+    np_s128 delta = add(shl(p0, C), mul(fw, r0));
+    np_s128 gamma = add(add(shl(p1, C), mul(fw, r1)), mul(dW, r0));
+    np_s128 beta = add(add(shl(p2, C), mul(fw, r2)), mul(dW, r1));
+    np_s128 alpha = mul(dW, r2);
+    /* Equation 21 (Q.102). */
+    np_s128 x[4];
+    x[0] = delta;
+    x[1] = add(add(alpha, beta), gamma);
+    x[2] = add(mul((np_s128)6, alpha), mul((np_s128)2, beta));
+    x[3] = mul((np_s128)6, alpha);
+    /* Level 4: the amplitude (Q.116), then one rounding per difference. */
+    const unsigned F = np_fdiff_frac(cfg), W = np_fdiff_width(cfg);
+    for (unsigned j = 0; j < 4; j++) {
+        np_s128 y = mul((np_s128)r->oct[oct].amp, x[j]);
+        if (exact)
+            exact[j] = y;
+        if (sig)
+            sig->y[j] = y;
+        d[j] = np_tex_to_index(y, NP_FDIFF_EXACT_FRAC, F, W);
+    }
+}
+
+void np_fdiff_cell_setup(const np_fdiff_cfg *cfg, const np_tex_regs *r, unsigned oct,
+                         const uint64_t u[3], const int64_t du[3], np_s128 d[4], np_s128 exact[4])
+{
+    cell_setup(cfg, r, oct, u, du, d, exact, NULL);
+}
+
+void np_fdiff_cell_setup_sig(const np_fdiff_cfg *cfg, const np_tex_regs *r, unsigned oct, const uint64_t u[3],
+                             const int64_t du[3], np_s128 d[4], np_fdiff_setup_sig *sig)
+{
+    cell_setup(cfg, r, oct, u, du, d, NULL, sig);
+}
+
+void np_fdiff_quad_setup(const np_fdiff_cfg *cfg, const np_tex_regs *r, const int64_t s[3],
+                         const int64_t ds[3], np_s128 q[3], np_s128 exact[3])
+{
+    np_s128 e[3];
+    np_tex_quadric_exact(r, s, ds, e);
+    const unsigned F = np_fdiff_frac(cfg), W = np_fdiff_width(cfg);
+    for (unsigned j = 0; j < 3; j++) {
+        if (exact)
+            exact[j] = e[j];
+        q[j] = np_tex_to_index(e[j], NP_TEX_Q_EXACT_FRAC, F, W);
+    }
+}
+
+np_s128 np_fdiff_noise_exact(const np_tex_regs *r, unsigned oct, const uint64_t u[3],
+                             const int64_t du[3], int64_t k)
+{
+    uint8_t n[8];
+    np_tex_lattice(np_tex_cell(u[0]), np_tex_cell(u[1]), np_tex_cell(u[2]), n);
+    const np_s128 one = (np_s128)1 << NP_TEX_FC;
+    np_s128 t[3];
+    for (unsigned a = 0; a < 3; a++)
+        t[a] = add((np_s128)np_tex_frac(u[a]), mul((np_s128)k, (np_s128)du[a])); /* Q.32 */
+    np_s128 sum = 0;
+    for (unsigned c = 0; c < 8; c++) {
+        np_s128 w = (np_s128)n[c]; /* Q.6 */
+        for (unsigned a = 0; a < 3; a++)
+            w = mul(w, (c >> a) & 1u ? t[a] : add(one, -t[a]));
+        sum = add(sum, w); /* Q.102 */
+    }
+    return mul((np_s128)r->oct[oct].amp, sum); /* Q.116 */
+}
+
+/* --- The core: the same steps for the bit-exact and the cycle model --- */
+
+unsigned np_fdiff_cell_cycles(const np_fdiff_cfg *c)
+{
+    return np_tex_sched_cycles(&np_fdiff_sched_cell, c->setup_mults, c->mult_lat);
+}
+
+unsigned np_fdiff_quad_cycles(const np_fdiff_cfg *c)
+{
+    return np_tex_sched_cycles(&np_fdiff_sched_quad, c->setup_mults, c->mult_lat);
+}
+
+unsigned np_fdiff_front_cycles(const np_fdiff_cfg *c, const np_tex_regs *r)
+{
+    const np_tex_sched *front = np_tex_regs_diagonal(r) ? &np_tex_sched_octave_diag : &np_tex_sched_octave;
+    return np_tex_sched_cycles(front, c->setup_mults, c->mult_lat);
+}
+
+unsigned np_fdiff_span_setup_cycles(const np_fdiff_cfg *c, const np_tex_regs *r)
+{
+    return np_fdiff_quad_cycles(c) + r->n_oct * (np_fdiff_front_cycles(c, r) + np_fdiff_cell_cycles(c));
+}
+
+static unsigned cell_cycles(const np_fdiff_cfg *c) { return np_fdiff_cell_cycles(c); }
+static unsigned quad_cycles(const np_fdiff_cfg *c) { return np_fdiff_quad_cycles(c); }
+
+static void core_setup_octave(np_fdiff_core *c, unsigned o)
+{
+    np_fdiff_cell_setup(c->cfg, c->r, o, c->oct[o].u, c->oct[o].du, c->oct[o].d, NULL);
+    for (unsigned a = 0; a < 3; a++)
+        c->oct[o].cell[a] = np_tex_cell(c->oct[o].u[a]);
+    c->oct[o].steps = 0;
+}
+
+static void core_setup_quad(np_fdiff_core *c)
+{
+    np_fdiff_quad_setup(c->cfg, c->r, c->s, c->sp.ds, c->q, NULL);
+    c->qsteps = 0;
+}
+
+void np_fdiff_core_init(np_fdiff_core *c, const np_fdiff_cfg *cfg, const np_tex_regs *r)
+{
+    memset(c, 0, sizeof *c);
+    c->cfg = cfg;
+    c->r = r;
+    c->F = np_fdiff_frac(cfg);
+    c->W = np_fdiff_width(cfg);
+}
+
+unsigned np_fdiff_core_begin(np_fdiff_core *c, const np_span *sp, np_fdiff_counts *cnt)
+{
+    c->sp = *sp;
+    c->k = 0;
+    c->last_setup = 0;
+    cnt->spans++;
+    if (sp->n == 0)
+        return 0;
+    const unsigned cycles = np_fdiff_span_setup_cycles(c->cfg, c->r);
+    memcpy(c->s, sp->s, sizeof c->s);
+    core_setup_quad(c);
+    for (unsigned o = 0; o < c->r->n_oct; o++) {
+        np_tex_oct_span os;
+        np_tex_octave_span(c->r, o, sp->s, sp->ds, &os);
+        memcpy(c->oct[o].u, os.u, sizeof os.u);
+        memcpy(c->oct[o].du, os.du, sizeof os.du);
+        core_setup_octave(c, o);
+        c->last_setup |= 1u << o;
+    }
+    c->last_setup |= 1u << SETUP_QUAD_BIT;
+    cnt->span_setups++;
+    cnt->setup_cycles += cycles;
+    return cycles;
+}
+
+np_s128 np_fdiff_core_x(const np_fdiff_core *c)
+{
+    np_s128 x = c->q[0];
+    for (unsigned o = 0; o < c->r->n_oct; o++)
+        x = np_wrap_s128(np_add128(x, c->oct[o].d[0]), c->W);
+    return x;
+}
+
+unsigned np_fdiff_core_advance(np_fdiff_core *c, np_fdiff_counts *cnt)
+{
+    const unsigned W = c->W, K = c->cfg->resetup;
+    c->k++;
+    c->last_setup = 0;
+    if (c->k >= c->sp.n)
+        return 0;
+    /* Texture coordinate DDA (exact; np_span_check keeps it within s48). */
+    for (unsigned a = 0; a < 3; a++)
+        c->s[a] += c->sp.ds[a];
+    /* Quadric: two additions. */
+    c->q[0] = np_wrap_s128(np_add128(c->q[0], c->q[1]), W);
+    c->q[1] = np_wrap_s128(np_add128(c->q[1], c->q[2]), W);
+    c->qsteps++;
+    unsigned cycles = 0;
+    for (unsigned o = 0; o < c->r->n_oct; o++) {
+        np_s128 *d = c->oct[o].d;
+        /* Equation 22: three additions (in hardware in parallel, on the old values). */
+        d[0] = np_wrap_s128(np_add128(d[0], d[1]), W);
+        d[1] = np_wrap_s128(np_add128(d[1], d[2]), W);
+        d[2] = np_wrap_s128(np_add128(d[2], d[3]), W);
+        c->oct[o].steps++;
+        int crossed = 0;
+        for (unsigned a = 0; a < 3; a++) {
+            c->oct[o].u[a] = np_tex_dda(c->oct[o].u[a], c->oct[o].du[a]);
+            crossed |= np_tex_cell(c->oct[o].u[a]) != c->oct[o].cell[a];
+        }
+        if (crossed || (K && c->oct[o].steps >= K)) {
+            core_setup_octave(c, o);
+            cycles += cell_cycles(c->cfg);
+            if (crossed)
+                cnt->cell_setups++;
+            else
+                cnt->interval_setups++;
+            c->last_setup |= 1u << o;
+        }
+    }
+    if (K && c->qsteps >= K) {
+        core_setup_quad(c);
+        cycles += quad_cycles(c->cfg);
+        cnt->interval_setups++;
+        c->last_setup |= 1u << SETUP_QUAD_BIT;
+    }
+    cnt->setup_cycles += cycles;
+    return cycles;
+}
+
+void np_fdiff_span(const np_fdiff_cfg *cfg, const np_tex_regs *r, const np_span *sp,
+                   np_tex_pixel *out, np_fdiff_counts *counts, const np_fdiff_probe *probe)
+{
+    np_fdiff_core c;
+    np_fdiff_counts dummy;
+    np_fdiff_counts *cnt = counts ? counts : &dummy;
+    memset(&dummy, 0, sizeof dummy);
+    np_fdiff_core_init(&c, cfg, r);
+    np_fdiff_core_begin(&c, sp, cnt);
+    for (uint32_t k = 0; k < sp->n; k++) {
+        np_s128 x = np_fdiff_core_x(&c);
+        out[k].x = (uint16_t)(sp->x0 + k);
+        out[k].y = sp->y;
+        np_tex_colour(r, x, c.F, cfg->w_frac, out[k].rgb);
+        if (probe) {
+            if (probe->x)
+                probe->x[k] = x;
+            for (unsigned o = 0; o < r->n_oct; o++)
+                if (probe->noise[o])
+                    probe->noise[o][k] = c.oct[o].d[0];
+            if (probe->setup)
+                probe->setup[k] = (uint16_t)c.last_setup;
+        }
+        cnt->pixels++;
+        np_fdiff_core_advance(&c, cnt);
+    }
+}
+
+/* --- Cycle-accurate model --- */
+
+static np_fdiff_tail_sig *tail_sig(void *s) { return (np_fdiff_tail_sig *)s; }
+
+static void stage_c1(const void *cv, void *sv)
+{
+    const np_fdiff_tail_ctx *t = cv;
+    np_fdiff_tail_sig *s = tail_sig(sv);
+    np_tex_colour_split(t->r, s->x, t->F, t->fw, &s->seg, &s->w);
+}
+
+static void stage_c2(const void *cv, void *sv)
+{
+    const np_fdiff_tail_ctx *t = cv;
+    np_fdiff_tail_sig *s = tail_sig(sv);
+    np_tex_colour_mix(t->r, s->seg, s->w, t->fw, s->prod);
+}
+
+static void stage_c3(const void *cv, void *sv)
+{
+    const np_fdiff_tail_ctx *t = cv;
+    np_fdiff_tail_sig *s = tail_sig(sv);
+    np_tex_colour_round(s->prod, t->fw, s->rgb);
+}
+
+const np_stage_desc np_fdiff_tail_stages[NP_FDIFF_TAIL_STAGES] = {
+    { "C1", stage_c1 }, { "C2", stage_c2 }, { "C3", stage_c3 },
+};
+
+int np_fdiff_sim_init(np_fdiff_sim *m, const np_fdiff_cfg *cfg, const np_tex_regs *r)
+{
+    memset(m, 0, sizeof *m);
+    np_fdiff_core_init(&m->core, cfg, r);
+    m->tctx.r = r;
+    m->tctx.F = np_fdiff_frac(cfg);
+    m->tctx.fw = cfg->w_frac;
+    return np_pipe_init(&m->tail, np_fdiff_tail_stages, NP_FDIFF_TAIL_STAGES, sizeof(np_fdiff_tail_sig),
+                        &m->tctx);
+}
+
+void np_fdiff_sim_free(np_fdiff_sim *m) { np_pipe_free(&m->tail); }
+
+void np_fdiff_sim_reset(np_fdiff_sim *m)
+{
+    np_pipe_reset(&m->tail);
+    np_fdiff_core_init(&m->core, m->core.cfg, m->core.r);
+    m->busy = 0;
+    m->stall = 0;
+    memset(&m->stats, 0, sizeof m->stats);
+}
+
+void np_fdiff_sim_eval(np_fdiff_sim *m, np_fdiff_port *p)
+{
+    p->in_ready = !m->busy;
+    m->tport.in_valid = m->busy && m->stall == 0;
+    if (m->tport.in_valid) {
+        memset(&m->pending, 0, sizeof m->pending);
+        m->pending.x = np_fdiff_core_x(&m->core);
+        m->pending.px = (uint16_t)(m->core.sp.x0 + m->core.k);
+        m->pending.py = m->core.sp.y;
+    }
+    m->tport.in_sig = &m->pending;
+    m->tport.out_ready = p->out_ready;
+    np_pipe_eval(&m->tail, &m->tport);
+    p->out_valid = m->tport.out_valid;
+    if (p->out_valid) {
+        const np_fdiff_tail_sig *o = m->tport.out_sig;
+        p->out.x = o->px;
+        p->out.y = o->py;
+        memcpy(p->out.rgb, o->rgb, sizeof p->out.rgb);
+    }
+}
+
+void np_fdiff_sim_clock(np_fdiff_sim *m, const np_fdiff_port *p)
+{
+    np_fdiff_stats *st = &m->stats;
+    st->cycles++;
+    int issued = m->tport.in_valid && m->tport.in_ready;
+    np_pipe_clock(&m->tail, &m->tport); /* reads the pending bundle */
+    if (m->busy) {
+        if (m->stall > 0) {
+            m->stall--;
+            st->setup_stalls++;
+        } else if (issued) {
+            st->counts.pixels++;
+            m->stall = np_fdiff_core_advance(&m->core, &st->counts);
+            if (m->core.k >= m->core.sp.n)
+                m->busy = 0;
+        } else {
+            st->out_stalls++;
+        }
+    } else if (p->in_valid) {
+        m->stall = np_fdiff_core_begin(&m->core, p->in, &st->counts);
+        m->busy = p->in->n > 0;
+    } else {
+        st->idle++;
+    }
+}
+
+int np_fdiff_sim_idle(const np_fdiff_sim *m) { return !m->busy && np_pipe_occupancy(&m->tail) == 0; }
+
+/* --- Datapath declaration --- */
+
+enum { SIDE_BITS = 2 * NP_TEX_XY_BITS, STALL_BITS = 16 };
+
+size_t np_fdiff_datapath(const np_fdiff_cfg *cfg, const np_tex_regs *r, np_op *ops, size_t max)
+{
+    np_dp d = { ops, max, 0 };
+    const unsigned no = r->n_oct, F = np_fdiff_frac(cfg), W = np_fdiff_width(cfg), K = cfg->resetup;
+    const unsigned P = cfg->setup_mults, Lm = cfg->mult_lat, yw = np_fdiff_y_window(cfg);
+    np_dp_op(&d, "T", NULL, NP_OP_REG, 1, np_tex_reg_bits(r), 0, 0, 0, 0);
+    /*
+     * SH (once per cell set-up, one octave at a time): the 8 corner hashes,
+     * then a..h (the Appendix, exact): 16 subtractions of s9 Q2.6 values
+     * (|h| <= 252/64 < 4; the header's s10 has a bit to spare).
+     */
+    unsigned lv = np_tex_dp_lattice(&d, "SH", 1, 0);
+    np_dp_op(&d, "SH", NULL, NP_OP_ADD, 8, 9, 0, 0, 0, lv);
+    np_dp_op(&d, "SH", NULL, NP_OP_ADD, 5, 9, 0, 0, 0, lv + 1u);
+    np_dp_op(&d, "SH", "coef", NP_OP_ADD, 3, 9, 0, 9, 1, lv + 2u);
+    np_dp_op(&d, "SH", NULL, NP_OP_REG, 1, 8u * 9u + 1u, 0, 0, 0, 0);
+    /*
+     * SU: the engine. Its widest products: s48 operands of the quadric
+     * (M_q s, s.(M_q s)), and the level-4 a' x_j, of which only the window
+     * np_tex_to_index reads (117 + I bits, "Y") is kept: one multiplier of
+     * 48 x yw covers every product of the three schedules. A product
+     * accumulator per multiplier and one rounding adder (the W bits it keeps
+     * plus the round bit). The register file holds the levels' results:
+     * uv u64, cross s73 (|fu dv + fv du| < 2^72), dudv s80 (du, dv in
+     * [-2^39, 2^39): up to 2^78), p0..r2 (r2 = h dudv: s87, the widest), and
+     * alpha..delta (window yw each); the multipliers' pipeline Lm deep.
+     */
+    np_dp_op(&d, "SU", "Y", NP_OP_MUL, P, NP_TEX_S_BITS, yw, yw, 1, 0);
+    np_dp_op(&d, "SU", NULL, NP_OP_ADD, P, yw, 0, 0, 0, 1);
+    np_dp_op(&d, "SU", NULL, NP_OP_ADD, 1, W + 1u, 0, 0, 0, 2);
+    np_dp_op(&d, "SU", "uv", NP_OP_REG, 0, 0, 0, 2u * NP_TEX_FC, 0, 0);
+    np_dp_op(&d, "SU", "cross", NP_OP_REG, 0, 0, 0, 73, 1, 0);
+    np_dp_op(&d, "SU", "dudv", NP_OP_REG, 0, 0, 0, 2u * NP_TEX_DU_BITS, 1, 0);
+    np_dp_op(&d, "SU", "r2", NP_OP_REG, 0, 0, 0, 87, 1, 0);
+    np_dp_op(&d, "SU", NULL, NP_OP_REG, 1,
+             2u * NP_TEX_FC + 73u + 2u * NP_TEX_DU_BITS + 6u * 87u + 4u * yw + P * Lm * (NP_TEX_S_BITS + yw) + P * yw +
+                 STALL_BITS + 1u,
+             0, 0, 0, 0);
+    /*
+     * X, per pixel: per octave three DDA adders (u40), cell-change detection
+     * (three 8-bit compares against the cell set up), three forward-difference
+     * adders n += dn, dn += d2n, d2n += d3n (s(W), wrapping); the quadric's
+     * two; with a re-set-up interval K, a step counter per octave and the
+     * quadric and the s DDA (s48) the quadric's re-set-up starts from.
+     */
+    np_dp_op(&d, "X", "u", NP_OP_ADD, 3u * no, NP_TEX_U_BITS, 0, NP_TEX_U_BITS, 0, 0);
+    np_dp_op(&d, "X", NULL, NP_OP_CMP, 3u * no, NP_TEX_CELL_BITS, 0, 0, 0, 1);
+    np_dp_op(&d, "X", "N", NP_OP_ADD, 3u * no, W, 0, W, 1, 0);
+    np_dp_op(&d, "X", "Q", NP_OP_ADD, 2, W, 0, W, 1, 0);
+    np_dp_op(&d, "X", NULL, NP_OP_ADD, 1, NP_TEX_N_BITS, 0, 0, 0, 0);
+    np_dp_op(&d, "X", NULL, NP_OP_CMP, 1, NP_TEX_N_BITS, 0, 0, 0, 1);
+    unsigned kbits = 0;
+    if (K) {
+        kbits = NP_TEX_N_BITS;
+        np_dp_op(&d, "X", NULL, NP_OP_ADD, no + 1u, kbits, 0, 0, 0, 0);
+        np_dp_op(&d, "X", NULL, NP_OP_CMP, no + 1u, kbits, 0, 0, 0, 1);
+        np_dp_op(&d, "X", NULL, NP_OP_ADD, 3, NP_TEX_S_BITS, 0, 0, 0, 0);
+    }
+    np_dp_op(&d, "X", NULL, NP_OP_REG, 1,
+             no * (3u * (NP_TEX_U_BITS + NP_TEX_DU_BITS + NP_TEX_CELL_BITS) + 4u * W + kbits) + 3u * W +
+                 (K ? 3u * (NP_TEX_S_BITS + NP_TEX_DS_BITS) + kbits : 0u) + 2u * NP_TEX_N_BITS + SIDE_BITS + 1u,
+             0, 0, 0, 0);
+    /* C1: x = Q + sum n_i (an adder tree, mod 2^W) ahead of the split, in the same clock. */
+    lv = np_dp_add_tree(&d, "C1", "x", no + 1u, W, 1, 0);
+    np_tex_dp_colour(&d, r, F, W, cfg->w_frac, lv, SIDE_BITS);
+    return d.n;
+}
+
+void np_fdiff_trace_core(const np_fdiff_core *c, np_trace *t, size_t n)
+{
+    for (unsigned o = 0; o < c->r->n_oct; o++) {
+        for (unsigned a = 0; a < 3; a++)
+            np_tex_trace(t, n, "u", (int64_t)c->oct[o].u[a]);
+        for (unsigned j = 0; j < 4; j++)
+            np_tex_trace128(t, n, "N", c->oct[o].d[j]);
+    }
+    for (unsigned j = 0; j < 3; j++)
+        np_tex_trace128(t, n, "Q", c->q[j]);
+    np_tex_trace128(t, n, "x", np_fdiff_core_x(c));
+}
+
+void np_fdiff_trace_setup(const np_fdiff_cfg *cfg, const np_fdiff_setup_sig *sig, np_trace *t, size_t n)
+{
+    for (unsigned i = 0; i < 8; i++)
+        np_tex_trace(t, n, "coef", sig->coef[i]);
+    np_tex_trace128(t, n, "uv", sig->uv);
+    np_tex_trace128(t, n, "cross", sig->cross);
+    np_tex_trace128(t, n, "dudv", sig->dudv);
+    np_tex_trace128(t, n, "r2", sig->r[2]);
+    for (unsigned j = 0; j < 4; j++)
+        np_tex_trace128(t, n, "Y", np_wrap_s128(sig->y[j], np_fdiff_y_window(cfg)));
+}

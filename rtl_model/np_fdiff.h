@@ -1,0 +1,302 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * np_fdiff.h - the forward-difference scanline texturing unit of Kameya &
+ * Hart, "Bresenham Noise" (shared/seeds/000), bit-exact and cycle-accurate.
+ * Texture registers, span descriptor, front end and colour map: np_texture.h.
+ *
+ * Along a span, trilinear value noise in one cell is a cubic in the pixel
+ * step k (seed, equation 15): n(k) = alpha k^3 + beta k^2 + gamma k + delta.
+ * The unit sets up its forward differences once per cell and per span and
+ * then needs three additions per pixel and octave (equation 22):
+ *
+ *      n += dn;  dn += d2n;  d2n += d3n   (d3n = 6 alpha, constant)
+ *
+ * The quadric q'(s) is a quadratic in k along the span and is forward-
+ * differenced the same way (two additions per pixel). Per pixel:
+ *
+ *   x = Q + sum_i N_i   (mod 2^W),  colour = C(x)   (np_texture.h)
+ *
+ * --- Signals and formats (I, F, W = 1 + I + F from the configuration) ---
+ *   u, du      u40 Q8.32 / s40 Q7.32  octave coordinate and its step (front end);
+ *                                     u advances by a DDA adder every pixel
+ *                                     (exact), so a cell crossing is detected
+ *                                     exactly: the integer part (u8) changes.
+ *   n_c        u6 Q0.6      corner lattice values (np_tex_lattice)
+ *   a..h       s10 Q3.6     the seed's trilinear coefficients (Appendix), exact:
+ *                           |a| <= 63/64, |b|,|c|,|d| <= 63/64, |e|,|f|,|g| <= 126/64,
+ *                           |h| <= 252/64
+ *   alpha..delta            exact, 102 fraction bits (3 coordinates of 32 bits
+ *                           and a coefficient of 6), held modulo 2^128
+ *   Y_j        exact differences times the amplitude (Q17.14): 116 fraction
+ *              bits, modulo 2^128 (NP_FDIFF_EXACT_FRAC)
+ *   N_i[0..3]  s(W) QI.F    n, dn, d2n, d3n of octave i: Y_j rounded once to F
+ *                           bits (np_round_wrap128), wrapping modulo 2^W
+ *   Q[0..2]    s(W) QI.F    q', dq', d2q' (np_tex_quadric_exact rounded once)
+ *   x          s(W) QI.F    colour index
+ * Modulo 2^W is enough: every accumulator update is an addition, and the
+ * integers modulo 2^W are a ring, so the recurrences give the true sums
+ * modulo 2^W; only x mod N (repeat) or |x| < 2^I (clamp) is needed.
+ *
+ * --- Set-up (a shared engine of P multipliers of latency Lm) ---
+ * Per octave and cell, with (fu, fv, fw) the fractions at the set-up pixel
+ * and U = fu + k du etc., the seed's equation 12 is regrouped as
+ *   n = P(U, V) + W R(U, V),  P = a + bU + cV + eUV,  R = d + fV + gU + hUV,
+ * so that   level 1: uv, u dv, v du, du dv          (4 products)
+ *           level 2: the coefficients of P and R    (14 products by a..h)
+ *           level 3: W R                            (6 products)
+ *           level 4: the amplitude                  (4 products)
+ * give delta = p0 + fw r0, gamma = p1 + fw r1 + dw r0, beta = p2 + fw r2 +
+ * dw r1, alpha = dw r2 (the Appendix's alpha..delta), and then (equation 21)
+ *   n0 = delta, dn0 = alpha + beta + gamma, d2n0 = 6 alpha + 2 beta, d3n0 = 6 alpha.
+ * Set-up happens at the first pixel of a span (with the span front end and
+ * the quadric), when a pixel's cell differs from the cell set up (on any
+ * axis, in any octave), and, when the re-set-up interval K is not 0, after
+ * K steps without a set-up (per octave; the quadric after K steps too).
+ *
+ * --- Error (argument; test_fdiff measures every term) ---
+ * Additions are exact, so after k steps from a set-up the accumulated error
+ * of n is exactly  e0 + k e1 + C(k,2) e2 + C(k,3) e3,  where e_j = N_j - Y_j
+ * are the set-up rounding residuals, |e_j| <= 2^-(F+1). Growth per order:
+ *   order 0: 2^-(F+1)           order 1: 2^-(F+1) k
+ *   order 2: 2^-(F+1) k(k-1)/2  order 3: 2^-(F+1) k(k-1)(k-2)/6
+ * and for the quadric (orders 0..2) likewise. With m the most steps between
+ * set-ups (a cell's length in pixels, a span's for the quadric, or K), the
+ * index error is at most 2^-(F+1) (n_oct B3(m) + B2(m)), B3 = 1 + m + C(m,2)
+ * + C(m,3), B2 = 1 + m + C(m,2) (np_fdiff_drift_bound_noise, _quad). The colour error
+ * against the exact texture at the unit's own coordinates is then at most
+ * 1/2 + slope (index error + 2^-(Fw+1)) LSB (slope: np_tex_colour_slope).
+ * The float reference differs further by the register and front-end
+ * roundings (quantified in docs/fdiff.md).
+ */
+#ifndef NP_FDIFF_H
+#define NP_FDIFF_H
+
+#include <stdint.h>
+
+#include "np_datapath.h"
+#include "np_fixed.h"
+#include "np_pipe.h"
+#include "np_texture.h"
+
+enum {
+    NP_FDIFF_EXACT_FRAC = 3 * NP_TEX_FC + NP_TEX_LAT_FRAC + NP_TEX_AMP_FRAC, /* 116 */
+    NP_FDIFF_GUARD_MAX = 100,
+    NP_FDIFF_MULTS_MAX = 64,
+    NP_FDIFF_LAT_MAX = 16,
+    NP_FDIFF_TAIL_STAGES = 3 /* colour map: C1 split, C2 mix, C3 round */
+};
+
+typedef struct np_fdiff_cfg {
+    unsigned idx_int;     /* I: index integer bits, 1..11 (default 10) */
+    unsigned w_frac;      /* Fw: colour weight fraction bits, 1..24 (default 12) */
+    unsigned guard;       /* G: index fraction bits F = Fw + G (default: np_fdiff_cfg_default) */
+    unsigned resetup;     /* K: re-set-up after K steps without one; 0 = off (default) */
+    unsigned setup_mults; /* P: multipliers of the set-up engine, 1..64 (default 2) */
+    unsigned mult_lat;    /* Lm: their pipeline latency in clocks, 1..16 (default 2) */
+} np_fdiff_cfg;
+
+np_fdiff_cfg np_fdiff_cfg_default(void);
+/* NULL when valid, else a static message naming the field. */
+const char *np_fdiff_cfg_check(const np_fdiff_cfg *cfg);
+static inline unsigned np_fdiff_frac(const np_fdiff_cfg *c) { return c->w_frac + c->guard; }
+static inline unsigned np_fdiff_width(const np_fdiff_cfg *c) { return 1u + c->idx_int + np_fdiff_frac(c); }
+
+/* Set-up schedules (np_tex_sched): one noise cell; the quadric. */
+extern const np_tex_sched np_fdiff_sched_cell, np_fdiff_sched_quad;
+
+/* Worst-case drift after m steps, in index units: 2^-(F+1) B3(m) for a noise octave (order <= 3). */
+double np_fdiff_drift_bound_noise(unsigned F, uint64_t m);
+/* The same for the quadric (order <= 2). */
+double np_fdiff_drift_bound_quad(unsigned F, uint64_t m);
+
+/*
+ * Set-up datapath of one octave's cell at coordinate u (u40 Q8.32, the cell
+ * is its integer part) with step du: the four differences d[0..3] (s(W)
+ * QI.F). If exact is not NULL it receives Y_0..Y_3 (116 fraction bits,
+ * modulo 2^128), for the error analysis.
+ */
+void np_fdiff_cell_setup(const np_fdiff_cfg *cfg, const np_tex_regs *r, unsigned oct,
+                         const uint64_t u[3], const int64_t du[3], np_s128 d[4], np_s128 exact[4]);
+
+/* The set-up's intermediate signals (for the width check; formats in np_fdiff_datapath). */
+typedef struct np_fdiff_setup_sig {
+    int64_t coef[8];    /* a..h, Q2.6 */
+    np_s128 uv, cross, dudv; /* level 1: fu fv, fu dv + fv du, du dv (Q.64) */
+    np_s128 p[3], r[3]; /* level 2 (Q.70) */
+    np_s128 y[4];       /* level 4: a' times n0, dn0, d2n0, d3n0 (Q.116, modulo 2^128) */
+} np_fdiff_setup_sig;
+
+/* np_fdiff_cell_setup, also returning its intermediate signals in sig. */
+void np_fdiff_cell_setup_sig(const np_fdiff_cfg *cfg, const np_tex_regs *r, unsigned oct, const uint64_t u[3],
+                             const int64_t du[3], np_s128 d[4], np_fdiff_setup_sig *sig);
+
+/* Quadric set-up at coordinate s with step ds: q[0..2] (s(W) QI.F); exact (88 fraction bits) if not NULL. */
+void np_fdiff_quad_setup(const np_fdiff_cfg *cfg, const np_tex_regs *r, const int64_t s[3],
+                         const int64_t ds[3], np_s128 q[3], np_s128 exact[3]);
+
+/*
+ * Analysis (not hardware): the exact a'_i n at step k from a set-up at u with
+ * step du, as the trilinear polynomial of that cell (116 fraction bits,
+ * modulo 2^128). Equals the cubic the set-up expands, for every k.
+ */
+np_s128 np_fdiff_noise_exact(const np_tex_regs *r, unsigned oct, const uint64_t u[3],
+                             const int64_t du[3], int64_t k);
+
+/* Counts of the work done. */
+typedef struct np_fdiff_counts {
+    uint64_t spans;          /* descriptors, empty ones included */
+    uint64_t pixels;
+    uint64_t span_setups;    /* front end + quadric + every octave's first cell */
+    uint64_t cell_setups;    /* octave set-ups on a cell change */
+    uint64_t interval_setups;/* octave or quadric set-ups after K steps */
+    uint64_t setup_cycles;   /* the stall the set-ups cost */
+} np_fdiff_counts;
+
+/* Optional per-pixel observation of the bit-exact model (any pointer may be NULL). */
+typedef struct np_fdiff_probe {
+    np_s128 *x;                          /* index x per pixel */
+    np_s128 *noise[NP_TEX_MAX_OCTAVES];  /* octave accumulator N_i[0] per pixel */
+    uint16_t *setup;                     /* per pixel: bit i = octave i set up there, bit 8 = the quadric */
+} np_fdiff_probe;
+
+/*
+ * The bit-exact model for one span: out[0..n) receives the pixels, counts
+ * (may be NULL) is incremented. Preconditions: np_fdiff_cfg_check,
+ * np_tex_regs_check and np_span_check pass.
+ */
+void np_fdiff_span(const np_fdiff_cfg *cfg, const np_tex_regs *r, const np_span *sp,
+                   np_tex_pixel *out, np_fdiff_counts *counts, const np_fdiff_probe *probe);
+
+/* --- Cycle-accurate model --- */
+
+/*
+ * Ports, one cycle: the testbench sets in_valid/in and out_ready, calls
+ * np_fdiff_sim_eval (the model drives in_ready, out_valid, out), consumes
+ * the output if out_valid && out_ready, then calls np_fdiff_sim_clock.
+ * A descriptor transfers when in_valid && in_ready; in_ready is high only
+ * while the unit is idle (a span's descriptor is read after the previous
+ * span's last pixel has left the core). Timing per span: 1 clock to accept,
+ * then the span set-up stall, then one pixel per clock into the colour
+ * pipeline (NP_FDIFF_TAIL_STAGES deep) except for the set-up stalls, and
+ * output backpressure stalls the core.
+ */
+typedef struct np_fdiff_port {
+    int in_valid;
+    const np_span *in;
+    int out_ready;
+    int in_ready;
+    int out_valid;
+    np_tex_pixel out;
+} np_fdiff_port;
+
+typedef struct np_fdiff_stats {
+    uint64_t cycles;
+    uint64_t setup_stalls;   /* clocks the core spent in set-up */
+    uint64_t out_stalls;     /* clocks the core held a pixel the tail could not take */
+    uint64_t idle;           /* clocks the core waited for a descriptor */
+    np_fdiff_counts counts;
+} np_fdiff_stats;
+
+/* Internal state of the core (shared by the bit-exact model and the cycle model). */
+typedef struct np_fdiff_core {
+    const np_fdiff_cfg *cfg;
+    const np_tex_regs *r;
+    unsigned F, W;
+    np_span sp;
+    uint32_t k;          /* current pixel of the span */
+    int64_t s[3];        /* its texture coordinate (DDA), for the quadric's re-set-up */
+    np_s128 q[3];
+    uint32_t qsteps;
+    struct {
+        uint64_t u[3];
+        int64_t du[3];
+        uint8_t cell[3];
+        np_s128 d[4];
+        uint32_t steps;
+    } oct[NP_TEX_MAX_OCTAVES];
+    unsigned last_setup; /* what was set up for pixel k: bit i = octave i, bit 8 = quadric */
+} np_fdiff_core;
+
+/*
+ * The core step by step (what np_fdiff_span and the cycle model are made of):
+ * init once; begin loads a span and returns the set-up clocks before its
+ * first pixel (0 for an empty span); x is pixel k's colour index
+ * (Q + sum of the octaves' n, an adder tree mod 2^W); advance steps to pixel
+ * k + 1 and returns the set-up clocks it needs first (0: none, or the span
+ * ended). counts is incremented (not NULL).
+ */
+void np_fdiff_core_init(np_fdiff_core *c, const np_fdiff_cfg *cfg, const np_tex_regs *r);
+unsigned np_fdiff_core_begin(np_fdiff_core *c, const np_span *sp, np_fdiff_counts *counts);
+np_s128 np_fdiff_core_x(const np_fdiff_core *c);
+unsigned np_fdiff_core_advance(np_fdiff_core *c, np_fdiff_counts *counts);
+
+/* The colour pipeline's signal bundle (formats as np_texture.h). */
+typedef struct np_fdiff_tail_sig {
+    np_s128 x;         /* s(W) QI.F */
+    uint16_t px, py;
+    unsigned seg;      /* u8 */
+    uint32_t w;        /* u(Fw+1) Q1.Fw */
+    int64_t prod[3];   /* s(10+Fw) Q9.Fw */
+    uint8_t rgb[3];
+} np_fdiff_tail_sig;
+
+typedef struct np_fdiff_tail_ctx {
+    const np_tex_regs *r;
+    unsigned F, fw;
+} np_fdiff_tail_ctx;
+
+/* The colour pipeline's stages C1 C2 C3 (np_pipe stage functions; cfg is an np_fdiff_tail_ctx). */
+extern const np_stage_desc np_fdiff_tail_stages[NP_FDIFF_TAIL_STAGES];
+
+typedef struct np_fdiff_sim {
+    np_fdiff_core core;
+    np_pipe tail;
+    int busy;            /* a span is in the core */
+    unsigned stall;      /* set-up clocks left before pixel k can issue */
+    np_fdiff_stats stats;
+    np_fdiff_tail_ctx tctx;
+    np_fdiff_tail_sig pending; /* the bundle offered to the tail this cycle */
+    np_pipe_port tport;
+} np_fdiff_sim;
+
+/* cfg and r must outlive the model. 0, or -1 when out of memory. */
+int np_fdiff_sim_init(np_fdiff_sim *m, const np_fdiff_cfg *cfg, const np_tex_regs *r);
+void np_fdiff_sim_free(np_fdiff_sim *m);
+void np_fdiff_sim_reset(np_fdiff_sim *m);
+void np_fdiff_sim_eval(np_fdiff_sim *m, np_fdiff_port *p);
+void np_fdiff_sim_clock(np_fdiff_sim *m, const np_fdiff_port *p);
+/* Nothing in flight: no span in the core, the tail empty. */
+int np_fdiff_sim_idle(const np_fdiff_sim *m);
+
+/* --- Timing and datapath declaration (np_datapath.h) --- */
+
+/* Set-up cycles of one cell, of the quadric, of a span (front end + quadric + every octave's first cell). */
+unsigned np_fdiff_cell_cycles(const np_fdiff_cfg *cfg);
+unsigned np_fdiff_quad_cycles(const np_fdiff_cfg *cfg);
+unsigned np_fdiff_front_cycles(const np_fdiff_cfg *cfg, const np_tex_regs *r); /* per octave */
+unsigned np_fdiff_span_setup_cycles(const np_fdiff_cfg *cfg, const np_tex_regs *r);
+
+/* Bits of the exact set-up values the datapath keeps: what np_tex_to_index reads of Y_j (117 + I). */
+static inline unsigned np_fdiff_y_window(const np_fdiff_cfg *c)
+{
+    return np_tex_window(NP_FDIFF_EXACT_FRAC, np_fdiff_frac(c), np_fdiff_width(c));
+}
+
+/*
+ * The unit's datapath for cfg and registers r (octaves, colour table): the
+ * texture registers "T"; the set-up datapath "SH" (lattice hash and the
+ * coefficients a..h of one cell) and "SU" (the shared engine of P
+ * multipliers, pipelined over Lm clocks, that runs the schedules
+ * np_fdiff_sched_cell, np_fdiff_sched_quad and np_tex_sched_octave); the
+ * per-pixel core "X" (DDAs, cell-change detection, three forward-difference
+ * adders per octave, two for the quadric); the colour pipeline C1 C2 C3 (C1
+ * also sums x = Q + sum n_i in the same clock). Writes up to max ops,
+ * returns the full count.
+ */
+size_t np_fdiff_datapath(const np_fdiff_cfg *cfg, const np_tex_regs *r, np_op *ops, size_t max);
+/* Trace the per-pixel signals of the core at its current pixel (u, N, Q, x). */
+void np_fdiff_trace_core(const np_fdiff_core *c, np_trace *t, size_t n);
+/* Trace a cell set-up's signals (coef, uv, cross, dudv, r2, Y). */
+void np_fdiff_trace_setup(const np_fdiff_cfg *cfg, const np_fdiff_setup_sig *sig, np_trace *t, size_t n);
+
+#endif /* NP_FDIFF_H */

@@ -1,0 +1,532 @@
+/* SPDX-License-Identifier: MIT */
+/* Scene files (np_scene.h), read with cJSON. */
+#include "np_scene.h"
+
+#include <cjson/cJSON.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Parser state: the file name for messages and the first error. */
+typedef struct ctx {
+    const char *file;
+    char *err;
+    size_t errlen;
+    int failed;
+} ctx;
+
+static int fail(ctx *c, const char *field, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+
+static int fail(ctx *c, const char *field, const char *fmt, ...)
+{
+    if (!c->failed) {
+        char what[256];
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(what, sizeof what, fmt, ap);
+        va_end(ap);
+        snprintf(c->err, c->errlen, "%s: field '%s': %s", c->file, field, what);
+        c->failed = 1;
+    }
+    return -1;
+}
+
+/* "parent.key" or "parent[i]" into buf. */
+static const char *path_key(char *buf, size_t n, const char *parent, const char *key)
+{
+    int w = snprintf(buf, n, "%s%s%s", parent, *parent ? "." : "", key);
+    if (w < 0 || (size_t)w >= n)
+        buf[n - 1] = '\0'; /* a deep path is cut short in the message only */
+    return buf;
+}
+
+static const char *path_idx(char *buf, size_t n, const char *parent, int i)
+{
+    int w = snprintf(buf, n, "%s[%d]", parent, i);
+    if (w < 0 || (size_t)w >= n)
+        buf[n - 1] = '\0';
+    return buf;
+}
+
+/* Refuse keys an object must not have (typos) and duplicates. */
+static int check_keys(ctx *c, const cJSON *obj, const char *where, const char *const *allowed)
+{
+    for (const cJSON *it = obj->child; it; it = it->next) {
+        int ok = 0;
+        for (const char *const *a = allowed; *a; a++)
+            ok |= strcmp(*a, it->string) == 0;
+        char f[256];
+        if (!ok) {
+            char list[256] = "";
+            for (const char *const *a = allowed; *a; a++)
+                snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", a == allowed ? "" : ", ", *a);
+            return fail(c, path_key(f, sizeof f, where, it->string), "unknown field (expected one of: %s)", list);
+        }
+        for (const cJSON *jt = obj->child; jt != it; jt = jt->next)
+            if (strcmp(jt->string, it->string) == 0)
+                return fail(c, path_key(f, sizeof f, where, it->string), "appears twice");
+    }
+    return 0;
+}
+
+static const cJSON *get(const cJSON *obj, const char *key) { return cJSON_GetObjectItemCaseSensitive(obj, key); }
+
+static int need_object(ctx *c, const cJSON *v, const char *field)
+{
+    if (!v)
+        return fail(c, field, "missing (expected an object)");
+    if (!cJSON_IsObject(v))
+        return fail(c, field, "expected an object");
+    return 0;
+}
+
+static int read_number(ctx *c, const cJSON *v, const char *field, double lo, double hi, double *out)
+{
+    if (!v)
+        return fail(c, field, "missing (expected a number in [%g, %g])", lo, hi);
+    if (!cJSON_IsNumber(v) || !isfinite(v->valuedouble))
+        return fail(c, field, "expected a number in [%g, %g]", lo, hi);
+    if (v->valuedouble < lo || v->valuedouble > hi)
+        return fail(c, field, "%g is out of range: expected a number in [%g, %g]", v->valuedouble, lo, hi);
+    *out = v->valuedouble;
+    return 0;
+}
+
+static int read_uint(ctx *c, const cJSON *v, const char *field, unsigned lo, unsigned hi, unsigned *out)
+{
+    if (!v)
+        return fail(c, field, "missing (expected an integer in %u..%u)", lo, hi);
+    if (!cJSON_IsNumber(v) || v->valuedouble != floor(v->valuedouble) || v->valuedouble < lo ||
+        v->valuedouble > hi)
+        return fail(c, field, "expected an integer in %u..%u", lo, hi);
+    *out = (unsigned)v->valuedouble;
+    return 0;
+}
+
+static int read_vec3(ctx *c, const cJSON *v, const char *field, double lo, double hi, double out[3])
+{
+    if (!v)
+        return fail(c, field, "missing (expected an array of 3 numbers)");
+    if (!cJSON_IsArray(v) || cJSON_GetArraySize(v) != 3)
+        return fail(c, field, "expected an array of 3 numbers");
+    for (int i = 0; i < 3; i++) {
+        char f[256];
+        if (read_number(c, cJSON_GetArrayItem(v, i), path_idx(f, sizeof f, field, i), lo, hi, &out[i]))
+            return -1;
+    }
+    return 0;
+}
+
+static int read_rgb(ctx *c, const cJSON *v, const char *field, double out[3])
+{
+    if (!v || !cJSON_IsArray(v) || cJSON_GetArraySize(v) != 3)
+        return fail(c, field, "%s (expected an array of 3 integers 0..255)", v ? "wrong type" : "missing");
+    for (int i = 0; i < 3; i++) {
+        char f[256];
+        unsigned u = 0;
+        if (read_uint(c, cJSON_GetArrayItem(v, i), path_idx(f, sizeof f, field, i), 0, 255, &u))
+            return -1;
+        out[i] = (double)u;
+    }
+    return 0;
+}
+
+static int read_string(ctx *c, const cJSON *v, const char *field, const char *const *choices, int *idx)
+{
+    char list[128] = "";
+    for (const char *const *a = choices; *a; a++)
+        snprintf(list + strlen(list), sizeof list - strlen(list), "%s\"%s\"", a == choices ? "" : " or ", *a);
+    if (!v || !cJSON_IsString(v))
+        return fail(c, field, "%s (expected %s)", v ? "expected a string" : "missing", list);
+    for (int i = 0; choices[i]; i++)
+        if (strcmp(v->valuestring, choices[i]) == 0) {
+            *idx = i;
+            return 0;
+        }
+    return fail(c, field, "\"%s\" is not one of %s", v->valuestring, list);
+}
+
+enum { COORD_MAX = 1000000 };
+
+static int parse_image(ctx *c, const cJSON *root, np_scene *s)
+{
+    static const char *const keys[] = { "width", "height", "background", NULL };
+    const cJSON *im = get(root, "image");
+    if (need_object(c, im, "image") || check_keys(c, im, "image", keys))
+        return -1;
+    if (read_uint(c, get(im, "width"), "image.width", 1, NP_SCENE_MAX_SIZE, &s->width) ||
+        read_uint(c, get(im, "height"), "image.height", 1, NP_SCENE_MAX_SIZE, &s->height))
+        return -1;
+    if (get(im, "background"))
+        return read_rgb(c, get(im, "background"), "image.background", s->background);
+    return 0;
+}
+
+static int parse_camera(ctx *c, const cJSON *root, np_scene *s)
+{
+    static const char *const keys[] = { "projection", "eye", "target", "up", "height", "focal", NULL };
+    static const char *const proj[] = { "orthographic", "perspective", NULL };
+    const cJSON *cam = get(root, "camera");
+    np_scene_camera *k = &s->cam;
+    int p;
+    if (need_object(c, cam, "camera") || check_keys(c, cam, "camera", keys) ||
+        read_string(c, get(cam, "projection"), "camera.projection", proj, &p) ||
+        read_vec3(c, get(cam, "eye"), "camera.eye", -COORD_MAX, COORD_MAX, k->eye) ||
+        read_vec3(c, get(cam, "target"), "camera.target", -COORD_MAX, COORD_MAX, k->target) ||
+        read_vec3(c, get(cam, "up"), "camera.up", -COORD_MAX, COORD_MAX, k->up))
+        return -1;
+    k->perspective = p == 1;
+    if (k->perspective) {
+        if (get(cam, "height"))
+            return fail(c, "camera.height", "only for an orthographic camera (a perspective one has \"focal\")");
+        if (read_number(c, get(cam, "focal"), "camera.focal", 1e-3, 1e3, &k->focal))
+            return -1;
+    } else {
+        if (get(cam, "focal"))
+            return fail(c, "camera.focal", "only for a perspective camera (an orthographic one has \"height\")");
+        if (read_number(c, get(cam, "height"), "camera.height", 1e-6, COORD_MAX, &k->height))
+            return -1;
+    }
+    double d[3], n2 = 0, u2 = 0, dot = 0;
+    for (int a = 0; a < 3; a++) {
+        d[a] = k->target[a] - k->eye[a];
+        n2 += d[a] * d[a];
+        u2 += k->up[a] * k->up[a];
+        dot += d[a] * k->up[a];
+    }
+    if (!(n2 > 0))
+        return fail(c, "camera.target", "must differ from camera.eye");
+    if (!(u2 * n2 - dot * dot > 1e-12 * u2 * n2))
+        return fail(c, "camera.up", "must not be parallel to the viewing direction");
+    return 0;
+}
+
+static np_scene_poly *add_poly(ctx *c, np_scene *s, const char *field)
+{
+    if (s->n_poly >= NP_SCENE_MAX_POLYS) {
+        fail(c, field, "too many polygons (at most %d)", NP_SCENE_MAX_POLYS);
+        return NULL;
+    }
+    np_scene_poly *p = &s->poly[s->n_poly++];
+    memset(p, 0, sizeof *p);
+    p->cull = 1;
+    return p;
+}
+
+/* The six faces of an axis-aligned box, counter-clockwise seen from outside. */
+static const unsigned char cube_faces[6][4] = {
+    { 0, 4, 6, 2 }, /* x = min */ { 1, 3, 7, 5 }, /* x = max */
+    { 0, 1, 5, 4 }, /* y = min */ { 2, 6, 7, 3 }, /* y = max */
+    { 0, 2, 3, 1 }, /* z = min */ { 4, 5, 7, 6 }, /* z = max */
+};
+
+static int parse_geometry(ctx *c, const cJSON *root, np_scene *s)
+{
+    static const char *const types[] = { "cube", "polygon", NULL };
+    static const char *const cube_keys[] = { "type", "min", "max", "texture_min", "texture_max", NULL };
+    static const char *const poly_keys[] = { "type", "vertices", "texcoords", "cull", NULL };
+    const cJSON *g = get(root, "geometry");
+    if (!g || !cJSON_IsArray(g) || cJSON_GetArraySize(g) < 1)
+        return fail(c, "geometry", "%s (expected a non-empty array of objects)", g ? "wrong type" : "missing");
+    int n = cJSON_GetArraySize(g);
+    s->poly = calloc((size_t)NP_SCENE_MAX_POLYS, sizeof *s->poly);
+    if (!s->poly)
+        return fail(c, "geometry", "out of memory");
+    for (int i = 0; i < n; i++) {
+        char where[64], f[256];
+        const cJSON *o = cJSON_GetArrayItem(g, i);
+        int type;
+        path_idx(where, sizeof where, "geometry", i);
+        if (need_object(c, o, where) ||
+            read_string(c, get(o, "type"), path_key(f, sizeof f, where, "type"), types, &type))
+            return -1;
+        if (type == 0) {
+            double mn[3], mx[3], tmn[3], tmx[3];
+            if (check_keys(c, o, where, cube_keys) ||
+                read_vec3(c, get(o, "min"), path_key(f, sizeof f, where, "min"), -COORD_MAX, COORD_MAX, mn) ||
+                read_vec3(c, get(o, "max"), path_key(f, sizeof f, where, "max"), -COORD_MAX, COORD_MAX, mx) ||
+                read_vec3(c, get(o, "texture_min"), path_key(f, sizeof f, where, "texture_min"), -COORD_MAX,
+                          COORD_MAX, tmn) ||
+                read_vec3(c, get(o, "texture_max"), path_key(f, sizeof f, where, "texture_max"), -COORD_MAX,
+                          COORD_MAX, tmx))
+                return -1;
+            for (int a = 0; a < 3; a++)
+                if (!(mx[a] > mn[a]))
+                    return fail(c, path_key(f, sizeof f, where, "max"), "must exceed \"min\" on every axis");
+            for (int face = 0; face < 6; face++) {
+                np_scene_poly *p = add_poly(c, s, where);
+                if (!p)
+                    return -1;
+                p->n = 4;
+                for (int v = 0; v < 4; v++) {
+                    unsigned b = cube_faces[face][v];
+                    for (unsigned a = 0; a < 3; a++) {
+                        double w = (double)((b >> a) & 1u);
+                        p->p[v][a] = mn[a] + (mx[a] - mn[a]) * w;
+                        p->t[v][a] = tmn[a] + (tmx[a] - tmn[a]) * w;
+                    }
+                }
+            }
+        } else {
+            const cJSON *vs = get(o, "vertices"), *ts = get(o, "texcoords");
+            if (check_keys(c, o, where, poly_keys))
+                return -1;
+            if (!vs || !cJSON_IsArray(vs) || cJSON_GetArraySize(vs) < 3 ||
+                cJSON_GetArraySize(vs) > NP_SCENE_MAX_VERTS)
+                return fail(c, path_key(f, sizeof f, where, "vertices"),
+                            "expected an array of 3..%d points [x, y, z]", NP_SCENE_MAX_VERTS);
+            if (!ts || !cJSON_IsArray(ts) || cJSON_GetArraySize(ts) != cJSON_GetArraySize(vs))
+                return fail(c, path_key(f, sizeof f, where, "texcoords"),
+                            "expected an array of [s, t, r], one per vertex (%d)", cJSON_GetArraySize(vs));
+            np_scene_poly *p = add_poly(c, s, where);
+            if (!p)
+                return -1;
+            p->n = (unsigned)cJSON_GetArraySize(vs);
+            for (unsigned v = 0; v < p->n; v++) {
+                char fv[256];
+                path_key(f, sizeof f, where, "vertices");
+                if (read_vec3(c, cJSON_GetArrayItem(vs, (int)v), path_idx(fv, sizeof fv, f, (int)v), -COORD_MAX,
+                              COORD_MAX, p->p[v]))
+                    return -1;
+                path_key(f, sizeof f, where, "texcoords");
+                if (read_vec3(c, cJSON_GetArrayItem(ts, (int)v), path_idx(fv, sizeof fv, f, (int)v), -COORD_MAX,
+                              COORD_MAX, p->t[v]))
+                    return -1;
+            }
+            const cJSON *cull = get(o, "cull");
+            if (cull) {
+                if (!cJSON_IsBool(cull))
+                    return fail(c, path_key(f, sizeof f, where, "cull"), "expected true or false");
+                p->cull = cJSON_IsTrue(cull);
+            }
+        }
+    }
+    return 0;
+}
+
+static int parse_octave(ctx *c, const cJSON *o, const char *where, np_ref_octave *oc)
+{
+    static const char *const keys[] = { "amplitude", "scale", "matrix", "offset", NULL };
+    char f[256];
+    if (need_object(c, o, where) || check_keys(c, o, where, keys) ||
+        read_number(c, get(o, "amplitude"), path_key(f, sizeof f, where, "amplitude"), -1e5, 1e5, &oc->amp))
+        return -1;
+    memset(oc->m, 0, sizeof oc->m);
+    const cJSON *sc = get(o, "scale"), *mx = get(o, "matrix");
+    if (sc && mx)
+        return fail(c, path_key(f, sizeof f, where, "matrix"), "give either \"scale\" or \"matrix\", not both");
+    if (mx) {
+        if (!cJSON_IsArray(mx) || cJSON_GetArraySize(mx) != 3)
+            return fail(c, path_key(f, sizeof f, where, "matrix"), "expected 3 rows of 3 numbers");
+        for (int a = 0; a < 3; a++) {
+            char fr[256];
+            path_key(f, sizeof f, where, "matrix");
+            if (read_vec3(c, cJSON_GetArrayItem(mx, a), path_idx(fr, sizeof fr, f, a), -127.0, 127.0, oc->m[a]))
+                return -1;
+        }
+    } else if (sc) {
+        double d[3];
+        if (read_vec3(c, sc, path_key(f, sizeof f, where, "scale"), -127.0, 127.0, d))
+            return -1;
+        for (int a = 0; a < 3; a++)
+            oc->m[a][a] = d[a];
+    } else {
+        for (int a = 0; a < 3; a++)
+            oc->m[a][a] = 1.0;
+    }
+    memset(oc->o, 0, sizeof oc->o);
+    if (get(o, "offset") &&
+        read_vec3(c, get(o, "offset"), path_key(f, sizeof f, where, "offset"), -16384.0, 16384.0, oc->o))
+        return -1;
+    return 0;
+}
+
+static int parse_texture(ctx *c, const cJSON *root, np_scene *s)
+{
+    static const char *const keys[] = { "quadric", "octaves", "colormap", NULL };
+    static const char *const qkeys[] = { "A", "B", "C", "D", "E", "F", "G", "H", "I", "J", NULL };
+    static const char *const ckeys[] = { "mode", "domain", "colors", NULL };
+    static const char *const modes[] = { "repeat", "clamp", NULL };
+    const cJSON *t = get(root, "texture");
+    np_ref_texture *tx = &s->tex;
+    char f[256];
+    if (need_object(c, t, "texture") || check_keys(c, t, "texture", keys))
+        return -1;
+    const cJSON *q = get(t, "quadric");
+    if (q) {
+        if (need_object(c, q, "texture.quadric") || check_keys(c, q, "texture.quadric", qkeys))
+            return -1;
+        for (int i = 0; i < 10; i++)
+            if (get(q, qkeys[i]) && read_number(c, get(q, qkeys[i]), path_key(f, sizeof f, "texture.quadric", qkeys[i]),
+                                                -1e6, 1e6, &tx->quad[i]))
+                return -1;
+    }
+    const cJSON *oc = get(t, "octaves");
+    if (oc) {
+        if (!cJSON_IsArray(oc) || cJSON_GetArraySize(oc) > NP_REF_MAX_OCTAVES)
+            return fail(c, "texture.octaves", "expected an array of at most %d octaves", NP_REF_MAX_OCTAVES);
+        tx->n_oct = (unsigned)cJSON_GetArraySize(oc);
+        for (unsigned i = 0; i < tx->n_oct; i++)
+            if (parse_octave(c, cJSON_GetArrayItem(oc, (int)i), path_idx(f, sizeof f, "texture.octaves", (int)i),
+                             &tx->oct[i]))
+                return -1;
+    }
+    const cJSON *cm = get(t, "colormap");
+    np_ref_colormap *m = &tx->cmap;
+    int mode;
+    double dom[2] = { 0, 0 };
+    if (need_object(c, cm, "texture.colormap") || check_keys(c, cm, "texture.colormap", ckeys) ||
+        read_string(c, get(cm, "mode"), "texture.colormap.mode", modes, &mode))
+        return -1;
+    m->repeat = mode == 0;
+    const cJSON *d = get(cm, "domain");
+    if (!d || !cJSON_IsArray(d) || cJSON_GetArraySize(d) != 2)
+        return fail(c, "texture.colormap.domain", "%s (expected [f0, f1] with f0 < f1)", d ? "wrong type" : "missing");
+    if (read_number(c, cJSON_GetArrayItem(d, 0), "texture.colormap.domain[0]", -1e6, 1e6, &dom[0]) ||
+        read_number(c, cJSON_GetArrayItem(d, 1), "texture.colormap.domain[1]", -1e6, 1e6, &dom[1]))
+        return -1;
+    if (!(dom[1] > dom[0]))
+        return fail(c, "texture.colormap.domain", "expected [f0, f1] with f0 < f1");
+    m->f0 = dom[0];
+    m->f1 = dom[1];
+    const cJSON *cols = get(cm, "colors");
+    int nc = cols && cJSON_IsArray(cols) ? cJSON_GetArraySize(cols) : -1;
+    if (nc < 2 || nc > NP_REF_CMAP_MAX)
+        return fail(c, "texture.colormap.colors", "expected an array of 2..%d colours [r, g, b]", NP_REF_CMAP_MAX);
+    if (m->repeat && (nc & (nc - 1)) != 0)
+        return fail(c, "texture.colormap.colors",
+                    "%d entries: a repeating map needs a power of two (the unit wraps the index with a mask)", nc);
+    m->n = (unsigned)nc;
+    for (int i = 0; i < nc; i++)
+        if (read_rgb(c, cJSON_GetArrayItem(cols, i), path_idx(f, sizeof f, "texture.colormap.colors", i), m->c[i]))
+            return -1;
+    return 0;
+}
+
+int np_scene_parse(const char *json, const char *name, np_scene *s, char *err, size_t errlen)
+{
+    static const char *const keys[] = { "noisepipe_scene", "name", "description", "image", "camera",
+                                        "geometry", "texture", "probe_row", NULL };
+    ctx c = { name, err, errlen, 0 };
+    memset(s, 0, sizeof *s);
+    snprintf(s->path, sizeof s->path, "%s", name);
+    const char *end = NULL;
+    cJSON *root = cJSON_ParseWithOpts(json, &end, 1);
+    if (!root) {
+        /* Line and column of the point where parsing stopped. */
+        unsigned line = 1, col = 1;
+        for (const char *p = json; end && p < end && *p; p++, col++)
+            if (*p == '\n')
+                line++, col = 0;
+        snprintf(err, errlen, "%s:%u:%u: not valid JSON", name, line, col);
+        return -1;
+    }
+    unsigned version = 0;
+    if (!cJSON_IsObject(root)) {
+        fail(&c, "(top level)", "expected an object");
+        goto out;
+    }
+    if (check_keys(&c, root, "", keys) ||
+        read_uint(&c, get(root, "noisepipe_scene"), "noisepipe_scene", 1, 1, &version))
+        goto out;
+    const cJSON *nm = get(root, "name");
+    if (!nm || !cJSON_IsString(nm) || strlen(nm->valuestring) == 0 || strlen(nm->valuestring) >= sizeof s->name) {
+        fail(&c, "name", "expected a string of 1..%zu characters", sizeof s->name - 1);
+        goto out;
+    }
+    for (const char *p = nm->valuestring; *p; p++)
+        if (!((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') || *p == '_' ||
+              *p == '-')) {
+            fail(&c, "name", "expected letters, digits, '_' or '-' (it names the output files)");
+            goto out;
+        }
+    snprintf(s->name, sizeof s->name, "%s", nm->valuestring);
+    const cJSON *desc = get(root, "description");
+    if (desc && !cJSON_IsString(desc)) {
+        fail(&c, "description", "expected a string");
+        goto out;
+    }
+    if (parse_image(&c, root, s) || parse_camera(&c, root, s) || parse_geometry(&c, root, s) ||
+        parse_texture(&c, root, s))
+        goto out;
+    s->probe_row = s->height / 2u;
+    if (get(root, "probe_row"))
+        read_uint(&c, get(root, "probe_row"), "probe_row", 0, s->height - 1u, &s->probe_row);
+out:
+    cJSON_Delete(root);
+    if (c.failed) {
+        np_scene_free(s);
+        return -1;
+    }
+    return 0;
+}
+
+int np_scene_load(const char *path, np_scene *s, char *err, size_t errlen)
+{
+    memset(s, 0, sizeof *s);
+    if (strncmp(path, "embedded:", 9) == 0) {
+        for (const np_scene_embedded *e = np_scenes_embedded; e->name; e++)
+            if (strcmp(e->name, path + 9) == 0)
+                return np_scene_parse(e->json, path, s, err, errlen);
+        snprintf(err, errlen, "%s: no such embedded scene (", path);
+        for (const np_scene_embedded *e = np_scenes_embedded; e->name; e++)
+            snprintf(err + strlen(err), errlen - strlen(err), "%sembedded:%s", e == np_scenes_embedded ? "" : ", ",
+                     e->name);
+        snprintf(err + strlen(err), errlen - strlen(err), ")");
+        return -1;
+    }
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+        return -1;
+    }
+    size_t cap = 1 << 16, n = 0;
+    char *buf = malloc(cap);
+    for (;;) {
+        if (!buf) {
+            fclose(f);
+            snprintf(err, errlen, "%s: out of memory", path);
+            return -1;
+        }
+        n += fread(buf + n, 1, cap - n - 1, f);
+        if (n < cap - 1)
+            break;
+        if (cap >= ((size_t)1 << 26)) {
+            free(buf);
+            fclose(f);
+            snprintf(err, errlen, "%s: larger than 64 MiB: not a scene", path);
+            return -1;
+        }
+        cap *= 2;
+        char *nb = realloc(buf, cap);
+        if (!nb)
+            free(buf);
+        buf = nb;
+    }
+    int bad = ferror(f);
+    fclose(f);
+    if (bad) {
+        free(buf);
+        snprintf(err, errlen, "%s: read error", path);
+        return -1;
+    }
+    buf[n] = '\0';
+    if (strlen(buf) != n) {
+        free(buf);
+        snprintf(err, errlen, "%s: contains a NUL byte: not a JSON text", path);
+        return -1;
+    }
+    int rc = np_scene_parse(buf, path, s, err, errlen);
+    free(buf);
+    return rc;
+}
+
+void np_scene_free(np_scene *s)
+{
+    free(s->poly);
+    s->poly = NULL;
+    s->n_poly = 0;
+}

@@ -1,0 +1,50 @@
+# SPDX-License-Identifier: MIT
+# The scanline texturing units (forward differences and per pixel), scenes,
+# the reference renderer, golden images and image files (docs/fdiff.md,
+# docs/render.md).
+np_test_program(test_fdiff test_fdiff.c)
+np_add_cases(test_fdiff fdiff
+  stiff_span65536 stiff_deriv_tiny stiff_deriv_huge stiff_cell_edge_on_pixel stiff_span_one_zero
+  stiff_wrap stiff_quadric_long guard_search setup_exact appendix_coefficients drift_identity
+  cycle_vs_model cycle_count texel_exact_weights texel_cycle_vs_model colour_stage
+  front_end_rounding lattice_distribution cfg_validation datapath_widths texel_datapath_widths)
+
+np_test_program(test_render test_render.c)
+target_link_libraries(test_render PRIVATE np_render)
+target_compile_definitions(test_render PRIVATE NP_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+np_add_cases(test_render render
+  sha256_kat exr_roundtrip png_roundtrip scene_errors scene_seed seed_scenes_1lsb golden_hashes
+  scanline perspective_polygon builtin_textures stream_vectors)
+foreach(c exr_roundtrip png_roundtrip stream_vectors)
+  set_tests_properties(render.${c} PROPERTIES WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+endforeach()
+
+# The command on both seed scenes: images written, errors within 1 LSB, golden
+# hashes checked; then exrheader (package openexr) must read the EXR files.
+set(np_render_out ${CMAKE_CURRENT_BINARY_DIR}/render-cli)
+add_test(NAME render.cli COMMAND noisepipe render -o ${np_render_out}
+  --hashes ${PROJECT_SOURCE_DIR}/vectors/images/hashes.txt
+  ${PROJECT_SOURCE_DIR}/vectors/scenes/wood.json ${PROJECT_SOURCE_DIR}/vectors/scenes/marble.json)
+set_tests_properties(render.cli PROPERTIES FIXTURES_SETUP np_render_images)
+find_program(NP_EXRHEADER exrheader)
+if(NP_EXRHEADER)
+  foreach(f wood_ref wood_fdiff marble_texel marble_fdiff_err)
+    add_test(NAME render.exrheader_${f} COMMAND ${NP_EXRHEADER} ${np_render_out}/${f}.exr)
+    set_tests_properties(render.exrheader_${f} PROPERTIES FIXTURES_REQUIRED np_render_images
+      PASS_REGULAR_EXPRESSION "R, 32-bit floating-point")
+  endforeach()
+endif()
+# A malformed scene: exit status 2 and a message naming the file and the field.
+file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/render_bad_scene.json
+  "{ \"noisepipe_scene\": 1, \"name\": \"bad\", \"image\": { \"width\": 0, \"height\": 8 } }\n")
+add_test(NAME render.cli_bad_scene COMMAND ${CMAKE_COMMAND}
+  -DCMD=$<TARGET_FILE:noisepipe> -DARGS=render\;${CMAKE_CURRENT_BINARY_DIR}/render_bad_scene.json
+  -DWANT_RC=2 "-DWANT=render_bad_scene.json: field 'image.width': expected an integer in 1..4096"
+  -P ${CMAKE_CURRENT_SOURCE_DIR}/render_expect.cmake)
+# The report (error against run time, plots; docs/plots is its output for the seed
+# scenes) and the benchmark run end to end.
+add_test(NAME render.report COMMAND noisepipe render --report ${CMAKE_CURRENT_BINARY_DIR}/render-report --repeat 1)
+set_tests_properties(render.report PROPERTIES PASS_REGULAR_EXPRESSION "report: 94 configurations")
+add_test(NAME render.bench COMMAND noisepipe render --bench --repeat 1
+  ${PROJECT_SOURCE_DIR}/vectors/scenes/wood.json ${PROJECT_SOURCE_DIR}/vectors/scenes/marble.json)
+set_tests_properties(render.bench PROPERTIES PASS_REGULAR_EXPRESSION "bench marble.*hardware cycles per frame")

@@ -1,0 +1,569 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * Scenes, the reference renderer, the units' renders of the seed scenes,
+ * golden-image hashes and the image files (OpenEXR, PNG, SHA-256).
+ */
+#include <math.h>
+#include <png.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "np_image.h"
+#include "np_render.h"
+#include "np_stream.h"
+#include "np_test.h"
+#include "np_texreg.h"
+#include "np_vec.h"
+
+#ifndef NP_SOURCE_DIR
+#define NP_SOURCE_DIR "."
+#endif
+
+static void scene_path(char *buf, size_t n, const char *name)
+{
+    snprintf(buf, n, "%s/vectors/scenes/%s.json", NP_SOURCE_DIR, name);
+}
+
+/* --- Image files --- */
+
+static int sha256_kat(void)
+{
+    static const struct { const char *msg, *hex; } k[] = {
+        { "", "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855" },
+        { "abc", "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad" },
+        { "abcdbcdecdefdefgefghfghighijhijkijkljklmklmnlmnomnopnopq",
+          "248d6a61d20638b8e5c026930c3e6039a33ce45964ff2167f6ecedd419db06c1" },
+    };
+    for (unsigned i = 0; i < 3; i++) {
+        np_sha256 s;
+        uint8_t d[32];
+        char hex[65];
+        np_sha256_init(&s);
+        /* Feed byte by byte too, to cross block boundaries in every way. */
+        for (const char *p = k[i].msg; *p; p++)
+            np_sha256_update(&s, p, 1);
+        np_sha256_final(&s, d);
+        for (int b = 0; b < 32; b++)
+            snprintf(hex + 2 * b, 3, "%02x", d[b]);
+        NP_CHECK(strcmp(hex, k[i].hex) == 0, "sha256(\"%s\") = %s", k[i].msg, hex);
+    }
+    /* One million 'a' (FIPS 180-2 appendix). */
+    np_sha256 s;
+    uint8_t d[32], a[1000];
+    char hex[65];
+    memset(a, 'a', sizeof a);
+    np_sha256_init(&s);
+    for (int i = 0; i < 1000; i++)
+        np_sha256_update(&s, a, sizeof a);
+    np_sha256_final(&s, d);
+    for (int b = 0; b < 32; b++)
+        snprintf(hex + 2 * b, 3, "%02x", d[b]);
+    NP_CHECK(strcmp(hex, "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0") == 0, "million a: %s", hex);
+    printf("SHA-256 known answers pass\n");
+    return 0;
+}
+
+static int exr_roundtrip(void)
+{
+    /* Channels given out of alphabetical order, a partial last chunk, special values: FLOAT is bit-exact. */
+    const unsigned w = 19, h = 37;
+    const char *const names[3] = { "Z", "A", "M" };
+    float *pl = malloc(3 * w * h * sizeof *pl);
+    for (unsigned c = 0; c < 3; c++)
+        for (unsigned i = 0; i < w * h; i++)
+            pl[c * w * h + i] = (float)(c + 1) * 1000.0f + (float)i * 0.125f - 3.0f;
+    pl[0] = -0.0f;
+    pl[1] = 1e-40f; /* denormal */
+    pl[2] = 3.4e38f;
+    char path[256], err[512];
+    snprintf(path, sizeof path, "test_render_roundtrip.exr");
+    NP_CHECK(np_image_write_exr(path, w, h, 3, names, pl, err, sizeof err) == 0, "write: %s", err);
+    unsigned rw, rh, rn;
+    char rnames[NP_IMAGE_MAX_CHANNELS][NP_IMAGE_NAME];
+    float *rp = NULL;
+    NP_CHECK(np_image_read_exr(path, &rw, &rh, &rn, rnames, &rp, err, sizeof err) == 0, "read: %s", err);
+    if (rp) {
+        NP_CHECK(rw == w && rh == h && rn == 3, "shape %ux%u x%u", rw, rh, rn);
+        /* The file lists the channels sorted (A, M, Z): map by name. */
+        NP_CHECK(strcmp(rnames[0], "A") == 0 && strcmp(rnames[1], "M") == 0 && strcmp(rnames[2], "Z") == 0,
+                 "names %s %s %s", rnames[0], rnames[1], rnames[2]);
+        unsigned bad = 0;
+        for (unsigned c = 0; c < 3; c++) {
+            unsigned k = 0;
+            while (strcmp(names[k], rnames[c]) != 0)
+                k++;
+            bad += memcmp(rp + (size_t)c * w * h, pl + (size_t)k * w * h, w * h * sizeof(float)) != 0;
+        }
+        NP_CHECK(bad == 0, "%u channels differ", bad);
+        printf("EXR %ux%u, 3 FLOAT channels written out of order and read back by name: bit-exact\n", w, h);
+    }
+    free(rp);
+    free(pl);
+    remove(path);
+    NP_CHECK(np_image_read_exr("no-such-file.exr", &rw, &rh, &rn, rnames, &rp, err, sizeof err) != 0, "missing file read");
+    return 0;
+}
+
+static int png_roundtrip(void)
+{
+    const unsigned w = 33, h = 17;
+    uint8_t *rgb = malloc(w * h * 3);
+    for (unsigned i = 0; i < w * h * 3; i++)
+        rgb[i] = (uint8_t)(i * 37u + 11u);
+    char err[512];
+    const char *path = "test_render_roundtrip.png";
+    NP_CHECK(np_image_write_png(path, w, h, rgb, err, sizeof err) == 0, "write: %s", err);
+    png_image im;
+    memset(&im, 0, sizeof im);
+    im.version = PNG_IMAGE_VERSION;
+    NP_CHECK(png_image_begin_read_from_file(&im, path) != 0, "libpng cannot read it back");
+    im.format = PNG_FORMAT_RGB;
+    uint8_t *back = malloc(PNG_IMAGE_SIZE(im));
+    NP_CHECK(im.width == w && im.height == h, "size %ux%u", im.width, im.height);
+    NP_CHECK(png_image_finish_read(&im, NULL, back, 0, NULL) != 0, "decode");
+    NP_CHECK(memcmp(back, rgb, w * h * 3) == 0, "pixels differ");
+    printf("PNG %ux%u RGB written and read back by libpng: identical\n", w, h);
+    free(back);
+    free(rgb);
+    remove(path);
+    return 0;
+}
+
+/* --- Scenes --- */
+
+static const char good[] =
+    "{ \"noisepipe_scene\": 1, \"name\": \"t\",\n"
+    "  \"image\": { \"width\": 64, \"height\": 48 },\n"
+    "  \"camera\": { \"projection\": \"orthographic\", \"eye\": [0, 0, 5], \"target\": [0, 0, 0],\n"
+    "              \"up\": [0, 1, 0], \"height\": 2 },\n"
+    "  \"geometry\": [ { \"type\": \"polygon\", \"vertices\": [[-1,-1,0],[1,-1,0],[1,1,0],[-1,1,0]],\n"
+    "                  \"texcoords\": [[0,0,0],[4,0,0],[4,4,0],[0,4,0]] } ],\n"
+    "  \"texture\": { \"octaves\": [ { \"amplitude\": 1 } ],\n"
+    "               \"colormap\": { \"mode\": \"clamp\", \"domain\": [0, 1], \"colors\": [[0,0,0],[255,255,255]] } } }\n";
+
+/* Replace the first occurrence of from by to in good. */
+static void variant(char *buf, size_t n, const char *from, const char *to)
+{
+    const char *p = strstr(good, from);
+    if (!p) {
+        snprintf(buf, n, "%s", good);
+        return;
+    }
+    snprintf(buf, n, "%.*s%s%s", (int)(p - good), good, to, p + strlen(from));
+}
+
+static int scene_errors(void)
+{
+    static const struct { const char *from, *to, *want; } k[] = {
+        { "\"name\": \"t\",", "\"name\": \"t\"", "bad.json:2:" },                       /* missing comma */
+        { "\"width\": 64, ", "", "field 'image.width': missing (expected an integer in 1..4096)" },
+        { "\"eye\": [0, 0, 5]", "\"eye\": [0, 5]", "field 'camera.eye': expected an array of 3 numbers" },
+        { "\"colormap\"", "\"colourmap\"", "field 'texture.colourmap': unknown field (expected one of: quadric, octaves, colormap)" },
+        { "[[0,0,0],[255,255,255]]", "[[0,0,0],[300,0,0]]", "field 'texture.colormap.colors[1][0]': expected an integer in 0..255" },
+        { "\"clamp\"", "\"repeat\"", "ok" },
+        { "[[0,0,0],[255,255,255]]", "[[0,0,0],[1,1,1],[2,2,2]]", "ok" },
+        { "\"amplitude\": 1", "\"amplitude\": 1, \"scale\": [1,1,1], \"matrix\": [[1,0,0],[0,1,0],[0,0,1]]",
+          "field 'texture.octaves[0].matrix': give either \"scale\" or \"matrix\", not both" },
+        { "\"noisepipe_scene\": 1", "\"noisepipe_scene\": 2", "field 'noisepipe_scene': expected an integer in 1..1" },
+        { "[[0,0,0],[4,0,0],[4,4,0],[0,4,0]]", "[[0,0,0],[4,0,0]]", "field 'geometry[0].texcoords': expected an array of [s, t, r], one per vertex (4)" },
+        { "\"height\": 48", "\"height\": 48, \"height\": 49", "field 'image.height': appears twice" },
+        { "\"orthographic\"", "\"fisheye\"", "field 'camera.projection': \"fisheye\" is not one of \"orthographic\" or \"perspective\"" },
+        { "\"up\": [0, 1, 0]", "\"up\": [0, 0, 1]", "field 'camera.up': must not be parallel to the viewing direction" },
+        { "\"domain\": [0, 1]", "\"domain\": [1, 1]", "field 'texture.colormap.domain': expected [f0, f1] with f0 < f1" },
+    };
+    char buf[4096], err[1024];
+    np_scene s;
+    NP_CHECK(np_scene_parse(good, "good.json", &s, err, sizeof err) == 0, "the good scene fails: %s", err);
+    np_scene_free(&s);
+    for (unsigned i = 0; i < sizeof k / sizeof k[0]; i++) {
+        variant(buf, sizeof buf, k[i].from, k[i].to);
+        int rc = np_scene_parse(buf, "bad.json", &s, err, sizeof err);
+        if (strcmp(k[i].want, "ok") == 0) {
+            NP_CHECK(rc == 0, "case %u should load: %s", i, err);
+            if (rc == 0)
+                np_scene_free(&s);
+            continue;
+        }
+        NP_CHECK(rc != 0, "case %u accepted", i);
+        NP_CHECK(strstr(err, k[i].want) != NULL && strncmp(err, "bad.json", 8) == 0, "case %u: '%s', want '%s'", i, err,
+                 k[i].want);
+        printf("  %s\n", err);
+    }
+    /* A repeat map of 3 entries: the file, the field, why. */
+    variant(buf, sizeof buf, "[[0,0,0],[255,255,255]]", "[[0,0,0],[1,1,1],[2,2,2]]");
+    char two[4096];
+    snprintf(two, sizeof two, "%s", buf);
+    const char *p = strstr(two, "\"clamp\"");
+    snprintf(buf, sizeof buf, "%.*s\"repeat\"%s", (int)(p - two), two, p + 7);
+    NP_CHECK(np_scene_parse(buf, "bad.json", &s, err, sizeof err) != 0 &&
+                 strstr(err, "field 'texture.colormap.colors': 3 entries: a repeating map needs a power of two"),
+             "repeat of 3: %s", err);
+    printf("  %s\n", err);
+    NP_CHECK(np_scene_load("/nonexistent/scene.json", &s, err, sizeof err) != 0 &&
+                 strstr(err, "/nonexistent/scene.json: cannot open"),
+             "missing file: %s", err);
+    printf("  %s\n", err);
+    return 0;
+}
+
+static int scene_seed(void)
+{
+    char path[1024], err[1024];
+    np_scene s;
+    scene_path(path, sizeof path, "wood");
+    NP_CHECK(np_scene_load(path, &s, err, sizeof err) == 0, "%s", err);
+    NP_CHECK(s.width == 256 && s.height == 256 && s.n_poly == 6, "wood image/geometry");
+    NP_CHECK(s.tex.quad[0] == 10 && s.tex.quad[7] == 10 && s.tex.n_oct == 1 && s.tex.oct[0].m[0][0] == 5 &&
+                 s.tex.oct[0].m[1][1] == 5 && s.tex.oct[0].m[2][2] == 1 && s.tex.oct[0].amp == 1,
+             "wood is not equation 23");
+    np_render_frame fr;
+    NP_CHECK(np_render_prepare(&s, &fr, err, sizeof err) == 0, "%s", err);
+    /* Faces share edges but no pixel: the mask counts each pixel once. */
+    uint64_t covered = 0;
+    for (unsigned i = 0; i < s.width * s.height; i++)
+        covered += fr.mask[i];
+    printf("wood: %zu spans, %llu pixels (covered %llu), longest span %u\n", fr.n_spans, (unsigned long long)fr.pixels,
+           (unsigned long long)covered, fr.longest);
+    NP_CHECK(covered == fr.pixels, "overlapping spans: %llu covered, %llu in spans", (unsigned long long)covered,
+             (unsigned long long)fr.pixels);
+    /* The bottom vertex (texture origin) and the top vertex ((1,1,1)) are the lowest and highest covered rows. */
+    unsigned top = 0, bot = 0;
+    double stop = 0, sbot = 0;
+    for (size_t i = 0; i < fr.n_spans; i++) {
+        const np_rspan *sp = &fr.spans[i];
+        if (i == 0 || sp->hw.y < top) {
+            top = sp->hw.y;
+            stop = sp->s0[0] + sp->s0[1] + sp->s0[2];
+        }
+        if (i == 0 || sp->hw.y > bot) {
+            bot = sp->hw.y;
+            sbot = sp->s0[0] + sp->s0[1] + sp->s0[2];
+        }
+    }
+    printf("top row %u: s + t + r = %.3f (vertex (1,1,1): 3); bottom row %u: %.3f (origin: 0)\n", top, stop, bot, sbot);
+    NP_CHECK(stop > 2.9 && sbot < 0.1, "texture origin / top vertex misplaced");
+    np_render_frame_free(&fr);
+    np_scene_free(&s);
+    scene_path(path, sizeof path, "marble");
+    NP_CHECK(np_scene_load(path, &s, err, sizeof err) == 0, "%s", err);
+    NP_CHECK(s.tex.n_oct == 4 && s.tex.quad[8] == 0.5 && s.tex.oct[3].m[0][0] == 8, "marble is not equation 24");
+    NP_CHECK(np_render_prepare(&s, &fr, err, sizeof err) == 0, "%s", err);
+    /* The seed: 16^2 cells of the finest octave per face, 768 in all. Count the distinct cells the frame touches. */
+    static unsigned char seen[17][17][17];
+    memset(seen, 0, sizeof seen);
+    unsigned cells = 0;
+    for (size_t i = 0; i < fr.n_spans; i++) {
+        const np_rspan *sp = &fr.spans[i];
+        for (uint32_t k = 0; k < sp->hw.n; k++) {
+            int c[3];
+            for (int a = 0; a < 3; a++)
+                c[a] = (int)floor(8.0 * (sp->s0[a] + (double)k * sp->ds[a]));
+            if (c[0] >= 0 && c[0] <= 16 && c[1] >= 0 && c[1] <= 16 && c[2] >= 0 && c[2] <= 16 && !seen[c[0]][c[1]][c[2]]) {
+                seen[c[0]][c[1]][c[2]] = 1;
+                cells++;
+            }
+        }
+    }
+    printf("marble: finest octave (scale 8) touches %u lattice cells (the seed: 16^2 per face, 768 for three faces; "
+           "a face at s = 2 lies in cell 16)\n",
+           cells);
+    NP_CHECK(cells > 600 && cells <= 768, "cells %u", cells);
+    np_render_frame_free(&fr);
+    np_scene_free(&s);
+    return 0;
+}
+
+/* Render a seed scene with the default configurations. */
+static int render_default(const char *name, np_scene *s, np_render_frame *fr, np_render_run *fd, np_render_run *tx)
+{
+    char path[1024], err[1024];
+    scene_path(path, sizeof path, name);
+    if (np_scene_load(path, s, err, sizeof err) || np_render_prepare(s, fr, err, sizeof err)) {
+        NP_CHECK(0, "%s", err);
+        return -1;
+    }
+    np_fdiff_cfg fc = np_fdiff_cfg_default();
+    np_texel_cfg tc = np_texel_cfg_default();
+    if (np_render_reference(fr) || np_render_fdiff(fr, &fc, 1, fd) || np_render_texel(fr, &tc, 1, tx)) {
+        NP_CHECK(0, "out of memory");
+        return -1;
+    }
+    return 0;
+}
+
+static int seed_scenes_1lsb(void)
+{
+    const char *names[2] = { "wood", "marble" };
+    for (int i = 0; i < 2; i++) {
+        np_scene s;
+        np_render_frame fr;
+        np_render_run fd, tx;
+        if (render_default(names[i], &s, &fr, &fd, &tx))
+            return 1;
+        printf("%s: fdiff max %.3f LSB RMS %.4f PSNR %.2f dB, %llu cycles (%llu cell set-ups, %llu stall cycles); "
+               "texel max %.3f LSB RMS %.4f, %llu cycles\n",
+               names[i], fd.err.max_lsb, fd.err.rms_lsb, fd.err.psnr_db, (unsigned long long)fd.cycles,
+               (unsigned long long)fd.cell_setups, (unsigned long long)fd.setup_stalls, tx.err.max_lsb, tx.err.rms_lsb,
+               (unsigned long long)tx.cycles);
+        NP_CHECK(fd.err.max_lsb <= 1.0, "%s: fdiff %.3f LSB", names[i], fd.err.max_lsb);
+        NP_CHECK(tx.err.max_lsb <= 1.0, "%s: texel %.3f LSB", names[i], tx.err.max_lsb);
+        NP_CHECK(fd.cycle_mismatch == 0 && tx.cycle_mismatch == 0, "%s: cycle model differs", names[i]);
+        NP_CHECK(fd.cycles == fr.n_spans + fr.pixels + fd.setup_stalls + NP_FDIFF_TAIL_STAGES, "%s: cycle count", names[i]);
+        np_render_run_free(&fd);
+        np_render_run_free(&tx);
+        np_render_frame_free(&fr);
+        np_scene_free(&s);
+    }
+    return 0;
+}
+
+static int golden_hashes(void)
+{
+    /* The checked-in hashes of the default renders (vectors/images/hashes.txt) must match: a change fails here. */
+    char path[1024];
+    snprintf(path, sizeof path, "%s/vectors/images/hashes.txt", NP_SOURCE_DIR);
+    FILE *f = fopen(path, "r");
+    NP_CHECK(f != NULL, "cannot open %s", path);
+    if (!f)
+        return 1;
+    char line[1024], want[3][2][65];
+    memset(want, 0, sizeof want);
+    unsigned n = 0;
+    const char *names[2] = { "wood", "marble" }, *images[3] = { "ref", "fdiff", "texel" };
+    while (fgets(line, sizeof line, f)) {
+        char sc[64], im[16], h[65], cfg[256];
+        if (line[0] == '#' || sscanf(line, "%63s %15s %64s %255s", sc, im, h, cfg) != 4)
+            continue;
+        for (int i = 0; i < 2; i++)
+            for (int k = 0; k < 3; k++)
+                if (strcmp(sc, names[i]) == 0 && strcmp(im, images[k]) == 0) {
+                    snprintf(want[k][i], 65, "%s", h);
+                    n++;
+                }
+    }
+    fclose(f);
+    NP_CHECK(n == 6, "%u of 6 golden hashes in %s", n, path);
+    for (int i = 0; i < 2; i++) {
+        np_scene s;
+        np_render_frame fr;
+        np_render_run fd, tx;
+        if (render_default(names[i], &s, &fr, &fd, &tx))
+            return 1;
+        uint8_t *ref8 = malloc((size_t)s.width * s.height * 3);
+        np_render_ref_rgb8(&fr, ref8);
+        const uint8_t *img[3] = { ref8, fd.rgb, tx.rgb };
+        for (int k = 0; k < 3; k++) {
+            char hex[65];
+            np_image_hash(s.width, s.height, img[k], hex);
+            printf("%s %s %s %s\n", names[i], images[k], hex, strcmp(hex, want[k][i]) == 0 ? "matches" : "CHANGED");
+            NP_CHECK(strcmp(hex, want[k][i]) == 0, "%s %s: %s, golden %s", names[i], images[k], hex, want[k][i]);
+        }
+        free(ref8);
+        np_render_run_free(&fd);
+        np_render_run_free(&tx);
+        np_render_frame_free(&fr);
+        np_scene_free(&s);
+    }
+    return 0;
+}
+
+static int scanline(void)
+{
+    /* Figures 10 and 11: along the probe row, FD - per pixel is 0 at every set-up and grows inside a cell. */
+    np_scene s;
+    np_render_frame fr;
+    char path[1024], err[1024];
+    scene_path(path, sizeof path, "wood");
+    if (np_scene_load(path, &s, err, sizeof err) || np_render_prepare(&s, &fr, err, sizeof err)) {
+        NP_CHECK(0, "%s", err);
+        return 1;
+    }
+    for (unsigned guard = 0; guard <= 44; guard += 44) {
+        np_fdiff_cfg c = np_fdiff_cfg_default();
+        c.guard = guard;
+        np_render_scan sc;
+        NP_CHECK(np_render_scanline(&fr, &c, s.probe_row, &sc) == 0, "scanline");
+        double worst = 0;
+        unsigned nonzero_at_edge = 0;
+        for (size_t i = 0, e = 0; i < sc.n; i++) {
+            worst = fmax(worst, fabs(sc.last[i]));
+            while (e < sc.n_edge_last && sc.edge_last[e] < sc.x[i])
+                e++;
+            if (e < sc.n_edge_last && sc.edge_last[e] == sc.x[i] && sc.last[i] != 0.0)
+                nonzero_at_edge++;
+        }
+        printf("wood row %u, guard %u: %zu pixels, %zu set-ups; max |FD - per pixel| %.3g (noise units); "
+               "non-zero at a set-up pixel: %u\n",
+               s.probe_row, guard, sc.n, sc.n_edge_last, worst, nonzero_at_edge);
+        NP_CHECK(nonzero_at_edge == 0, "the difference must vanish where the unit sets up");
+        if (guard == 0)
+            NP_CHECK(worst > 0, "no drift visible at guard 0");
+        else
+            NP_CHECK(worst < 1e-9, "drift %.3g at the default guard", worst);
+        np_render_scan_free(&sc);
+    }
+    np_render_frame_free(&fr);
+    np_scene_free(&s);
+    return 0;
+}
+
+static int perspective_polygon(void)
+{
+    /* A perspective camera over a textured floor polygon, with an octave rotated by a full matrix. */
+    static const char json[] =
+        "{ \"noisepipe_scene\": 1, \"name\": \"floor\",\n"
+        "  \"image\": { \"width\": 160, \"height\": 120, \"background\": [10, 20, 30] },\n"
+        "  \"camera\": { \"projection\": \"perspective\", \"eye\": [0, -6, 2.5], \"target\": [0, 0, 0],\n"
+        "              \"up\": [0, 0, 1], \"focal\": 1.5 },\n"
+        "  \"geometry\": [ { \"type\": \"polygon\", \"vertices\": [[-4,-4,0],[4,-4,0],[4,4,0],[-4,4,0]],\n"
+        "                  \"texcoords\": [[0,0,0],[8,0,0],[8,8,0],[0,8,0]] } ],\n"
+        "  \"texture\": { \"quadric\": { \"A\": 0.05, \"E\": 0.05 },\n"
+        "               \"octaves\": [ { \"amplitude\": 1, \"matrix\": [[0.8,-0.6,0],[0.6,0.8,0],[0,0,1]],\n"
+        "                                \"offset\": [0.5, 0.25, 0] },\n"
+        "                              { \"amplitude\": 0.5, \"scale\": [2, 2, 2] } ],\n"
+        "               \"colormap\": { \"mode\": \"repeat\", \"domain\": [0, 1.5],\n"
+        "                             \"colors\": [[250,240,200],[200,120,60],[90,40,20],[200,120,60]] } } }\n";
+    np_scene s;
+    np_render_frame fr;
+    np_render_run fd, tx;
+    char err[1024];
+    NP_CHECK(np_scene_parse(json, "floor.json", &s, err, sizeof err) == 0, "%s", err);
+    NP_CHECK(np_render_prepare(&s, &fr, err, sizeof err) == 0, "%s", err);
+    np_fdiff_cfg fc = np_fdiff_cfg_default();
+    np_texel_cfg tc = np_texel_cfg_default();
+    NP_CHECK(np_render_reference(&fr) == 0 && np_render_fdiff(&fr, &fc, 1, &fd) == 0 &&
+                 np_render_texel(&fr, &tc, 1, &tx) == 0,
+             "render");
+    printf("perspective floor: %llu pixels in %zu spans; fdiff max %.3f LSB, texel max %.3f LSB; cycles %llu / %llu\n",
+           (unsigned long long)fr.pixels, fr.n_spans, fd.err.max_lsb, tx.err.max_lsb, (unsigned long long)fd.cycles,
+           (unsigned long long)tx.cycles);
+    NP_CHECK(fr.pixels > 5000, "floor too small: %llu pixels", (unsigned long long)fr.pixels);
+    NP_CHECK(fd.err.max_lsb <= 1.0 && tx.err.max_lsb <= 1.0, "errors %.3f %.3f", fd.err.max_lsb, tx.err.max_lsb);
+    NP_CHECK(fd.cycle_mismatch == 0 && tx.cycle_mismatch == 0, "cycle model differs");
+    np_render_run_free(&fd);
+    np_render_run_free(&tx);
+    np_render_frame_free(&fr);
+    np_scene_free(&s);
+    return 0;
+}
+
+
+/* --- Built-in textures and the stream units' golden vectors --- */
+
+static int builtin_textures(void)
+{
+    /* The registry's built-in wood and marble are the scenes' textures, field by field. */
+    const char *names[2] = { "wood", "marble" };
+    for (int i = 0; i < 2; i++) {
+        char path[1024], err[1024];
+        np_scene s;
+        scene_path(path, sizeof path, names[i]);
+        NP_CHECK(np_scene_load(path, &s, err, sizeof err) == 0, "%s", err);
+        const np_ref_texture *b = np_texreg_builtin(names[i]);
+        NP_CHECK(b && memcmp(b, &s.tex, sizeof *b) == 0, "built-in %s differs from %s", names[i], path);
+        np_tex_regs r;
+        NP_CHECK(np_texreg_compile(b, &r, err, sizeof err) == 0, "%s: %s", names[i], err);
+        np_scene_free(&s);
+    }
+    const np_ref_texture *ramp = np_texreg_builtin("ramp");
+    np_tex_regs r;
+    char err[256];
+    NP_CHECK(ramp && np_texreg_compile(ramp, &r, err, sizeof err) == 0 && r.oct[0].amp == 1 << NP_TEX_AMP_FRAC &&
+                 r.cmap_n == 2 && !r.cmap_repeat,
+             "ramp");
+    NP_CHECK(np_texreg_builtin("nope") == NULL, "unknown texture found");
+    printf("built-in textures wood and marble equal the scene files; ramp compiles\n");
+    return 0;
+}
+
+typedef struct vcheck {
+    const np_vec_header *h;
+    uint64_t n, bits_bad, acc_bad;
+    double worst;
+} vcheck;
+
+static int vsink(void *ctx, const np_vec_rec *rec, const uint64_t *out, const np_vec_timing *t)
+{
+    (void)t;
+    vcheck *c = ctx;
+    c->n++;
+    for (unsigned f = 0; f < c->h->fields.n_out; f++) {
+        c->bits_bad += out[f] != rec->w[NP_VEC_OUT][f];
+        double e = fabs((double)out[f] - np_vec_ref_value(rec->w[NP_VEC_REF][f]));
+        c->worst = fmax(c->worst, e);
+        c->acc_bad += !(e <= c->h->unit->tolerance_lsb);
+    }
+    return 0;
+}
+
+static int vsource(void *ctx, np_vec_rec *rec) { return np_vec_read(ctx, rec); }
+
+/*
+ * Golden vectors of a stream unit: generated by np_stream_generate (in the
+ * one vector format), read back by the vector reader, driven through the
+ * stream model with random gaps and stalls by np_stream_drive: bits equal,
+ * accuracy within the unit's tolerance; and the file equals the checked-in
+ * vectors/UNIT/UNIT-l1-seed1.vec byte for byte.
+ */
+static int stream_vectors_unit(const char *unit)
+{
+    np_vec_header h;
+    char err[NP_VEC_ERRLEN], path[512], golden[1024];
+    NP_CHECK(np_vec_header_init(&h, np_unit_find(unit), NULL, err, sizeof err) == 0, "%s", err);
+    snprintf(path, sizeof path, "%s-l1-seed1.vec", unit);
+    np_vec_output out = { path, NP_VEC_TEXT };
+    NP_CHECK(np_stream_generate(&h, 1, 1, UINT64_MAX, &out, 1, err, sizeof err) == 0, "generate: %s", err);
+    np_vec_reader rd;
+    NP_CHECK(np_vec_open(&rd, path) == 0, "read: %s", rd.L.err);
+    vcheck c = { &rd.h, 0, 0, 0, 0 };
+    np_vec_drive_stats st;
+    int rc = np_stream_drive(&rd.h, vsource, &rd, vsink, &c, 1, 7, &st, err, sizeof err);
+    np_vec_close(&rd);
+    printf("%s: %llu vectors (%s); stream model with random gaps and stalls: %llu cycles, %llu beats checked, "
+           "%llu bit mismatches, worst |error| %.4f LSB, %llu beyond tolerance\n",
+           unit, (unsigned long long)h.count, h.sources, (unsigned long long)st.cycles, (unsigned long long)c.n,
+           (unsigned long long)c.bits_bad, c.worst, (unsigned long long)c.acc_bad);
+    NP_CHECK(rc == NP_DRIVE_DONE, "drive: %d %s", rc, err);
+    NP_CHECK(c.n == h.count && c.bits_bad == 0 && c.acc_bad == 0, "%s: vectors fail", unit);
+    snprintf(golden, sizeof golden, "%s/vectors/%s/%s-l1-seed1.vec", NP_SOURCE_DIR, unit, unit);
+    FILE *a = fopen(path, "rb"), *b = fopen(golden, "rb");
+    NP_CHECK(b != NULL, "no checked-in %s (copy %s there)", golden, path);
+    int same = a && b;
+    while (same) {
+        int x = fgetc(a), y = fgetc(b);
+        same = x == y;
+        if (x == EOF || y == EOF)
+            break;
+    }
+    NP_CHECK(same, "%s differs from the checked-in %s: the model's bits changed", path, golden);
+    if (a)
+        fclose(a);
+    if (b)
+        fclose(b);
+    return 0;
+}
+
+static int stream_vectors(void)
+{
+    stream_vectors_unit("fdiff");
+    stream_vectors_unit("texel");
+    return 0;
+}
+
+static const np_test_case cases[] = {
+    { "sha256_kat", sha256_kat },
+    { "exr_roundtrip", exr_roundtrip },
+    { "png_roundtrip", png_roundtrip },
+    { "scene_errors", scene_errors },
+    { "scene_seed", scene_seed },
+    { "seed_scenes_1lsb", seed_scenes_1lsb },
+    { "golden_hashes", golden_hashes },
+    { "scanline", scanline },
+    { "perspective_polygon", perspective_polygon },
+    { "builtin_textures", builtin_textures },
+    { "stream_vectors", stream_vectors },
+    { NULL, NULL },
+};
+
+NP_TEST_MAIN(cases)
