@@ -1,11 +1,473 @@
 /* SPDX-License-Identifier: MIT */
+/* noisepipe report: gate and latency estimates; error against cost. */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
 #include "np_cli.h"
 #include "np_cmd.h"
+#include "np_pareto.h"
+#include "np_render.h"
+#include "np_report.h"
+#include "np_scene.h"
+#include "np_stream.h"
+
+static const char usage_text[] =
+    "usage: noisepipe report gates  [--unit U] [--config K=V,...] [-o DIR]\n"
+    "       noisepipe report gates  --scene SCENE.json [-o DIR]\n"
+    "       noisepipe report pareto [--unit U] [--samples N] [--seed S] [-o DIR]\n"
+    "       noisepipe report all    -o DIR        (what docs/ holds: gates + every pareto sweep)\n"
+    "\n"
+    "gates: per unit and per stage, the operators, register bits, gate estimate (NAND2\n"
+    "  equivalents, docs/cost-model.md), latency in clocks (from the cycle-accurate model),\n"
+    "  throughput and critical path. Every unit with a datapath declaration by default, each in\n"
+    "  its default configuration. Without -o, Markdown on stdout; with -o, DIR/gates.md and\n"
+    "  DIR/gates.json.\n"
+    "  --scene: only what the scene needs: the units it uses (configured from it: its texture's\n"
+    "  octaves, transforms and colour table), which outputs it reads, how many units and passes,\n"
+    "  the cycles per frame from each unit's cycle-accurate model; the units it does not use are\n"
+    "  listed as left out. With -o, DIR/scene-NAME-gates.md and .json.\n"
+    "pareto: the design-space sweep of a unit's internal widths: measured max error and\n"
+    "  correctly-rounded share against gates and latency; DIR/pareto-UNIT.{md,json,svg}.\n"
+    "  --samples random inputs (default 100000) besides the boundary table; --seed (default 1).\n";
+
+/* Open DIR/name.tmp for writing; np_commit() renames it into place. */
+static FILE *open_tmp(const char *dir, const char *name, char *tmp, char *final, size_t len)
+{
+    snprintf(final, len, "%s/%s", dir, name);
+    snprintf(tmp, len, "%s/.%s.tmp", dir, name);
+    FILE *f = fopen(tmp, "w");
+    if (!f)
+        np_err("report", "cannot write %s: %s", tmp, strerror(errno));
+    return f;
+}
+
+static int commit(FILE *f, const char *tmp, const char *final)
+{
+    int bad = ferror(f);
+    if (fclose(f) != 0 || bad || rename(tmp, final) != 0) {
+        np_err("report", "cannot write %s: %s", final, strerror(errno));
+        remove(tmp);
+        return -1;
+    }
+    return 0;
+}
+
+static int write_gates(const char *dir, const np_unit *only, const char *spec)
+{
+    np_unit_cost *costs = calloc(16, sizeof *costs);
+    size_t n = 0;
+    char err[256];
+    if (!costs)
+        return NP_EXIT_USAGE;
+    for (size_t i = 0; np_units[i] && n < 16; i++) {
+        const np_unit *u = np_units[i];
+        if ((only && u != only) || !u->datapath)
+            continue;
+        np_unit_cfg cfg;
+        if (np_unit_configure(u, &cfg, only ? spec : NULL, err, sizeof err) != 0 ||
+            np_unit_cost_compute(u, &cfg, &np_cost_default, &costs[n], err, sizeof err) != 0) {
+            np_err("report", "%s: %s", u->name, err);
+            free(costs);
+            return NP_EXIT_USAGE;
+        }
+        n++;
+    }
+    if (n == 0) {
+        np_err("report", "unit %s declares no datapath", only ? only->name : "(any)");
+        free(costs);
+        return NP_EXIT_USAGE;
+    }
+    int rc = NP_EXIT_OK;
+    if (!dir) {
+        np_report_gates_md(stdout, costs, n, "Gate and latency estimates");
+    } else {
+        char tmp[1024], fin[1024];
+        FILE *f = open_tmp(dir, "gates.md", tmp, fin, sizeof tmp);
+        if (!f)
+            rc = NP_EXIT_USAGE;
+        else {
+            np_report_gates_md(f, costs, n, "Gate and latency estimates");
+            rc = commit(f, tmp, fin) ? NP_EXIT_USAGE : rc;
+        }
+        f = rc ? NULL : open_tmp(dir, "gates.json", tmp, fin, sizeof tmp);
+        if (f) {
+            np_report_gates_json(f, costs, n);
+            rc = commit(f, tmp, fin) ? NP_EXIT_USAGE : rc;
+        } else
+            rc = NP_EXIT_USAGE;
+        if (rc == NP_EXIT_OK)
+            printf("wrote %s/gates.md and %s/gates.json (%zu units)\n", dir, dir, n);
+    }
+    free(costs);
+    return rc;
+}
+
+/* --- Per scene --- */
+
+typedef struct scene_unit {
+    const np_unit *u;
+    np_unit_cfg cfg;
+    int have_frame;
+    uint64_t cycles, setup_stalls, pixels, spans;
+} scene_unit;
+
+/* Index of the input field called name, or -1. */
+static int field_index(const np_unit_fields *f, const char *name)
+{
+    for (unsigned i = 0; i < f->n_in; i++)
+        if (strcmp(f->in[i].name, name) == 0)
+            return (int)i;
+    return -1;
+}
+
+/*
+ * The frame through the unit's stream model, descriptor after descriptor,
+ * no backpressure: clocks from the first descriptor to the last pixel out.
+ * The descriptor's fields are found by name (s t r ds dt dr n); 0, or -1
+ * when the unit's descriptor does not have them or the model stops.
+ */
+static int scene_frame(scene_unit *su, const np_render_frame *fr)
+{
+    const np_unit_stream *st = su->u->stream;
+    np_unit_fields f;
+    su->u->fields(&su->cfg, &f);
+    static const char *const names[7] = { "s", "t", "r", "ds", "dt", "dr", "n" };
+    int idx[7];
+    for (int i = 0; i < 7; i++)
+        if ((idx[i] = field_index(&f, names[i])) < 0)
+            return -1;
+    void *state = calloc(1, st->state_size);
+    if (!state || st->init(state, &su->cfg) != 0) {
+        free(state);
+        return -1;
+    }
+    size_t next = 0;
+    uint64_t beats = 0, cyc = 0, d[NP_UNIT_MAX_FIELDS];
+    int rc = 0;
+    for (;;) {
+        np_unit_stream_port p;
+        memset(&p, 0, sizeof p);
+        if (next < fr->n_spans) {
+            const np_span *sp = &fr->spans[next].hw;
+            memset(d, 0, sizeof d);
+            for (int a = 0; a < 3; a++) {
+                unsigned i = (unsigned)idx[a], j = (unsigned)idx[3 + a];
+                d[i] = np_trunc_u((uint64_t)sp->s[a], f.in[i].bits);
+                d[j] = np_trunc_u((uint64_t)sp->ds[a], f.in[j].bits);
+            }
+            d[idx[6]] = sp->n;
+            p.in_valid = 1;
+            p.in = d;
+        }
+        p.out_ready = 1;
+        st->eval(state, &p);
+        if (p.in_valid && p.in_ready)
+            next++;
+        if (p.out_valid)
+            beats++;
+        st->clock(state, &p);
+        cyc++;
+        if (next == fr->n_spans && st->idle(state))
+            break;
+        if (cyc > 4000000000u) {
+            rc = -1;
+            break;
+        }
+    }
+    uint64_t c = 0, stalls = 0;
+    st->counters(state, &c, &stalls);
+    st->free(state);
+    free(state);
+    su->have_frame = rc == 0 && beats == fr->pixels;
+    su->cycles = cyc;
+    su->setup_stalls = stalls;
+    su->pixels = beats;
+    su->spans = fr->n_spans;
+    return su->have_frame ? 0 : -1;
+}
+
+static void scene_md(FILE *f, const np_scene *sc, const np_render_frame *fr, const scene_unit *su,
+                     const np_unit_cost *c, size_t n, const np_unit *const *left, size_t nleft)
+{
+    char title[160];
+    snprintf(title, sizeof title, "Gate and latency estimates for scene %s", sc->name);
+    const np_ref_texture *t = &sc->tex;
+    int diag = np_tex_regs_diagonal(&fr->regs);
+    fprintf(f, "# %s\n\n", title);
+    fprintf(f, "Generated by `noisepipe report gates --scene %s`. Cost model: [cost-model.md](cost-model.md). "
+               "Gates are NAND2 equivalents; delays are gate levels.\n\n", sc->path);
+    fprintf(f, "## What the scene needs\n\n");
+    fprintf(f, "- **texture:** lattice value noise, %u octave%s (%s transforms), a quadric, a %u-entry %s colour table\n",
+            t->n_oct, t->n_oct == 1 ? "" : "s", diag ? "diagonal" : "general", t->cmap.n,
+            t->cmap.repeat ? "repeating" : "clamped");
+    fprintf(f, "- **outputs read:** the colour (RGB, 8 bits each); no derivative is read, so no derivative "
+               "datapath is counted\n");
+    fprintf(f, "- **octaves:** %u, evaluated in parallel inside one unit (one octave lane each): 1 unit, 1 pass "
+               "per frame\n", t->n_oct);
+    fprintf(f, "- **frame:** %ux%u, %llu covered pixels in %zu spans (longest %u)\n", sc->width, sc->height,
+            (unsigned long long)fr->pixels, fr->n_spans, fr->longest);
+    fprintf(f, "- **units that can render it** (either one; both are priced here, configured from the scene):");
+    for (size_t i = 0; i < n; i++)
+        fprintf(f, "%s `%s`", i ? "," : "", c[i].unit->name);
+    fprintf(f, "\n- **left out** (the scene does not use them):");
+    for (size_t i = 0; i < nleft; i++)
+        fprintf(f, "%s `%s`", i ? "," : "", left[i]->name);
+    fprintf(f, "%s\n\n", nleft ? "" : " none");
+    fprintf(f, "| unit | octave lanes | gates | latency | throughput | cycles / frame (cycle model) | set-up stalls | cycles / pixel |\n");
+    fprintf(f, "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    for (size_t i = 0; i < n; i++) {
+        fprintf(f, "| %s | %u | %.0f | %u clocks | %g / clock | ", c[i].unit->name, t->n_oct, c[i].total, c[i].latency,
+                c[i].throughput);
+        if (su[i].have_frame)
+            fprintf(f, "%llu | %llu | %.2f |\n", (unsigned long long)su[i].cycles,
+                    (unsigned long long)su[i].setup_stalls,
+                    su[i].pixels ? (double)su[i].cycles / (double)su[i].pixels : 0.0);
+        else
+            fprintf(f, "— | — | — |\n");
+    }
+    fprintf(f, "\n");
+    /* The per-unit tables (the same format as gates.md), without its title. */
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *m = open_memstream(&buf, &len);
+    if (m) {
+        np_report_gates_md(m, c, n, title);
+        fclose(m);
+        const char *body = strstr(buf, "\n| unit |");
+        fputs(body ? body + 1 : buf, f);
+        free(buf);
+    }
+}
+
+static void scene_json(FILE *f, const np_scene *sc, const np_render_frame *fr, const scene_unit *su,
+                       const np_unit_cost *c, size_t n, const np_unit *const *left, size_t nleft)
+{
+    const np_ref_texture *t = &sc->tex;
+    fprintf(f, "{\n  \"generator\": \"noisepipe report gates --scene\",\n  \"scene\": \"%s\",\n", sc->name);
+    fprintf(f, "  \"octaves\": %u,\n  \"diagonal_transforms\": %s,\n  \"colour_table\": { \"entries\": %u, \"repeat\": %s },\n",
+            t->n_oct, np_tex_regs_diagonal(&fr->regs) ? "true" : "false", t->cmap.n, t->cmap.repeat ? "true" : "false");
+    fprintf(f, "  \"outputs_read\": [\"rgb\"],\n  \"derivative_datapath\": false,\n  \"units_per_frame\": 1,\n"
+               "  \"passes\": 1,\n  \"pixels\": %llu,\n  \"spans\": %zu,\n  \"left_out\": [",
+            (unsigned long long)fr->pixels, fr->n_spans);
+    for (size_t i = 0; i < nleft; i++)
+        fprintf(f, "%s\"%s\"", i ? ", " : "", left[i]->name);
+    fprintf(f, "],\n  \"frame\": [");
+    for (size_t i = 0; i < n; i++)
+        fprintf(f, "%s\n    { \"unit\": \"%s\", \"octave_lanes\": %u, \"total_gates\": %.1f, \"cycles\": %llu, "
+                   "\"setup_stalls\": %llu, \"pixels\": %llu }",
+                i ? "," : "", c[i].unit->name, t->n_oct, c[i].total, (unsigned long long)su[i].cycles,
+                (unsigned long long)su[i].setup_stalls, (unsigned long long)su[i].pixels);
+    fprintf(f, " ],\n  \"gates\": ");
+    np_report_gates_json(f, c, n);
+    fprintf(f, "}\n");
+}
+
+static int write_scene(const char *dir, const char *path)
+{
+    enum { MAXU = 16 };
+    np_scene sc;
+    np_render_frame fr;
+    char err[512];
+    if (np_scene_load(path, &sc, err, sizeof err) != 0) {
+        np_err("report", "%s", err);
+        return NP_EXIT_USAGE;
+    }
+    if (np_render_prepare(&sc, &fr, err, sizeof err) != 0) {
+        np_err("report", "%s", err);
+        np_scene_free(&sc);
+        return NP_EXIT_USAGE;
+    }
+    np_unit_cost *costs = calloc(MAXU, sizeof *costs);
+    scene_unit *su = calloc(MAXU, sizeof *su);
+    const np_unit *left[MAXU];
+    size_t n = 0, nleft = 0;
+    int rc = costs && su ? NP_EXIT_OK : NP_EXIT_USAGE;
+    for (size_t i = 0; np_units[i] && rc == NP_EXIT_OK && n < MAXU; i++) {
+        const np_unit *u = np_units[i];
+        if (!u->datapath)
+            continue;
+        int used = u->cfg_scene ? u->cfg_scene(&su[n].cfg, &sc, err, sizeof err) : 0;
+        if (used < 0) {
+            np_err("report", "%s: %s: %s", path, u->name, err);
+            rc = NP_EXIT_USAGE;
+        } else if (used == 0) {
+            if (nleft < MAXU)
+                left[nleft++] = u;
+        } else {
+            su[n].u = u;
+            if (np_unit_cost_compute(u, &su[n].cfg, &np_cost_default, &costs[n], err, sizeof err) != 0) {
+                np_err("report", "%s: %s", u->name, err);
+                rc = NP_EXIT_USAGE;
+            } else {
+                if (u->stream)
+                    scene_frame(&su[n], &fr);
+                n++;
+            }
+        }
+    }
+    if (rc == NP_EXIT_OK && n == 0) {
+        np_err("report", "%s: no unit declares what this scene needs", path);
+        rc = NP_EXIT_USAGE;
+    }
+    if (rc == NP_EXIT_OK) {
+        if (!dir) {
+            scene_md(stdout, &sc, &fr, su, costs, n, left, nleft);
+        } else {
+            char name[128], tmp[1024], fin[1024];
+            snprintf(name, sizeof name, "scene-%s-gates.md", sc.name);
+            FILE *f = open_tmp(dir, name, tmp, fin, sizeof tmp);
+            if (f) {
+                scene_md(f, &sc, &fr, su, costs, n, left, nleft);
+                rc = commit(f, tmp, fin) ? NP_EXIT_USAGE : rc;
+            } else
+                rc = NP_EXIT_USAGE;
+            snprintf(name, sizeof name, "scene-%s-gates.json", sc.name);
+            f = rc ? NULL : open_tmp(dir, name, tmp, fin, sizeof tmp);
+            if (f) {
+                scene_json(f, &sc, &fr, su, costs, n, left, nleft);
+                rc = commit(f, tmp, fin) ? NP_EXIT_USAGE : rc;
+            } else
+                rc = NP_EXIT_USAGE;
+            if (rc == NP_EXIT_OK)
+                printf("wrote %s/scene-%s-gates.md and .json (%zu units)\n", dir, sc.name, n);
+        }
+    }
+    free(costs);
+    free(su);
+    np_render_frame_free(&fr);
+    np_scene_free(&sc);
+    return rc;
+}
+
+static int write_pareto(const char *dir, const np_unit *only, uint64_t samples, uint64_t seed)
+{
+    int any = 0;
+    for (const np_dse_space *sp = np_dse_spaces; sp->unit; sp++) {
+        if (only && strcmp(only->name, sp->unit) != 0)
+            continue;
+        any = 1;
+        np_dse_result r;
+        char err[256];
+        double t0 = np_now();
+        if (np_dse_run(sp, samples, seed, &r, err, sizeof err) != 0) {
+            np_err("report", "pareto %s: %s", sp->unit, err);
+            return NP_EXIT_USAGE;
+        }
+        char name[64], svg[64], tmp[1024], fin[1024];
+        snprintf(svg, sizeof svg, "pareto-%s.svg", sp->unit);
+        const char *d = dir ? dir : ".";
+        int rc = 0;
+        snprintf(name, sizeof name, "pareto-%s.md", sp->unit);
+        FILE *f = open_tmp(d, name, tmp, fin, sizeof tmp);
+        if (f) {
+            np_dse_write_md(f, &r, svg);
+            rc |= commit(f, tmp, fin);
+        } else
+            rc = -1;
+        snprintf(name, sizeof name, "pareto-%s.json", sp->unit);
+        f = rc ? NULL : open_tmp(d, name, tmp, fin, sizeof tmp);
+        if (f) {
+            np_dse_write_json(f, &r);
+            rc |= commit(f, tmp, fin);
+        } else
+            rc = -1;
+        f = rc ? NULL : open_tmp(d, svg, tmp, fin, sizeof tmp);
+        if (f) {
+            np_dse_write_svg(f, &r);
+            rc |= commit(f, tmp, fin);
+        } else
+            rc = -1;
+        printf("pareto %s: %zu configurations, %zu inputs each, %.1f s; wrote %s/pareto-%s.{md,json,svg}\n",
+               sp->unit, r.n, r.inputs, np_now() - t0, d, sp->unit);
+        np_dse_free(&r);
+        if (rc)
+            return NP_EXIT_USAGE;
+    }
+    if (!any) {
+        np_err("report", "no design space is defined for unit %s", only ? only->name : "?");
+        return NP_EXIT_USAGE;
+    }
+    return NP_EXIT_OK;
+}
 
 int np_cmd_report(int argc, char **argv)
 {
-    (void)argc;
-    (void)argv;
-    np_err("report", "not implemented yet");
+    if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
+        fputs(usage_text, argc < 2 ? stderr : stdout);
+        return argc < 2 ? NP_EXIT_USAGE : NP_EXIT_OK;
+    }
+    const char *what = argv[1], *dir = NULL, *spec = NULL, *scene = NULL;
+    const np_unit *unit = NULL;
+    uint64_t samples = 100000, seed = 1;
+    for (int i = 2; i < argc; i++) {
+        const char *a = argv[i];
+        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (strcmp(a, "--help") == 0) {
+            fputs(usage_text, stdout);
+            return NP_EXIT_OK;
+        }
+        if (!v) {
+            np_err("report", "%s needs a value (or unknown option)", a);
+            return NP_EXIT_USAGE;
+        }
+        if (strcmp(a, "-o") == 0)
+            dir = v;
+        else if (strcmp(a, "--config") == 0)
+            spec = v;
+        else if (strcmp(a, "--scene") == 0)
+            scene = v;
+        else if (strcmp(a, "--unit") == 0) {
+            unit = np_unit_find(v);
+            if (!unit) {
+                np_err("report", "unknown unit '%s' (noisepipe units lists them)", v);
+                return NP_EXIT_USAGE;
+            }
+        } else if (strcmp(a, "--samples") == 0) {
+            if (np_parse_u64(v, 0, 1000000000u, &samples) != 0) {
+                np_err("report", "--samples %s: expected 0..1000000000", v);
+                return NP_EXIT_USAGE;
+            }
+        } else if (strcmp(a, "--seed") == 0) {
+            if (np_parse_u64(v, 0, UINT64_MAX, &seed) != 0) {
+                np_err("report", "--seed %s: expected an unsigned integer", v);
+                return NP_EXIT_USAGE;
+            }
+        } else {
+            np_err("report", "unknown option '%s'", a);
+            return NP_EXIT_USAGE;
+        }
+        i++;
+    }
+    if (spec && !unit) {
+        np_err("report", "--config needs --unit");
+        return NP_EXIT_USAGE;
+    }
+    if (dir) {
+        struct stat st;
+        if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
+            np_err("report", "-o %s: not a directory", dir);
+            return NP_EXIT_USAGE;
+        }
+    }
+    if (scene && (strcmp(what, "gates") != 0 || unit || spec)) {
+        np_err("report", "--scene goes with gates, without --unit/--config (the scene configures the units)");
+        return NP_EXIT_USAGE;
+    }
+    if (strcmp(what, "gates") == 0)
+        return scene ? write_scene(dir, scene) : write_gates(dir, unit, spec);
+    if (strcmp(what, "pareto") == 0)
+        return write_pareto(dir, unit, samples, seed);
+    if (strcmp(what, "all") == 0) {
+        if (!dir || unit || spec) {
+            np_err("report", "all takes -o DIR and no --unit/--config");
+            return NP_EXIT_USAGE;
+        }
+        int rc = write_gates(dir, NULL, NULL);
+        return rc ? rc : write_pareto(dir, NULL, samples, seed);
+    }
+    np_err("report", "unknown report '%s' (gates, pareto, all)", what);
     return NP_EXIT_USAGE;
 }

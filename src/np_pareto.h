@@ -1,0 +1,50 @@
+/* SPDX-License-Identifier: MIT */
+/* np_pareto.h - error against cost over a unit's internal widths (report_pareto.c). */
+#ifndef NP_PARETO_H
+#define NP_PARETO_H
+
+#include <stdint.h>
+#include <stdio.h>
+
+#include "np_report.h"
+
+/* A two-key design space of one unit around a base configuration. */
+typedef struct np_dse_space {
+    const char *unit;
+    const char *base;    /* e.g. "out_bits=8" */
+    const char *key1;
+    unsigned lo1, hi1;
+    const char *key2;
+    unsigned lo2, hi2;
+    int claim_10k;       /* 1: check the seed's "under 10K gates" claim (classic3 only) */
+} np_dse_space;
+
+extern const np_dse_space np_dse_spaces[]; /* terminated by unit == NULL */
+
+typedef struct np_dse_point {
+    unsigned v1, v2;
+    char cfg[128];
+    double gates, crit, max_err, cr_pct, bound;
+    unsigned latency;
+    int pareto;
+} np_dse_point;
+
+typedef struct np_dse_result {
+    const np_dse_space *space;
+    const np_unit *unit;
+    uint64_t samples, seed;
+    size_t inputs;
+    size_t n;
+    np_dse_point *pts;
+} np_dse_result;
+
+/* Run the sweep: samples random inputs (plus the boundary table). 0, or -1 with err. */
+int np_dse_run(const np_dse_space *sp, uint64_t samples, uint64_t seed, np_dse_result *res, char *err,
+               size_t errlen);
+void np_dse_free(np_dse_result *res);
+
+void np_dse_write_md(FILE *f, const np_dse_result *r, const char *svg_name);
+void np_dse_write_json(FILE *f, const np_dse_result *r);
+void np_dse_write_svg(FILE *f, const np_dse_result *r);
+
+#endif /* NP_PARETO_H */

@@ -1,0 +1,76 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * np_report.h - gate and latency estimates from a unit's datapath
+ * declaration (np_datapath.h), priced by the cost model of
+ * docs/cost-model.md, and the error-against-cost design-space sweep.
+ */
+#ifndef NP_REPORT_H
+#define NP_REPORT_H
+
+#include <stdio.h>
+
+#include "np_datapath.h"
+#include "np_unit.h"
+
+/*
+ * The cost model: NAND2 equivalents and gate delays (NAND/NOT levels) per
+ * operator, calibrated with Yosys 0.23 + ABC (abc -g NAND; stat -tech cmos,
+ * transistors / 4; ltp -noff for levels) on testbench/cost_calib.v.
+ */
+typedef struct np_cost_model {
+    double add_bit;   /* ripple-carry adder, per bit */
+    double cmp_bit;   /* magnitude comparator, per bit */
+    double mul_pp;    /* array multiplier, per partial-product bit (a * b) */
+    double mux2_bit;  /* 2:1 multiplexer, per bit (a k:1 mux is k - 1 of them) */
+    double neg_bit;   /* conditional negate, per bit */
+    double lut_bit;   /* fixed-function lookup logic, per stored bit (2^a * b) */
+    double rom_bit;   /* ROM, per stored bit */
+    double ff_bit;    /* D flip-flop */
+    /* delays, in gate levels: add 2w + add_d0; cmp w; mul mul_d * (a + b); mux levels per 2:1 */
+    double add_d0, mul_d, mux_d, lut_d;
+} np_cost_model;
+
+extern const np_cost_model np_cost_default;
+
+double np_cost_op_gates(const np_cost_model *m, const np_op *op);
+double np_cost_op_delay(const np_cost_model *m, const np_op *op);
+
+enum { NP_REPORT_MAX_STAGES = 32, NP_REPORT_MAX_OPS = 128 };
+
+typedef struct np_stage_cost {
+    char name[16];
+    double logic;     /* NAND2 equivalents of the stage's operators */
+    unsigned reg_bits;
+    double regs;      /* NAND2 equivalents of the register bank after the stage */
+    double delay;     /* critical path through the stage per clock, gate levels */
+    unsigned clocks;  /* clocks the stage takes (1; a pipelined engine: its depth) */
+} np_stage_cost;
+
+typedef struct np_unit_cost {
+    const np_unit *unit;
+    char cfg[256];
+    unsigned n_stages;
+    np_stage_cost st[NP_REPORT_MAX_STAGES];
+    size_t n_ops;
+    np_op ops[NP_REPORT_MAX_OPS];
+    double logic, regs, total;
+    unsigned reg_bits;
+    unsigned latency;      /* clocks, from the cycle-accurate model */
+    double throughput;     /* results per clock */
+    double crit;           /* gate levels of the slowest stage */
+    char crit_stage[16];
+    int has_timing;        /* the unit's own timing (np_unit.timing): note and set-ups below */
+    np_unit_timing timing;
+} np_unit_cost;
+
+/*
+ * Price unit u in configuration cfg: 0, or -1 with a message in err (no
+ * datapath declared, an op naming a stage the pipe does not have, ...).
+ */
+int np_unit_cost_compute(const np_unit *u, const void *cfg, const np_cost_model *m, np_unit_cost *c,
+                         char *err, size_t errlen);
+
+void np_report_gates_md(FILE *f, const np_unit_cost *c, size_t n, const char *title);
+void np_report_gates_json(FILE *f, const np_unit_cost *c, size_t n);
+
+#endif /* NP_REPORT_H */

@@ -1,0 +1,234 @@
+/* SPDX-License-Identifier: MIT */
+/* Gate and latency reports: the cost model against Yosys, latency against the cycle models. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "np_report.h"
+#include "np_stream.h"
+#include "np_test.h"
+#include "np_unit.h"
+
+/* The calibration circuits: $NP_COST_CALIB (set by CTest), else ./cost_calib.v. */
+static const char *calib_file(void)
+{
+    const char *f = getenv("NP_COST_CALIB");
+    return f ? f : "cost_calib.v";
+}
+
+/* Synthesize module m of calib_file; NAND2 equivalents (transistors / 4), or -1. */
+static double yosys_nand2(const char *m)
+{
+    char cmd[1024], line[512];
+    snprintf(cmd, sizeof cmd,
+             "yosys -q -p 'read_verilog %s; synth -top %s -flatten; dfflegalize -cell $_DFF_P_ 01; "
+             "abc -g NAND; opt_clean; tee -o /dev/stdout stat -tech cmos' 2>&1",
+             calib_file(), m);
+    FILE *p = popen(cmd, "r");
+    if (!p)
+        return -1.0;
+    double t = -1.0;
+    while (fgets(line, sizeof line, p)) {
+        const char *k = strstr(line, "Estimated number of transistors:");
+        if (k)
+            t = atof(k + strlen("Estimated number of transistors:"));
+    }
+    pclose(p);
+    return t < 0 ? -1.0 : t / 4.0;
+}
+
+static int cost_model_calibration(void)
+{
+    if (system("yosys -V >/dev/null 2>&1") != 0) {
+        puts("yosys not installed: skipped");
+        return NP_TEST_SKIP;
+    }
+    const np_cost_model *m = &np_cost_default;
+    /* Each circuit with the ops the model prices it as. */
+    static const struct { const char *module; np_op ops[8]; unsigned n; } c[] = {
+        { "add16", { { "S", NULL, NP_OP_ADD, 1, 16, 0, 0, 0, 0 } }, 1 },
+        { "add24", { { "S", NULL, NP_OP_ADD, 1, 24, 0, 0, 0, 0 } }, 1 },
+        { "cmp16", { { "S", NULL, NP_OP_CMP, 1, 16, 0, 0, 0, 0 } }, 1 },
+        { "mux16", { { "S", NULL, NP_OP_MUX, 1, 16, 2, 0, 0, 0 } }, 1 },
+        { "neg12", { { "S", NULL, NP_OP_NEG, 1, 12, 0, 0, 0, 0 } }, 1 },
+        { "mul8", { { "S", NULL, NP_OP_MUL, 1, 8, 8, 0, 0, 0 } }, 1 },
+        { "mul13", { { "S", NULL, NP_OP_MUL, 1, 13, 13, 0, 0, 0 } }, 1 },
+        { "lut3x6", { { "S", NULL, NP_OP_LUT, 1, 3, 6, 0, 0, 0 } }, 1 },
+        { "dff16", { { "S", NULL, NP_OP_REG, 1, 16, 0, 0, 0, 0 } }, 1 },
+        { "hash6", { { "S", NULL, NP_OP_LUT, 8, 3, 6, 0, 0, 0 }, { "S", NULL, NP_OP_ADD, 7, 6, 0, 0, 0, 0 } }, 2 },
+    };
+    printf("%-8s %10s %10s %8s\n", "circuit", "yosys", "model", "model/y");
+    for (unsigned i = 0; i < sizeof c / sizeof c[0]; i++) {
+        double y = yosys_nand2(c[i].module), e = 0.0;
+        for (unsigned k = 0; k < c[i].n; k++)
+            e += np_cost_op_gates(m, &c[i].ops[k]);
+        printf("%-8s %10.1f %10.1f %8.3f\n", c[i].module, y, e, y > 0 ? e / y : 0.0);
+        NP_CHECK(y > 0, "%s: yosys gave no count", c[i].module);
+        NP_CHECK(fabs(e / y - 1.0) <= 0.25, "%s: model %.1f vs yosys %.1f: more than 25%% apart", c[i].module, e, y);
+    }
+    return 0;
+}
+
+/* Cycles from an accepted input to its output on an empty, unstalled pipe. */
+static unsigned measured_latency(const np_unit *u, const void *cfg)
+{
+    np_pipe p;
+    if (u->pipe_init(&p, cfg) != 0)
+        return 0;
+    unsigned char sig[4096];
+    memset(sig, 0, sizeof sig);
+    NP_CHECK(p.sig_size <= sizeof sig, "bundle too large");
+    uint64_t in[NP_UNIT_MAX_FIELDS] = { 0x1234, 0x5678, 0x9abc, 0, 0, 0, 0, 0 };
+    u->sig_set_in(sig, in);
+    np_pipe_port port = { 1, sig, 1, 0, 0, NULL };
+    unsigned cyc = 0, lat = 0;
+    for (; cyc < 200 && !lat; cyc++) {
+        np_pipe_eval(&p, &port);
+        if (port.out_valid)
+            lat = cyc;
+        np_pipe_clock(&p, &port);
+        port.in_valid = 0;
+    }
+    np_pipe_free(&p);
+    return lat;
+}
+
+/*
+ * A stream unit: drive descriptor desc alone through its stream model, no
+ * backpressure. *lat = clocks from the descriptor's transfer to its first
+ * beat; *rate = (beats - 1) / (clocks from the first beat to the last), the
+ * peak rate along it (1 when it has one beat). 0, or -1 when it never ends.
+ */
+static int stream_run(const np_unit *u, const void *cfg, const uint64_t *desc, unsigned *lat, double *rate)
+{
+    const np_unit_stream *st = u->stream;
+    void *state = calloc(1, st->state_size);
+    if (!state || st->init(state, cfg) != 0) {
+        free(state);
+        return -1;
+    }
+    uint64_t beats = st->beats(cfg, desc), got = 0, t_in = 0, t_first = 0, t_last = 0;
+    int sent = 0;
+    for (uint64_t cyc = 0; cyc < 10000000u; cyc++) {
+        np_unit_stream_port p;
+        memset(&p, 0, sizeof p);
+        p.in_valid = !sent;
+        p.in = desc;
+        p.out_ready = 1;
+        st->eval(state, &p);
+        if (p.in_valid && p.in_ready) {
+            sent = 1;
+            t_in = cyc;
+        }
+        if (p.out_valid) {
+            if (got == 0)
+                t_first = cyc;
+            t_last = cyc;
+            got++;
+        }
+        st->clock(state, &p);
+        if (sent && got == beats && st->idle(state))
+            break;
+    }
+    st->free(state);
+    free(state);
+    if (got != beats || beats == 0)
+        return -1;
+    *lat = (unsigned)(t_first - t_in);
+    *rate = beats > 1 ? (double)(beats - 1u) / (double)(t_last - t_first) : 1.0;
+    return 0;
+}
+
+static int stream_latency(const np_unit *u, const void *cfg, const np_unit_cost *c)
+{
+    /* Latency on the first annotated descriptor; peak rate over those of at most 4096 beats. */
+    uint64_t (*d)[NP_UNIT_MAX_FIELDS] = calloc(64, sizeof *d);
+    NP_CHECK(d != NULL, "out of memory");
+    size_t nd = u->stream->descriptors(cfg, d, 64);
+    unsigned lat0 = 0;
+    double best = 0.0;
+    int have = 0;
+    for (size_t i = 0; i < nd && i < 64; i++) {
+        if (u->stream->beats(cfg, d[i]) == 0 || u->stream->beats(cfg, d[i]) > 4096)
+            continue;
+        unsigned lat = 0;
+        double rate = 0.0;
+        NP_CHECK(stream_run(u, cfg, d[i], &lat, &rate) == 0, "%s: descriptor %zu did not complete", u->name, i);
+        if (!have)
+            lat0 = lat;
+        have = 1;
+        if (rate > best)
+            best = rate;
+    }
+    free(d);
+    NP_CHECK(have, "%s: no descriptor to drive", u->name);
+    printf("%s (stream): reported latency %u clocks, stream model %u clocks; throughput reported %g, "
+           "stream model's peak %g per clock (%s); %.0f gates, %u register bits\n",
+           u->name, c->latency, lat0, c->throughput, best, c->timing.throughput_note, c->total, c->reg_bits);
+    NP_CHECK(lat0 == c->latency, "%s: reported %u, model %u", u->name, c->latency, lat0);
+    NP_CHECK(fabs(best - c->throughput) < 1e-9, "%s: throughput reported %g, model %g", u->name, c->throughput, best);
+    return 0;
+}
+
+static int latency_matches_model(void)
+{
+    unsigned n = 0;
+    for (size_t i = 0; np_units[i]; i++) {
+        const np_unit *u = np_units[i];
+        if (!u->datapath)
+            continue;
+        np_unit_cfg cfg;
+        np_unit_cost c;
+        char err[256];
+        u->cfg_default(&cfg);
+        NP_CHECK(np_unit_cost_compute(u, &cfg, &np_cost_default, &c, err, sizeof err) == 0, "%s: %s", u->name, err);
+        for (unsigned k = 0; k < c.n_stages; k++)
+            NP_CHECK(c.st[k].reg_bits > 0, "%s: stage %s declares no register bank", u->name, c.st[k].name);
+        n++;
+        if (u->stream) {
+            /* Every built-in texture: the set-up stall depends on the octaves and transforms. */
+            static const char *const tex[] = { "texture=wood", "texture=marble", "texture=ramp",
+                                               "texture=marble,setup_mults=5,mult_lat=3" };
+            for (unsigned t = 0; t < sizeof tex / sizeof tex[0]; t++) {
+                NP_CHECK(np_unit_configure(u, &cfg, tex[t], err, sizeof err) == 0, "%s: %s", u->name, err);
+                NP_CHECK(np_unit_cost_compute(u, &cfg, &np_cost_default, &c, err, sizeof err) == 0, "%s: %s",
+                         u->name, err);
+                if (stream_latency(u, &cfg, &c) != 0)
+                    return 1;
+            }
+            continue;
+        }
+        unsigned lat = measured_latency(u, &cfg);
+        printf("%s: reported latency %u clocks, cycle model %u clocks; %.0f gates, %u register bits\n", u->name,
+               c.latency, lat, c.total, c.reg_bits);
+        NP_CHECK(lat == c.latency, "%s: reported %u, model %u", u->name, c.latency, lat);
+    }
+    NP_CHECK(n > 0, "no unit declares a datapath");
+    return 0;
+}
+
+static int unknown_stage_rejected(void)
+{
+    /* The pricing refuses a declaration whose stage names do not match the pipe. */
+    const np_unit *u = np_unit_find("classic3");
+    NP_CHECK(u != NULL, "classic3");
+    np_unit tampered = *u;
+    tampered.datapath = NULL;
+    np_unit_cfg cfg;
+    np_unit_cost c;
+    char err[256] = "";
+    u->cfg_default(&cfg);
+    NP_CHECK(np_unit_cost_compute(&tampered, &cfg, &np_cost_default, &c, err, sizeof err) != 0, "no datapath");
+    printf("no declaration: \"%s\"\n", err);
+    return 0;
+}
+
+static const np_test_case cases[] = {
+    { "cost_model_calibration", cost_model_calibration },
+    { "latency_matches_model", latency_matches_model },
+    { "unknown_stage_rejected", unknown_stage_rejected },
+    { NULL, NULL },
+};
+
+NP_TEST_MAIN(cases)
