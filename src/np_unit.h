@@ -17,7 +17,11 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "np_datapath.h"
 #include "np_pipe.h"
+
+struct np_scene;
+struct np_unit_timing;
 
 enum { NP_UNIT_MAX_FIELDS = 8, NP_UNIT_CFG_MAX = 256 };
 
@@ -73,7 +77,71 @@ typedef struct np_unit {
      * each; returns the full count even when it is larger than max.
      */
     size_t (*boundary)(const void *cfg, uint64_t (*in)[NP_UNIT_MAX_FIELDS], size_t max);
+    /*
+     * Optional (NULL: the sweep calls eval and ref per input): the exhaustive
+     * sweep's fast path (np_sweep.h) for a unit with inputs x, y, z (u16 each).
+     * For the 256 * rows inputs (x0 + t, y0 + r, z), 0 <= t < 256,
+     * 0 <= r < rows, where x0 is a multiple of 256, rows a power of two <= 256
+     * and y0 a multiple of rows, writes at index i = (f * rows + r) * 256 + t
+     * (f: output field):
+     *   if what & NP_SWEEP_MODEL: code[i] = the model's output as a signed
+     *     integer in output LSB (the field's word, sign-extended if signed);
+     *   if what & NP_SWEEP_REF: ref[i] = the float reference's value.
+     * It must give exactly eval's bits and ref's doubles (testbench/test_sweep.c
+     * proves it for classic3: a unit that adds a kernel adds such a test).
+     */
+    void (*sweep_rows)(const void *cfg, uint16_t x0, uint16_t y0, uint16_t z, unsigned rows,
+                       unsigned what, int32_t *code, double *ref);
+    /*
+     * Optional (NULL: not in the gate report): the datapath declaration of
+     * np_datapath.h for cfg; writes up to max ops, returns the full count.
+     */
+    size_t (*datapath)(const void *cfg, np_op *ops, size_t max);
+    /*
+     * Optional (NULL: a one-input-one-output unit): a stream unit, which reads
+     * a descriptor and writes a run of beats (the scanline texturing units: a
+     * span in, its pixels out). Transactions are then beats, and the unit's
+     * cycle-accurate model is this stream model; see np_stream.h.
+     */
+    const struct np_unit_stream *stream;
+    /*
+     * Optional (NULL: the timing is np_pipe's: latency = pipe depth, one
+     * result per clock, the declaration's stages are the pipe's): the timing
+     * of a unit whose cycle-accurate model is not one np_pipe (a stream unit),
+     * from the unit's own schedule; the gate report's stages are then the
+     * declaration's, in order. 0, or -1 with a message in err.
+     */
+    int (*timing)(const void *cfg, struct np_unit_timing *t, char *err, size_t errlen);
+    /*
+     * Optional (NULL: no scene uses the unit): configure cfg (from the
+     * defaults) for what scene sc needs. 1: the scene uses the unit and cfg
+     * is set; 0: it does not; -1 with a message in err.
+     */
+    int (*cfg_scene)(void *cfg, const struct np_scene *sc, char *err, size_t errlen);
 } np_unit;
+
+/* A set-up the unit stalls for (np_unit_timing). */
+typedef struct np_unit_setup {
+    char what[48];      /* e.g. "cell (per octave, on a cell change)" */
+    unsigned products;  /* multiplications it issues */
+    unsigned cycles;    /* the stall, clocks */
+} np_unit_setup;
+
+enum { NP_UNIT_MAX_SETUPS = 6, NP_UNIT_MAX_MULTI = 4 };
+
+typedef struct np_unit_timing {
+    unsigned latency;     /* clocks from accepting an input (a stream unit: a descriptor) to its first result */
+    double throughput;    /* results per clock at the peak rate */
+    char throughput_note[96]; /* what the peak rate holds for, e.g. "inside a cell" */
+    /* Stages that take several clocks (a pipelined engine): the path per clock is the stage's / clocks. */
+    unsigned n_multi;
+    struct {
+        const char *stage;
+        unsigned clocks;
+    } multi[NP_UNIT_MAX_MULTI];
+    unsigned n_setup;
+    np_unit_setup setup[NP_UNIT_MAX_SETUPS];
+} np_unit_timing;
 
 extern const np_unit *const np_units[]; /* NULL-terminated */
 const np_unit *np_unit_find(const char *name);

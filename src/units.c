@@ -5,8 +5,11 @@
 #include <string.h>
 
 extern const np_unit np_unit_classic3;
+extern const np_unit np_unit_simplex3;
 
-const np_unit *const np_units[] = { &np_unit_classic3, NULL };
+extern const np_unit np_unit_fdiff, np_unit_texel;
+
+const np_unit *const np_units[] = { &np_unit_classic3, &np_unit_simplex3, &np_unit_fdiff, &np_unit_texel, NULL };
 
 const np_unit *np_unit_find(const char *name)
 {
