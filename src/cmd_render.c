@@ -545,6 +545,25 @@ typedef struct row {
     double seconds;
 } row;
 
+/*
+ * One row of the error-against-run-time table: the unit's configuration
+ * (fc for fdiff, tc for texel) and what its run measured.
+ */
+static void put_row(row *w, const char *scene, const np_fdiff_cfg *fc, const np_texel_cfg *tc,
+                    const np_render_run *r, uint64_t cycles, double seconds)
+{
+    snprintf(w->scene, sizeof w->scene, "%s", scene);
+    w->unit = fc ? "fdiff" : "texel";
+    w->guard = fc ? fc->guard : tc->guard;
+    w->resetup = fc ? fc->resetup : 0u;
+    w->wt = fc ? 0u : tc->weight_frac;
+    w->mults = fc ? fc->setup_mults : tc->setup_mults;
+    w->e = r->err;
+    w->cycles = cycles;
+    w->setups = r->span_setups + r->cell_setups + r->interval_setups;
+    w->seconds = seconds;
+}
+
 static const unsigned rep_guard[] = { 0, 2, 4, 6, 8, 10, 12, 16, 20, 24, 32, 44 };
 static const unsigned rep_k[] = { 0, 8, 32 };
 static const unsigned rep_wt[] = { 2, 4, 6, 8, 10, 12, 16, 32 };
@@ -791,16 +810,7 @@ static int report(const opts *o)
                     continue;
                 np_render_run r;
                 double t = time_model(&fr, &c, NULL, rep, &r);
-                row *w = &rows[n++];
-                snprintf(w->scene, sizeof w->scene, "%s", sc.name);
-                w->unit = "fdiff";
-                w->guard = c.guard;
-                w->resetup = c.resetup;
-                w->mults = c.setup_mults;
-                w->e = r.err;
-                w->cycles = cyc.cycles;
-                w->setups = r.span_setups + r.cell_setups + r.interval_setups;
-                w->seconds = t;
+                put_row(&rows[n++], sc.name, &c, NULL, &r, cyc.cycles, t);
                 np_render_run_free(&r);
             }
             np_render_run_free(&cyc);
@@ -815,14 +825,7 @@ static int report(const opts *o)
                 break;
             }
             row *w = &rows[n++];
-            snprintf(w->scene, sizeof w->scene, "%s", sc.name);
-            w->unit = "fdiff";
-            w->guard = c.guard;
-            w->resetup = c.resetup;
-            w->mults = c.setup_mults;
-            w->e = r.err;
-            w->cycles = r.cycles;
-            w->setups = r.span_setups + r.cell_setups + r.interval_setups;
+            put_row(w, sc.name, &c, NULL, &r, r.cycles, 0.0);
             np_render_run_free(&r);
             w->seconds = time_model(&fr, &c, NULL, rep, &r);
             np_render_run_free(&r);
@@ -837,14 +840,7 @@ static int report(const opts *o)
                 break;
             }
             row *w = &rows[n++];
-            snprintf(w->scene, sizeof w->scene, "%s", sc.name);
-            w->unit = "texel";
-            w->guard = c.guard;
-            w->wt = c.weight_frac;
-            w->mults = c.setup_mults;
-            w->e = r.err;
-            w->cycles = r.cycles;
-            w->setups = r.span_setups;
+            put_row(w, sc.name, NULL, &c, &r, r.cycles, 0.0);
             np_render_run_free(&r);
             w->seconds = time_model(&fr, NULL, &c, rep, &r);
             np_render_run_free(&r);
