@@ -149,6 +149,12 @@ const np_unit *np_unit_find(const char *name);
 /* Real value of an output word of field f. */
 double np_unit_field_value(const np_field *f, uint64_t word);
 
+/* For units' cfg_set: a whole decimal number in [lo, hi]; 0, or -1 if malformed or out of range. */
+int np_unit_parse_uint(const char *v, unsigned lo, unsigned hi, unsigned *out);
+
+/* For units' fields(): fill one field description. */
+void np_unit_set_field(np_field *f, const char *name, unsigned bits, int sgn, unsigned frac, const char *fmt);
+
 /* Configure u from "key=value[,key=value...]" (NULL or "" = defaults). */
 int np_unit_configure(const np_unit *u, void *cfg, const char *spec, char *err, size_t errlen);
 

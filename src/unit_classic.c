@@ -23,22 +23,12 @@ static void cfg_default(void *cfg)
     k->c = np_classic_cfg_default(8);
 }
 
-static int parse_uint(const char *v, unsigned lo, unsigned hi, unsigned *out)
-{
-    char *end;
-    unsigned long n = strtoul(v, &end, 10);
-    if (*v == '\0' || *end != '\0' || *v == '-' || n < lo || n > hi)
-        return -1;
-    *out = (unsigned)n;
-    return 0;
-}
-
 static int cfg_set(void *cfg, const char *key, const char *value, char *err, size_t errlen)
 {
     classic_cfg *k = cfg;
     unsigned n;
     if (strcmp(key, "out_bits") == 0) {
-        if (parse_uint(value, NP_CLASSIC_OUT_MIN, NP_CLASSIC_OUT_MAX, &n) != 0)
+        if (np_unit_parse_uint(value, NP_CLASSIC_OUT_MIN, NP_CLASSIC_OUT_MAX, &n) != 0)
             goto range;
         np_classic_cfg d = np_classic_cfg_default(n);
         k->c.out_bits = n;
@@ -49,14 +39,14 @@ static int cfg_set(void *cfg, const char *key, const char *value, char *err, siz
         return 0;
     }
     if (strcmp(key, "s_frac") == 0) {
-        if (parse_uint(value, NP_CLASSIC_WS_MIN, NP_CLASSIC_WS_MAX, &n) != 0)
+        if (np_unit_parse_uint(value, NP_CLASSIC_WS_MIN, NP_CLASSIC_WS_MAX, &n) != 0)
             goto range;
         k->c.s_frac = n;
         k->s_set = 1;
         return 0;
     }
     if (strcmp(key, "lerp_frac") == 0) {
-        if (parse_uint(value, 0, NP_CLASSIC_WL_MAX, &n) != 0)
+        if (np_unit_parse_uint(value, 0, NP_CLASSIC_WL_MAX, &n) != 0)
             goto range;
         k->c.lerp_frac = n;
         k->l_set = 1;
@@ -79,16 +69,6 @@ static void cfg_format(const void *cfg, char *buf, size_t len)
 
 static const char *cfg_check(const void *cfg) { return np_classic_cfg_check(&((const classic_cfg *)cfg)->c); }
 
-static void set_field(np_field *f, const char *name, unsigned bits, int sgn, unsigned frac,
-                      const char *fmt)
-{
-    snprintf(f->name, sizeof f->name, "%s", name);
-    f->bits = bits;
-    f->is_signed = sgn;
-    f->frac = frac;
-    snprintf(f->format, sizeof f->format, "%s", fmt);
-}
-
 static void fields(const void *cfg, np_unit_fields *f)
 {
     const classic_cfg *k = cfg;
@@ -96,11 +76,11 @@ static void fields(const void *cfg, np_unit_fields *f)
     memset(f, 0, sizeof *f);
     f->n_in = 3;
     f->n_out = 1;
-    set_field(&f->in[0], "x", 16, 0, 8, "u16 Q8.8");
-    set_field(&f->in[1], "y", 16, 0, 8, "u16 Q8.8");
-    set_field(&f->in[2], "z", 16, 0, 8, "u16 Q8.8");
+    np_unit_set_field(&f->in[0], "x", 16, 0, 8, "u16 Q8.8");
+    np_unit_set_field(&f->in[1], "y", 16, 0, 8, "u16 Q8.8");
+    np_unit_set_field(&f->in[2], "z", 16, 0, 8, "u16 Q8.8");
     snprintf(fmt, sizeof fmt, "s%u Q2.%u", k->c.out_bits, k->c.out_bits - 2u);
-    set_field(&f->out[0], "f", k->c.out_bits, 1, k->c.out_bits - 2u, fmt);
+    np_unit_set_field(&f->out[0], "f", k->c.out_bits, 1, k->c.out_bits - 2u, fmt);
 }
 
 static void eval(const void *cfg, const uint64_t *in, uint64_t *out)

@@ -252,16 +252,6 @@ static void cfg_default(void *cfg)
     k->tex = 0;
 }
 
-static int parse_uint(const char *v, unsigned lo, unsigned hi, unsigned *out)
-{
-    char *end;
-    unsigned long n = strtoul(v, &end, 10);
-    if (*v == '\0' || *end != '\0' || *v == '-' || n < lo || n > hi)
-        return -1;
-    *out = (unsigned)n;
-    return 0;
-}
-
 static int cfg_set(void *cfg, const char *key, const char *value, char *err, size_t errlen)
 {
     fd_cfg *k = cfg;
@@ -277,7 +267,7 @@ static int cfg_set(void *cfg, const char *key, const char *value, char *err, siz
         return np_ut_texture_set(value, &k->tex, err, errlen);
     for (unsigned i = 0; i < sizeof keys / sizeof keys[0]; i++)
         if (strcmp(key, keys[i].name) == 0) {
-            if (parse_uint(value, keys[i].lo, keys[i].hi, (unsigned *)(void *)((char *)&k->c + keys[i].off))) {
+            if (np_unit_parse_uint(value, keys[i].lo, keys[i].hi, (unsigned *)(void *)((char *)&k->c + keys[i].off))) {
                 snprintf(err, errlen, "%s=%s: out of range (%u..%u)", key, value, keys[i].lo, keys[i].hi);
                 return -1;
             }

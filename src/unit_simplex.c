@@ -24,16 +24,6 @@ static void cfg_default(void *cfg)
     k->c = np_simplex_cfg_default(DEFAULT_OUT_BITS, DEFAULT_DOUT_BITS, DEFAULT_DERIV);
 }
 
-static int parse_uint(const char *v, unsigned lo, unsigned hi, unsigned *out)
-{
-    char *end;
-    unsigned long n = strtoul(v, &end, 10);
-    if (*v == '\0' || *end != '\0' || *v == '-' || n < lo || n > hi)
-        return -1;
-    *out = (unsigned)n;
-    return 0;
-}
-
 /* Re-derive the widths not set by hand after an output width or deriv changed. */
 static void refresh_defaults(simplex_cfg *k)
 {
@@ -51,7 +41,7 @@ static int cfg_set(void *cfg, const char *key, const char *value, char *err, siz
     simplex_cfg *k = cfg;
     unsigned n;
     if (strcmp(key, "out_bits") == 0 || strcmp(key, "dout_bits") == 0) {
-        if (parse_uint(value, key[0] == 'o' ? NP_SIMPLEX_OUT_MIN : NP_SIMPLEX_DOUT_MIN, NP_SIMPLEX_OUT_MAX, &n) != 0)
+        if (np_unit_parse_uint(value, key[0] == 'o' ? NP_SIMPLEX_OUT_MIN : NP_SIMPLEX_DOUT_MIN, NP_SIMPLEX_OUT_MAX, &n) != 0)
             goto range;
         if (key[0] == 'o')
             k->c.out_bits = n;
@@ -61,28 +51,28 @@ static int cfg_set(void *cfg, const char *key, const char *value, char *err, siz
         return 0;
     }
     if (strcmp(key, "deriv") == 0) {
-        if (parse_uint(value, 0, 1, &n) != 0)
+        if (np_unit_parse_uint(value, 0, 1, &n) != 0)
             goto range;
         k->c.deriv = n;
         refresh_defaults(k);
         return 0;
     }
     if (strcmp(key, "t_frac") == 0) {
-        if (parse_uint(value, 1, NP_SIMPLEX_WT_MAX, &n) != 0)
+        if (np_unit_parse_uint(value, 1, NP_SIMPLEX_WT_MAX, &n) != 0)
             goto range;
         k->c.t_frac = n;
         k->t_set = 1;
         return 0;
     }
     if (strcmp(key, "p_frac") == 0) {
-        if (parse_uint(value, 1, NP_SIMPLEX_WP_MAX, &n) != 0)
+        if (np_unit_parse_uint(value, 1, NP_SIMPLEX_WP_MAX, &n) != 0)
             goto range;
         k->c.p_frac = n;
         k->p_set = 1;
         return 0;
     }
     if (strcmp(key, "k_frac") == 0) {
-        if (parse_uint(value, 1, NP_SIMPLEX_WK_MAX, &n) != 0)
+        if (np_unit_parse_uint(value, 1, NP_SIMPLEX_WK_MAX, &n) != 0)
             goto range;
         k->c.k_frac = n;
         k->k_set = 1;
@@ -110,16 +100,6 @@ static void cfg_format(const void *cfg, char *buf, size_t len)
 
 static const char *cfg_check(const void *cfg) { return np_simplex_cfg_check(&((const simplex_cfg *)cfg)->c); }
 
-static void set_field(np_field *f, const char *name, unsigned bits, int sgn, unsigned frac,
-                      const char *fmt)
-{
-    snprintf(f->name, sizeof f->name, "%s", name);
-    f->bits = bits;
-    f->is_signed = sgn;
-    f->frac = frac;
-    snprintf(f->format, sizeof f->format, "%s", fmt);
-}
-
 static void fields(const void *cfg, np_unit_fields *f)
 {
     const simplex_cfg *k = cfg;
@@ -128,15 +108,15 @@ static void fields(const void *cfg, np_unit_fields *f)
     memset(f, 0, sizeof *f);
     f->n_in = 3;
     f->n_out = k->c.deriv ? 4u : 1u;
-    set_field(&f->in[0], "x", 16, 0, 8, "u16 Q8.8");
-    set_field(&f->in[1], "y", 16, 0, 8, "u16 Q8.8");
-    set_field(&f->in[2], "z", 16, 0, 8, "u16 Q8.8");
+    np_unit_set_field(&f->in[0], "x", 16, 0, 8, "u16 Q8.8");
+    np_unit_set_field(&f->in[1], "y", 16, 0, 8, "u16 Q8.8");
+    np_unit_set_field(&f->in[2], "z", 16, 0, 8, "u16 Q8.8");
     snprintf(fmt, sizeof fmt, "s%u Q-1.%u", k->c.out_bits, np_simplex_f_frac(&k->c));
-    set_field(&f->out[0], "f", k->c.out_bits, 1, np_simplex_f_frac(&k->c), fmt);
+    np_unit_set_field(&f->out[0], "f", k->c.out_bits, 1, np_simplex_f_frac(&k->c), fmt);
     if (k->c.deriv) {
         snprintf(fmt, sizeof fmt, "s%u Q1.%u", k->c.dout_bits, np_simplex_d_frac(&k->c));
         for (unsigned a = 0; a < 3; a++)
-            set_field(&f->out[1 + a], dnames[a], k->c.dout_bits, 1, np_simplex_d_frac(&k->c), fmt);
+            np_unit_set_field(&f->out[1 + a], dnames[a], k->c.dout_bits, 1, np_simplex_d_frac(&k->c), fmt);
     }
 }
 

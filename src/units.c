@@ -2,6 +2,7 @@
 #include "np_unit.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 extern const np_unit np_unit_classic3;
@@ -59,4 +60,24 @@ int np_unit_configure(const np_unit *u, void *cfg, const char *spec, char *err, 
         return -1;
     }
     return 0;
+}
+
+int np_unit_parse_uint(const char *v, unsigned lo, unsigned hi, unsigned *out)
+{
+    char *end;
+    unsigned long n = strtoul(v, &end, 10);
+    if (*v == '\0' || *end != '\0' || *v == '-' || n < lo || n > hi)
+        return -1;
+    *out = (unsigned)n;
+    return 0;
+}
+
+void np_unit_set_field(np_field *f, const char *name, unsigned bits, int sgn, unsigned frac,
+                       const char *fmt)
+{
+    snprintf(f->name, sizeof f->name, "%s", name);
+    f->bits = bits;
+    f->is_signed = sgn;
+    f->frac = frac;
+    snprintf(f->format, sizeof f->format, "%s", fmt);
 }
