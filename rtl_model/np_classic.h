@@ -56,6 +56,10 @@
 #include "np_hash.h"
 #include "np_pipe.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 enum {
     NP_CLASSIC_IN_BITS = 16,   /* x, y, z: u16 Q8.8 */
     NP_CLASSIC_FRAC_IN = 8,    /* input fraction bits */
@@ -195,5 +199,9 @@ size_t np_classic_datapath(const np_classic_cfg *cfg, np_op *ops, size_t max);
  */
 void np_classic_trace(const np_classic_cfg *cfg, unsigned k, const np_classic_sig *s, np_trace *t,
                       size_t n);
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
 
 #endif /* NP_CLASSIC_H */

@@ -5,7 +5,7 @@
  *
  * One source of truth: each unit writes its declaration next to its model
  * (e.g. np_classic_datapath() in np_classic.c). The gate and latency report
- * (src/report_gates.c) prices it with a documented cost model, and a test
+ * (src/report/report_gates.c) prices it with a documented cost model, and a test
  * traces the model's signals over vectors and fails when a declared width is
  * narrower than the model needs, or wider by more than the stated margin.
  */
@@ -14,6 +14,10 @@
 
 #include <stddef.h>
 #include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 typedef enum np_op_kind {
     NP_OP_ADD,  /* adder or subtractor, ripple carry: a = width */
@@ -143,5 +147,9 @@ static inline unsigned np_trace_need(const np_trace *t, int is_signed)
     }
     return n;
 }
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
 
 #endif /* NP_DATAPATH_H */

@@ -78,6 +78,10 @@
 #include "np_pipe.h"
 #include "np_texture.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 enum {
     NP_FDIFF_EXACT_FRAC = 3 * NP_TEX_FC + NP_TEX_LAT_FRAC + NP_TEX_AMP_FRAC, /* 116 */
     NP_FDIFF_GUARD_MAX = 100,
@@ -298,5 +302,9 @@ size_t np_fdiff_datapath(const np_fdiff_cfg *cfg, const np_tex_regs *r, np_op *o
 void np_fdiff_trace_core(const np_fdiff_core *c, np_trace *t, size_t n);
 /* Trace a cell set-up's signals (coef, uv, cross, dudv, r2, Y). */
 void np_fdiff_trace_setup(const np_fdiff_cfg *cfg, const np_fdiff_setup_sig *sig, np_trace *t, size_t n);
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
 
 #endif /* NP_FDIFF_H */

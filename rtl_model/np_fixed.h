@@ -24,8 +24,18 @@
 #include <stdint.h>
 #include <limits.h>
 
-_Static_assert((-1 & 3) == 3, "two's complement integers required");
-_Static_assert(sizeof(int64_t) == 8 && CHAR_BIT == 8, "8-bit bytes, 64-bit int64_t");
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* C11's _Static_assert is static_assert in C++ (public headers compile as both). */
+#ifdef __cplusplus
+#define NP_STATIC_ASSERT(c, msg) static_assert(c, msg)
+#else
+#define NP_STATIC_ASSERT(c, msg) _Static_assert(c, msg)
+#endif
+NP_STATIC_ASSERT((-1 & 3) == 3, "two's complement integers required");
+NP_STATIC_ASSERT(sizeof(int64_t) == 8 && CHAR_BIT == 8, "8-bit bytes, 64-bit int64_t");
 
 /* NP_MASK(n): the low n bits set, 0 <= n <= 63. */
 #define NP_MASK(n) ((uint64_t)(((uint64_t)1 << (n)) - 1u))
@@ -144,8 +154,11 @@ static inline int np_fits_u(int64_t v, unsigned n) { return v >= 0 && np_sat_u(v
  * A datapath that needs only the low n bits of its result (a wrapping
  * accumulator) can thus be computed exactly without 256-bit arithmetic.
  */
-typedef __int128 np_s128;
-typedef unsigned __int128 np_u128;
+#if !defined(__SIZEOF_INT128__)
+#error "noisepipe's models need the compiler's 128-bit integers (__int128: GCC or Clang on a 64-bit target)"
+#endif
+__extension__ typedef __int128 np_s128; /* __extension__: no -pedantic warning */
+__extension__ typedef unsigned __int128 np_u128;
 
 /* NP_MASK128(n): the low n bits set, 0 <= n <= 127. */
 #define NP_MASK128(n) ((np_u128)(((np_u128)1 << (n)) - 1u))
@@ -193,5 +206,9 @@ static inline np_s128 np_wrap_s128(np_s128 v, unsigned n) { return np_sext128((n
 /* Modular product and sum (mod 2^128) of two's-complement words. */
 static inline np_s128 np_mul128(np_s128 a, np_s128 b) { return (np_s128)((np_u128)a * (np_u128)b); }
 static inline np_s128 np_add128(np_s128 a, np_s128 b) { return (np_s128)((np_u128)a + (np_u128)b); }
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
 
 #endif /* NP_FIXED_H */

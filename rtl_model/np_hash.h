@@ -42,6 +42,10 @@
 
 #include <stdint.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* The eight 6-bit bit patterns of the seed. */
 extern const uint8_t np_hash_bit_patterns[8];
 
@@ -68,5 +72,9 @@ static inline int16_t np_grad_apply_q8(np_grad g, int16_t dx, int16_t dy, int16_
 {
     return (int16_t)(g.cx * dx + g.cy * dy + g.cz * dz);
 }
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
 
 #endif /* NP_HASH_H */

@@ -32,6 +32,10 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Combinational logic of one stage, applied in place to a signal bundle. */
 typedef void (*np_stage_fn)(const void *cfg, void *sig);
 
@@ -82,5 +86,9 @@ unsigned np_pipe_occupancy(const np_pipe *p);
 
 void np_pipe_eval(np_pipe *p, np_pipe_port *port);
 void np_pipe_clock(np_pipe *p, const np_pipe_port *port);
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
 
 #endif /* NP_PIPE_H */

@@ -129,6 +129,10 @@
 #include "np_hash.h"
 #include "np_pipe.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 enum {
     NP_SIMPLEX_IN_BITS = 16,    /* X, Y, Z: u16 Q8.8 */
     NP_SIMPLEX_FRAC_IN = 8,     /* input fraction bits */
@@ -446,5 +450,9 @@ size_t np_simplex_datapath(const np_simplex_cfg *cfg, np_op *ops, size_t max);
  */
 void np_simplex_trace(const np_simplex_cfg *cfg, unsigned k, const np_simplex_sig *s, np_trace *t,
                       size_t n);
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
 
 #endif /* NP_SIMPLEX_H */

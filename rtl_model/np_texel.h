@@ -43,6 +43,10 @@
 #include "np_pipe.h"
 #include "np_texture.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 enum {
     NP_TEXEL_STAGES = 9,
     NP_TEXEL_WT_MIN = 1,
@@ -169,5 +173,9 @@ static inline unsigned np_texel_al_window(const np_texel_cfg *c)
 {
     return np_tex_window(NP_TEX_LAT_FRAC + 3u * c->weight_frac + NP_TEX_AMP_FRAC, np_texel_frac(c), np_texel_width(c));
 }
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
 
 #endif /* NP_TEXEL_H */

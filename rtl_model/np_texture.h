@@ -86,6 +86,10 @@
 #include "np_fixed.h"
 #include "np_hash.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 enum {
     NP_TEX_FC = 32,             /* fraction bits of coordinates and derivatives */
     NP_TEX_S_BITS = 48,         /* s, t, r: s48 Q15.32 */
@@ -271,5 +275,9 @@ void np_tex_trace128(np_trace *t, size_t n, const char *name, np_s128 v);
 /* Trace the colour stages' signals for one pixel (seg, w from C1; prod from C2; rgb from C3). */
 void np_tex_trace_colour(const np_tex_regs *r, unsigned seg, uint32_t w, const int64_t prod[3],
                          const uint8_t rgb[3], unsigned fw, np_trace *t, size_t n);
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
 
 #endif /* NP_TEXTURE_H */

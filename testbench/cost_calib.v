@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Calibration circuits of the gate cost model (src/report_gates.c,
+// Calibration circuits of the gate cost model (src/report/report_gates.c,
 // docs/cost-model.md). test_report's case `cost_model_calibration` synthesises
 // each with Yosys + ABC into NAND2/NOT and compares with the model.
 module add16(input [15:0] a, b, output [15:0] y); assign y = a + b; endmodule

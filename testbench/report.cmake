@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: MIT
-# Gate and latency reports (src/report_gates.c, src/report_pareto.c).
+# Gate and latency reports (src/report/report_gates.c, src/report/report_pareto.c).
 np_test_program(test_report test_report.c)
 np_add_cases(test_report report cost_model_calibration latency_matches_model unknown_stage_rejected)
 set_tests_properties(report.cost_model_calibration PROPERTIES

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: MIT
-# The exhaustive error sweep (src/sweep.c, `noisepipe sweep`) and the classic
+# The exhaustive error sweep (src/sweep/sweep.c, `noisepipe sweep`) and the classic
 # unit's accuracy over random inputs.
 #
 # This file is also the script (cmake -P) that runs the command-line checks

@@ -9,9 +9,9 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "np_classic.h"
-#include "np_ref.h"
-#include "np_unit.h"
+#include <noisepipe/np_classic.h>
+#include <noisepipe/np_ref.h>
+#include <noisepipe/np_unit.h>
 
 static int failures;
 

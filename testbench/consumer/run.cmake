@@ -6,9 +6,9 @@
 #   3. configure testbench/consumer with CMAKE_PREFIX_PATH=<prefix> (so
 #      find_package(noisepipe) must find the installed package), build it, run it.
 # Inputs (-D): NP_BUILD_DIR NP_CONFIG NP_WORK_DIR NP_SOURCE_DIR NP_HEADERS
-# (comma-separated) NP_GENERATOR NP_C_COMPILER.
+# (comma-separated) NP_GENERATOR NP_C_COMPILER NP_CXX_COMPILER.
 cmake_minimum_required(VERSION 3.18)
-foreach(v NP_BUILD_DIR NP_WORK_DIR NP_SOURCE_DIR NP_HEADERS NP_GENERATOR NP_C_COMPILER)
+foreach(v NP_BUILD_DIR NP_WORK_DIR NP_SOURCE_DIR NP_HEADERS NP_GENERATOR NP_C_COMPILER NP_CXX_COMPILER)
   if(NOT DEFINED ${v})
     message(FATAL_ERROR "run.cmake: -D${v}=... is required")
   endif()
@@ -58,7 +58,7 @@ message(STATUS "package: ${n_installed} headers installed in ${incdir}: ${instal
 
 # The consumer, against the installed package only (no package registry).
 run("consumer configure" ${CMAKE_COMMAND} -S "${NP_SOURCE_DIR}" -B "${cbuild}"
-    -G "${NP_GENERATOR}" "-DCMAKE_C_COMPILER=${NP_C_COMPILER}" "-DCMAKE_BUILD_TYPE=${NP_CONFIG}"
+    -G "${NP_GENERATOR}" "-DCMAKE_C_COMPILER=${NP_C_COMPILER}" "-DCMAKE_CXX_COMPILER=${NP_CXX_COMPILER}" "-DCMAKE_BUILD_TYPE=${NP_CONFIG}"
     "-DCMAKE_PREFIX_PATH=${prefix}" -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF
     -DCMAKE_FIND_USE_SYSTEM_PACKAGE_REGISTRY=OFF)
 file(STRINGS "${cbuild}/CMakeCache.txt" found REGEX "^noisepipe_DIR:")
@@ -72,3 +72,8 @@ if(NOT consumer_exe)
   message(FATAL_ERROR "package: consumer executable not found in ${cbuild}")
 endif()
 run("consumer run" "${consumer_exe}")
+find_program(consumer_cxx_exe consumer_cxx PATHS "${cbuild}" "${cbuild}/${NP_CONFIG}" NO_DEFAULT_PATH)
+if(NOT consumer_cxx_exe)
+  message(FATAL_ERROR "package: consumer_cxx executable not found in ${cbuild}")
+endif()
+run("C++ consumer run" "${consumer_cxx_exe}")

@@ -9,6 +9,10 @@
 
 #include <stdint.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct np_rng {
     uint64_t s[4];
 } np_rng;
@@ -54,5 +58,9 @@ static inline uint64_t np_rng_below(np_rng *r, uint64_t n)
             return (uint64_t)(m >> 64);
     }
 }
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
 
 #endif /* NP_RNG_H */

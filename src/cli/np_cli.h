@@ -6,6 +6,10 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 enum {
     NP_EXIT_OK = 0,    /* success */
     NP_EXIT_FAIL = 1,  /* a check failed */
@@ -35,5 +39,9 @@ void np_progress_end(np_progress *p);
 
 /* Monotonic wall-clock seconds. */
 double np_now(void);
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
 
 #endif /* NP_CLI_H */

@@ -1,10 +1,10 @@
 # SPDX-License-Identifier: MIT
 # Build step: embed the seed scenes (DIR/*.json) into OUT as C strings, so that
 # `noisepipe run` and `noisepipe render` work from any directory and from an
-# installed binary. np_scene_load("embedded:NAME") reads them (src/scene.c).
+# installed binary. np_scene_load("embedded:NAME") reads them (src/render/scene.c).
 file(GLOB scenes ${DIR}/*.json)
 list(SORT scenes)
-set(body "/* Generated from vectors/scenes (one string per .json file) by src/embed_scenes.cmake; do not edit. */\n#include \"np_scene.h\"\n\n")
+set(body "/* Generated from vectors/scenes (one string per .json file) by src/render/embed_scenes.cmake; do not edit. */\n#include \"np_scene.h\"\n\n")
 set(table "")
 foreach(path ${scenes})
   get_filename_component(name ${path} NAME_WE)

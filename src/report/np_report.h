@@ -12,6 +12,10 @@
 #include "np_datapath.h"
 #include "np_unit.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /*
  * The cost model: NAND2 equivalents and gate delays (NAND/NOT levels) per
  * operator, calibrated with Yosys 0.23 + ABC (abc -g NAND; stat -tech cmos,
@@ -72,5 +76,9 @@ int np_unit_cost_compute(const np_unit *u, const void *cfg, const np_cost_model 
 
 void np_report_gates_md(FILE *f, const np_unit_cost *c, size_t n, const char *title);
 void np_report_gates_json(FILE *f, const np_unit_cost *c, size_t n);
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
 
 #endif /* NP_REPORT_H */

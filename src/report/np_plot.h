@@ -10,6 +10,10 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct np_plot_series {
     const char *label;
     const char *color;  /* SVG colour */
@@ -29,5 +33,9 @@ typedef struct np_plot {
 
 /* Write an SVG document of 720 x 480 to f. */
 void np_plot_svg(FILE *f, const np_plot *p, const np_plot_series *s, size_t ns);
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
 
 #endif /* NP_PLOT_H */

@@ -14,6 +14,10 @@
 #include "np_ref.h"
 #include "np_texture.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /*
  * Round v * 2^frac to the nearest integer, ties up (floor(x + 1/2), exact
  * for |x| < 2^52), into a signed field of bits bits: 0, or -1 when it does
@@ -41,5 +45,9 @@ int np_texreg_compile(const np_ref_texture *t, np_tex_regs *r, char *err, size_t
 const np_ref_texture *np_texreg_builtin(const char *name);
 /* The i-th built-in texture's name; NULL past the last. */
 const char *np_texreg_builtin_name(unsigned i);
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
 
 #endif /* NP_TEXREG_H */

@@ -28,6 +28,10 @@
 #include "np_rng.h"
 #include "np_unit.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 enum {
     NP_VEC_VERSION = 1,     /* "# noisepipe vectors 1" */
     NP_VEC_KINDS = 4,
@@ -341,5 +345,9 @@ int np_vec_opt_u64(const char *cmd, const char *name, const char *val, uint64_t 
 int np_vec_opt_double(const char *cmd, const char *name, const char *val, double *out);
 /* The unit named by name configured by spec, as a header; message and -1 on failure. */
 int np_vec_opt_header(const char *cmd, const char *name, const char *spec, np_vec_header *h);
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
 
 #endif /* NP_VEC_H */

@@ -8,6 +8,10 @@
 
 #include "np_report.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* A two-key design space of one unit around a base configuration. */
 typedef struct np_dse_space {
     const char *unit;
@@ -46,5 +50,9 @@ void np_dse_free(np_dse_result *res);
 void np_dse_write_md(FILE *f, const np_dse_result *r, const char *svg_name);
 void np_dse_write_json(FILE *f, const np_dse_result *r);
 void np_dse_write_svg(FILE *f, const np_dse_result *r);
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
 
 #endif /* NP_PARETO_H */

@@ -13,6 +13,10 @@
 
 #include <stdint.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /*
  * Classic 3-D gradient noise (Perlin, "Noise Hardware"): lattice tile of
  * 256, the table-free hash np_hash6, the Appendix B gradient written out in
@@ -109,5 +113,9 @@ double np_ref_colour_index(const np_ref_colormap *c, double f);
 
 /* c(f) in 8-bit units (0..255, not rounded). */
 void np_ref_colour(const np_ref_colormap *c, double f, double rgb[3]);
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
 
 #endif /* NP_REF_H */

@@ -20,6 +20,10 @@
 #include "np_datapath.h"
 #include "np_pipe.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 struct np_scene;
 struct np_unit_timing;
 
@@ -157,5 +161,9 @@ void np_unit_set_field(np_field *f, const char *name, unsigned bits, int sgn, un
 
 /* Configure u from "key=value[,key=value...]" (NULL or "" = defaults). */
 int np_unit_configure(const np_unit *u, void *cfg, const char *spec, char *err, size_t errlen);
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
 
 #endif /* NP_UNIT_H */

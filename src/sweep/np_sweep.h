@@ -31,6 +31,10 @@
 
 #include "np_unit.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /*
  * NP_SWEEP_CLONES on a hot loop of the sweep: GCC compiles it three times,
  * for x86-64 (SSE2), x86-64-v3 (AVX2) and x86-64-v4 (AVX-512), and picks
@@ -145,5 +149,9 @@ typedef struct np_sweep_result {
  * I/O error, out of memory), with a message in err.
  */
 int np_sweep_run(const np_sweep_opts *o, np_sweep_result *res, char *err, size_t errlen);
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
 
 #endif /* NP_SWEEP_H */

@@ -29,6 +29,10 @@
 #include "np_unit.h"
 #include "np_vec.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* The stream model's ports for one cycle (AXI-stream style, as np_pipe_port). */
 typedef struct np_unit_stream_port {
     int in_valid;
@@ -83,5 +87,9 @@ int np_stream_generate(np_vec_header *h, unsigned level, uint64_t seed, uint64_t
  */
 int np_stream_drive(const np_vec_header *h, np_vec_source_fn source, void *src_ctx, np_vec_sink_fn sink,
                     void *sink_ctx, int traffic, uint64_t seed, np_vec_drive_stats *st, char *err, size_t errlen);
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
 
 #endif /* NP_STREAM_H */
