@@ -5,6 +5,7 @@
 
 #include "np_cli.h"
 #include "np_cmd.h"
+#include "np_outfile.h"
 
 static int cmd_help(int argc, char **argv);
 
@@ -69,5 +70,10 @@ int main(int argc, char **argv)
         usage(stderr);
         return NP_EXIT_USAGE;
     }
-    return c->fn(argc - 1, argv + 1);
+    np_interrupt_install();
+    int rc = c->fn(argc - 1, argv + 1);
+    /* Output lost on the way out (`verify > /dev/full`) is an error, never exit 0. */
+    if (np_stdout_check(argv[1]) != 0)
+        rc = NP_EXIT_USAGE;
+    return rc;
 }
