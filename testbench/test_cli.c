@@ -16,6 +16,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "np_cli.h"
 #include "np_outfile.h"
 #include "np_test.h"
 
@@ -267,7 +268,26 @@ CASE(t_refuse, case_refuse)
 CASE(t_sigint, case_interrupt_sigint)
 CASE(t_sigterm, case_interrupt_sigterm)
 
+static int case_numbers(void)
+{
+    uint64_t v = 0;
+    CHECK(np_parse_u64("010", 0, 100, &v) == 0 && v == 10);
+    CHECK(np_parse_u64("0x5", 0, 100, &v) == -1);
+    CHECK(np_parse_u64("+3", 0, 100, &v) == -1 && np_parse_u64("-3", 0, 100, &v) == -1);
+    CHECK(np_parse_u64("", 0, 100, &v) == -1 && np_parse_u64("3abc", 0, 100, &v) == -1);
+    CHECK(np_parse_u64(" 3", 0, 100, &v) == -1 && np_parse_u64("101", 0, 100, &v) == -1);
+    CHECK(np_parse_u64("18446744073709551615", 0, UINT64_MAX, &v) == 0 && v == UINT64_MAX);
+    CHECK(np_parse_u64("18446744073709551616", 0, UINT64_MAX, &v) == -1);
+    CHECK(np_parse_u64_hex("ff80", 4, 0, 0xffff, &v) == 0 && v == 0xff80);
+    CHECK(np_parse_u64_hex("0xff", 4, 0, 0xffff, &v) == -1 && np_parse_u64_hex("10000", 4, 0, UINT64_MAX, &v) == -1);
+    CHECK(np_parse_u64_or_0x("0xff80", 0, 0xffff, &v) == 0 && v == 0xff80);
+    CHECK(np_parse_u64_or_0x("65408", 0, 0xffff, &v) == 0 && v == 0xff80);
+    CHECK(np_parse_u64_or_0x("0x", 0, 0xffff, &v) == -1 && np_parse_u64_or_0x("0x1g", 0, 0xffff, &v) == -1);
+    return 0;
+}
+
 static const np_test_case cases[] = {
+    { "numbers", case_numbers },
     { "outfile_regular_atomic", t_regular },
     { "outfile_fifo", t_fifo },
     { "outfile_chardev", t_chardev },

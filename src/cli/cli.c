@@ -4,6 +4,7 @@
 #include <errno.h>
 #include <stdarg.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -17,17 +18,49 @@ void np_err(const char *cmd, const char *fmt, ...)
     fputc('\n', stderr);
 }
 
+/* Digits of base 10 or 16 only: no sign, blank, prefix or suffix; overflow refused. */
+static int parse_digits(const char *s, unsigned base, uint64_t lo, uint64_t hi, uint64_t *out)
+{
+    if (!s || !*s)
+        return -1;
+    uint64_t v = 0;
+    for (const char *p = s; *p; p++) {
+        unsigned d;
+        if (*p >= '0' && *p <= '9')
+            d = (unsigned)(*p - '0');
+        else if (base == 16 && *p >= 'a' && *p <= 'f')
+            d = (unsigned)(*p - 'a') + 10u;
+        else if (base == 16 && *p >= 'A' && *p <= 'F')
+            d = (unsigned)(*p - 'A') + 10u;
+        else
+            return -1;
+        if (v > (UINT64_MAX - d) / base)
+            return -1;
+        v = v * base + d;
+    }
+    if (v < lo || v > hi)
+        return -1;
+    *out = v;
+    return 0;
+}
+
 int np_parse_u64(const char *s, uint64_t lo, uint64_t hi, uint64_t *out)
 {
-    char *end;
-    if (!s || !*s || *s == '-' || *s == '+' || *s == ' ')
+    return parse_digits(s, 10, lo, hi, out);
+}
+
+int np_parse_u64_hex(const char *s, unsigned max_digits, uint64_t lo, uint64_t hi, uint64_t *out)
+{
+    if (!s || strlen(s) > max_digits)
         return -1;
-    errno = 0;
-    unsigned long long v = strtoull(s, &end, 0);
-    if (errno || *end || v < lo || v > hi)
-        return -1;
-    *out = (uint64_t)v;
-    return 0;
+    return parse_digits(s, 16, lo, hi, out);
+}
+
+int np_parse_u64_or_0x(const char *s, uint64_t lo, uint64_t hi, uint64_t *out)
+{
+    if (s && s[0] == '0' && (s[1] == 'x' || s[1] == 'X'))
+        return parse_digits(s + 2, 16, lo, hi, out);
+    return parse_digits(s, 10, lo, hi, out);
 }
 
 double np_now(void)
