@@ -179,6 +179,13 @@ static void around(err_stat *st, point_fn fn, double x, unsigned k)
     }
 }
 
+/* Local search: every double within k ulp of the worst input found so far. */
+static void local_search(err_stat *st, point_fn fn, unsigned k)
+{
+    double worst = st->arg;
+    around(st, fn, worst, k);
+}
+
 /* ---- per-function probes ---- */
 
 static void probe_sin(err_stat *st, double t)
@@ -246,6 +253,7 @@ static int sin_bound(void)
         return NP_TEST_SKIP;
     err_stat st = { .name = "np_sin_turns" };
     sweep_turns(&st, probe_sin);
+    local_search(&st, probe_sin, 10000);
     err_print(&st);
     return 0;
 }
@@ -256,6 +264,7 @@ static int cos_bound(void)
         return NP_TEST_SKIP;
     err_stat st = { .name = "np_cos_turns" };
     sweep_turns(&st, probe_cos);
+    local_search(&st, probe_cos, 10000);
     err_print(&st);
     return 0;
 }
@@ -280,6 +289,7 @@ static int exp2_bound(void)
     around(&st, probe_exp2, -1075.0, 8);
     around(&st, probe_exp2, -1022.0, 8);
     around(&st, probe_exp2, 0.0, 8);
+    local_search(&st, probe_exp2, 10000);
     err_print(&st);
     return 0;
 }
@@ -300,6 +310,7 @@ static int log2_bound(void)
     }
     around(&st, probe_log2, 1.0, 1000);                /* 1 +- 1000 ulp: results near 0 */
     around(&st, probe_log2, DBL_MAX, 3);
+    local_search(&st, probe_log2, 10000);
     err_print(&st);
     return 0;
 }
@@ -321,6 +332,7 @@ static int tanh_bound(void)
         around(&st, probe_tanh, -sw[i], 16);
     }
     around(&st, probe_tanh, 0.0, 16);
+    local_search(&st, probe_tanh, 10000);
     err_print(&st);
     return 0;
 }
