@@ -123,11 +123,16 @@ typedef struct err_stat {
     long double want;
     unsigned long n;
     double max_normal; /* over true values of magnitude >= DBL_MIN (or 0) only */
+    const char *piece[3]; /* names of the pieces of the definition, NULL where unused */
+    double piece_max[3];
 } err_stat;
 
-static void err_add(err_stat *st, double x, double got, long double want)
+/* piece: which part of the definition produced got (err_stat.piece), for the per-piece maxima. */
+static void err_add(err_stat *st, unsigned piece, double x, double got, long double want)
 {
     double e = ulp_error(got, want);
+    if (e > st->piece_max[piece])
+        st->piece_max[piece] = e;
     st->n++;
     NP_CHECK(e < NP_MATH_BOUND_ULP, "%s(%a) = %a, want %.21Lg: %.4f ulp", st->name, x, got, want, e);
     if ((fabsl(want) >= (long double)DBL_MIN || want == 0.0L) && e > st->max_normal)
@@ -146,6 +151,9 @@ static void err_print(const err_stat *st)
            st->max, st->arg, st->arg, st->got, st->want);
     printf("%s: max error %.4f ulp over normal (and zero) true values, bound < %.2f ulp\n", st->name,
            st->max_normal, NP_MATH_BOUND_ULP);
+    for (unsigned i = 0; i < 3; i++)
+        if (st->piece[i])
+            printf("%s: max error %.4f ulp where %s\n", st->name, st->piece_max[i], st->piece[i]);
 }
 
 /* ---- input sources ---- */
@@ -188,34 +196,45 @@ static void local_search(err_stat *st, point_fn fn, unsigned k)
 
 /* ---- per-function probes ---- */
 
+/* 0 when sin(2 pi t) comes from the sin kernel, 1 from the cos kernel (np_math.c's quadrant rule). */
+static unsigned turns_kernel(double t)
+{
+    double a = fabs(t);
+    double q = 4.0 * (a - floor(a));
+    double n = floor(q);
+    if (q - n > 0.5)
+        n += 1.0;
+    return (unsigned)n & 1u;
+}
+
 static void probe_sin(err_stat *st, double t)
 {
     if (isfinite(t))
-        err_add(st, t, np_sin_turns(t), ref_turns(t, 0));
+        err_add(st, turns_kernel(t), t, np_sin_turns(t), ref_turns(t, 0));
 }
 
 static void probe_cos(err_stat *st, double t)
 {
     if (isfinite(t))
-        err_add(st, t, np_cos_turns(t), ref_turns(t, 1));
+        err_add(st, 1u - turns_kernel(t), t, np_cos_turns(t), ref_turns(t, 1));
 }
 
 static void probe_exp2(err_stat *st, double x)
 {
     if (isfinite(x) && x < 1024.0)
-        err_add(st, x, np_exp2(x), exp2l((long double)x));
+        err_add(st, x < -1022.0 ? 1u : 0u, x, np_exp2(x), exp2l((long double)x));
 }
 
 static void probe_log2(err_stat *st, double x)
 {
     if (isfinite(x) && x > 0.0)
-        err_add(st, x, np_log2(x), log2l((long double)x));
+        err_add(st, 0, x, np_log2(x), log2l((long double)x));
 }
 
 static void probe_tanh(err_stat *st, double x)
 {
     if (isfinite(x))
-        err_add(st, x, np_tanh(x), tanhl((long double)x));
+        err_add(st, fabs(x) < 0.5 ? 0u : fabs(x) < 22.0 ? 1u : 2u, x, np_tanh(x), tanhl((long double)x));
 }
 
 /* Dense sweep of n points over [lo, hi): one random point in each of n equal cells. */
@@ -251,7 +270,7 @@ static int sin_bound(void)
 {
     if (!have_oracle())
         return NP_TEST_SKIP;
-    err_stat st = { .name = "np_sin_turns" };
+    err_stat st = { .name = "np_sin_turns", .piece = { "the sin kernel is used", "the cos kernel is used" } };
     sweep_turns(&st, probe_sin);
     local_search(&st, probe_sin, 10000);
     err_print(&st);
@@ -262,7 +281,7 @@ static int cos_bound(void)
 {
     if (!have_oracle())
         return NP_TEST_SKIP;
-    err_stat st = { .name = "np_cos_turns" };
+    err_stat st = { .name = "np_cos_turns", .piece = { "the sin kernel is used", "the cos kernel is used" } };
     sweep_turns(&st, probe_cos);
     local_search(&st, probe_cos, 10000);
     err_print(&st);
@@ -273,7 +292,7 @@ static int exp2_bound(void)
 {
     if (!have_oracle())
         return NP_TEST_SKIP;
-    err_stat st = { .name = "np_exp2" };
+    err_stat st = { .name = "np_exp2", .piece = { "x >= -1022 (normal results)", "x < -1022 (subnormal results)" } };
     np_rng r;
     np_rng_seed(&r, 0xe2u);
     dense(&st, probe_exp2, &r, -1080.0, 1024.0, 1000000 * NP_MATH_SCALE); /* whole range, subnormal results included */
@@ -319,7 +338,8 @@ static int tanh_bound(void)
 {
     if (!have_oracle())
         return NP_TEST_SKIP;
-    err_stat st = { .name = "np_tanh" };
+    err_stat st = { .name = "np_tanh",
+                    .piece = { "|x| < 1/2 (polynomial)", "1/2 <= |x| < 22 ((1 - E)/(1 + E))", "|x| >= 22 (1)" } };
     np_rng r;
     np_rng_seed(&r, 0x7a4u);
     dense(&st, probe_tanh, &r, 0.0, 1.0, 1000000 * NP_MATH_SCALE);     /* both sides of the polynomial switch */
