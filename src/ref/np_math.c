@@ -248,7 +248,12 @@ void np_sincos_turns(double t, double *s, double *c)
     }
     unsigned quadrant = (unsigned)n & 3u; /* n in 0..4 */
     double sk = np__sin_kernel(r), ck = np__cos_kernel(r);
-    if (fabs(r) < NP__SIN_TINY) /* r = 4|t| here; sin(pi/2 r) = (pi/2) r to 2^-1700 relative */
+    /*
+     * Tiny r can only be r = 4|t| (n = 0). The kernel on r 2^200 (< 2^-700:
+     * its r^3 part is 0, (pi/2) r^3/6 is below 2^-1700 of the value anyway)
+     * forms (pi/2) r 2^200 without underflow; ldexp scales it back.
+     */
+    if (fabs(r) < NP__SIN_TINY)
         sk = ldexp(np__sin_kernel(ldexp(r, NP__SIN_TINY_SCALE)), -NP__SIN_TINY_SCALE);
     double sv, cv;
     switch (quadrant) {
