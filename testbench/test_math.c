@@ -187,6 +187,25 @@ static void around(err_stat *st, point_fn fn, double x, unsigned k)
     }
 }
 
+/*
+ * Bit patterns: for every exponent field in [emin, emax] and both signs, the
+ * mantissas 0, all ones, 0101..., 1010..., and each walking one and walking zero.
+ */
+static void patterns(err_stat *st, point_fn fn, unsigned emin, unsigned emax)
+{
+    const uint64_t frac = 0x000fffffffffffffu;
+    uint64_t m[4 + 2 * 52] = { 0u, frac, 0x0005555555555555u, 0x000aaaaaaaaaaaaau };
+    for (unsigned i = 0; i < 52; i++) {
+        m[4 + 2 * i] = (uint64_t)1 << i;
+        m[5 + 2 * i] = frac ^ ((uint64_t)1 << i);
+    }
+    for (uint64_t e = emin; e <= emax; e++)
+        for (unsigned i = 0; i < sizeof m / sizeof m[0]; i++) {
+            fn(st, from_bits((e << 52) | m[i]));
+            fn(st, from_bits(0x8000000000000000u | (e << 52) | m[i]));
+        }
+}
+
 /* Local search: every double within k ulp of the worst input found so far. */
 static void local_search(err_stat *st, point_fn fn, unsigned k)
 {
@@ -272,6 +291,7 @@ static int sin_bound(void)
         return NP_TEST_SKIP;
     err_stat st = { .name = "np_sin_turns", .piece = { "the sin kernel is used", "the cos kernel is used" } };
     sweep_turns(&st, probe_sin);
+    patterns(&st, probe_sin, 0, 2046);
     local_search(&st, probe_sin, 10000);
     err_print(&st);
     return 0;
@@ -283,6 +303,7 @@ static int cos_bound(void)
         return NP_TEST_SKIP;
     err_stat st = { .name = "np_cos_turns", .piece = { "the sin kernel is used", "the cos kernel is used" } };
     sweep_turns(&st, probe_cos);
+    patterns(&st, probe_cos, 0, 2046);
     local_search(&st, probe_cos, 10000);
     err_print(&st);
     return 0;
@@ -308,6 +329,7 @@ static int exp2_bound(void)
     around(&st, probe_exp2, -1075.0, 8);
     around(&st, probe_exp2, -1022.0, 8);
     around(&st, probe_exp2, 0.0, 8);
+    patterns(&st, probe_exp2, 0, efield(11));
     local_search(&st, probe_exp2, 10000);
     err_print(&st);
     return 0;
@@ -329,6 +351,7 @@ static int log2_bound(void)
     }
     around(&st, probe_log2, 1.0, 1000);                /* 1 +- 1000 ulp: results near 0 */
     around(&st, probe_log2, DBL_MAX, 3);
+    patterns(&st, probe_log2, 0, 2046);
     local_search(&st, probe_log2, 10000);
     err_print(&st);
     return 0;
@@ -352,6 +375,7 @@ static int tanh_bound(void)
         around(&st, probe_tanh, -sw[i], 16);
     }
     around(&st, probe_tanh, 0.0, 16);
+    patterns(&st, probe_tanh, 0, efield(6));
     local_search(&st, probe_tanh, 10000);
     err_print(&st);
     return 0;
