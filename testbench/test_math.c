@@ -92,10 +92,10 @@ static long double ref_turns(double t, int want_cos)
     /* sin(n pi/2 + x) = sn cos x + cn sin x, cos(n pi/2 + x) = cn cos x - sn sin x */
     static const int sn[4] = { 0, 1, 0, -1 }, cn[4] = { 1, 0, -1, 0 };
     unsigned k = (unsigned)(long long)n & 3u;
-    long double sx = sinl(x), cx = cosl(x);
+    /* One of sn, cn is 0: evaluate only the oracle function that counts. */
     if (want_cos)
-        return (long double)cn[k] * cx - (long double)sn[k] * sx;
-    long double s = (long double)sn[k] * cx + (long double)cn[k] * sx;
+        return k & 1u ? -(long double)sn[k] * sinl(x) : (long double)cn[k] * cosl(x);
+    long double s = k & 1u ? (long double)sn[k] * cosl(x) : (long double)cn[k] * sinl(x);
     return t < 0.0 ? -s : s;
 }
 
