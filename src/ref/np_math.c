@@ -20,9 +20,14 @@
 #include <string.h>
 
 _Static_assert(sizeof(double) == 8, "binary64 double");
-/* Every double operation rounds to binary64 (no x87 extended intermediates), or the bits differ. */
-#if !defined(FLT_EVAL_METHOD) || FLT_EVAL_METHOD != 0
-#error "np_math needs FLT_EVAL_METHOD == 0 (binary64 evaluation, e.g. SSE2 on x86)"
+/*
+ * Every double operation must round to binary64 (no x87 extended
+ * intermediates), or the bits differ. FLT_EVAL_METHOD 0 and 1 evaluate double
+ * as double; 16 (GCC with AVX512-FP16) only widens _Float16. 2 (x87) and -1
+ * (indeterminable) are refused.
+ */
+#if !defined(FLT_EVAL_METHOD) || FLT_EVAL_METHOD < 0 || FLT_EVAL_METHOD == 2
+#error "np_math needs double evaluated as binary64 (FLT_EVAL_METHOD 0 or 1, e.g. SSE2 on x86)"
 #endif
 
 /* ---- polynomial coefficients: the output of `python3 src/ref/np_math_coeffs.py` ---- */
