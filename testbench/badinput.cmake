@@ -43,3 +43,10 @@ file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/ok_camera_inside_allowed.json "${np_insid
 add_test(NAME badinput.scene_empty_allowed COMMAND ${CMAKE_COMMAND}
   -DCMD=$<TARGET_FILE:noisepipe> -DARGS=render\;${CMAKE_CURRENT_BINARY_DIR}/ok_camera_inside_allowed.json\;-o\;${CMAKE_CURRENT_BINARY_DIR}/ok_inside_out
   -DWANT_RC=0 "-DWANT=" -P ${CMAKE_CURRENT_SOURCE_DIR}/render_expect.cmake)
+# JSON nested past cJSON's limit: said so, not just "not valid JSON".
+string(REPEAT "[" 1200 np_open)
+string(REPEAT "]" 1200 np_close)
+file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/bad_deep.json "{ \"noisepipe_scene\": ${np_open}${np_close} }\n")
+add_test(NAME badinput.scene_deep_nesting COMMAND ${CMAKE_COMMAND}
+  -DCMD=$<TARGET_FILE:noisepipe> -DARGS=render\;${CMAKE_CURRENT_BINARY_DIR}/bad_deep.json
+  -DWANT_RC=2 "-DWANT=JSON nested deeper than 1000 levels" -P ${CMAKE_CURRENT_SOURCE_DIR}/render_expect.cmake)

@@ -477,10 +477,26 @@ int np_scene_parse(const char *json, const char *name, np_scene *s, char *err, s
     if (!root) {
         /* Line and column of the point where parsing stopped. */
         unsigned line = 1, col = 1;
-        for (const char *p = json; end && p < end && *p; p++, col++)
+        long depth = 0, deepest = 0;
+        int in_str = 0;
+        for (const char *p = json; end && p < end && *p; p++, col++) {
             if (*p == '\n')
                 line++, col = 0;
-        snprintf(err, errlen, "%s:%u:%u: not valid JSON", name, line, col);
+            /* Nesting depth outside strings: cJSON stops at CJSON_NESTING_LIMIT. */
+            if (in_str)
+                in_str = !(*p == '"' && p[-1] != '\\');
+            else if (*p == '"')
+                in_str = 1;
+            else if (*p == '[' || *p == '{')
+                deepest = ++depth > deepest ? depth : deepest;
+            else if (*p == ']' || *p == '}')
+                depth--;
+        }
+        if (deepest >= CJSON_NESTING_LIMIT)
+            snprintf(err, errlen, "%s:%u:%u: JSON nested deeper than %d levels (a scene needs at most 5)", name,
+                     line, col, CJSON_NESTING_LIMIT);
+        else
+            snprintf(err, errlen, "%s:%u:%u: not valid JSON", name, line, col);
         return -1;
     }
     unsigned version = 0;
