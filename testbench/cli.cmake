@@ -19,3 +19,9 @@ add_test(NAME cli.numbers_decimal
                  \"$0\" vectors --unit classic3 -n 3 | sed 's/^# count .*/# count 0x5/' > \"$1\" &&
                  \"$0\" verify \"$1\" > /dev/null 2> \"$1.err\"; s=$?; cat \"$1.err\"; test $s -eq 2 && grep -q count \"$1.err\""
           $<TARGET_FILE:noisepipe> ${CMAKE_CURRENT_BINARY_DIR}/cli_count_hex.vec)
+
+# Progress: --progress forces it into a log (stderr not a terminal), --quiet stops it.
+add_test(NAME cli.progress_forced
+  COMMAND sh -c "\"$0\" sweep --unit classic3 --z 0 --x-cells 0:1 --progress 2>&1 >/dev/null | grep -q '^sweep: 100.0%' || { echo 'no progress line'; exit 1; }
+                 test -z \"$(\"$0\" sweep --unit classic3 --z 0 --x-cells 0:1 --quiet 2>&1 >/dev/null)\" || { echo '--quiet printed progress'; exit 1; }"
+          $<TARGET_FILE:noisepipe>)

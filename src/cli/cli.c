@@ -70,12 +70,20 @@ double np_now(void)
     return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
 }
 
+static int progress_mode = NP_PROGRESS_AUTO;
+
+void np_progress_set_mode(int mode) { progress_mode = mode; }
+
 void np_progress_start(np_progress *p, const char *label, uint64_t total)
 {
     p->label = label;
     p->total = total;
     p->start = p->last = np_now();
-    p->tty = isatty(2);
+    int tty = isatty(2);
+    /* 1: a rewritten line on a terminal; 2: a line every few seconds (forced into a log). */
+    p->tty = progress_mode == NP_PROGRESS_NEVER    ? 0
+             : progress_mode == NP_PROGRESS_ALWAYS ? (tty ? 1 : 2)
+                                                   : tty;
 }
 
 void np_progress_update(np_progress *p, uint64_t done)
@@ -83,19 +91,20 @@ void np_progress_update(np_progress *p, uint64_t done)
     if (!p->tty)
         return;
     double t = np_now();
-    if (t - p->last < 0.25 && done < p->total)
+    if (t - p->last < (p->tty == 2 ? 5.0 : 0.25) && done < p->total)
         return;
     p->last = t;
     double el = t - p->start;
     double frac = p->total ? (double)done / (double)p->total : 0.0;
     double eta = frac > 0 ? el / frac - el : 0.0;
-    fprintf(stderr, "\r%s: %5.1f%%  %llu/%llu  %.0f s elapsed, %.0f s left   ", p->label,
-            100.0 * frac, (unsigned long long)done, (unsigned long long)p->total, el, eta);
+    fprintf(stderr, "%s%s: %5.1f%%  %llu/%llu  %.0f s elapsed, %.0f s left%s", p->tty == 1 ? "\r" : "",
+            p->label, 100.0 * frac, (unsigned long long)done, (unsigned long long)p->total, el, eta,
+            p->tty == 1 ? "   " : "\n");
     fflush(stderr);
 }
 
 void np_progress_end(np_progress *p)
 {
-    if (p->tty)
+    if (p->tty == 1)
         fputs("\r\033[K", stderr);
 }

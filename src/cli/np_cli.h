@@ -34,14 +34,18 @@ int np_parse_u64_hex(const char *s, unsigned max_digits, uint64_t lo, uint64_t h
 int np_parse_u64_or_0x(const char *s, uint64_t lo, uint64_t hi, uint64_t *out);
 
 /*
- * Progress line on stderr, only when stderr is a terminal; rate-limited to
- * a few updates per second. done/total in items; label e.g. "sweep".
+ * Progress on stderr: by default only when stderr is a terminal (one line,
+ * rewritten a few times a second). `noisepipe --progress CMD` (or the option
+ * anywhere after the command) forces it, as a line every 5 s when stderr is a
+ * log; `--quiet` stops it. done/total in items; label e.g. "sweep".
  */
+enum { NP_PROGRESS_AUTO = 0, NP_PROGRESS_ALWAYS = 1, NP_PROGRESS_NEVER = 2 };
+void np_progress_set_mode(int mode);
 typedef struct np_progress {
     const char *label;
     uint64_t total;
     double start, last;
-    int tty;
+    int tty; /* 0: silent, 1: terminal line, 2: log lines */
 } np_progress;
 
 void np_progress_start(np_progress *p, const char *label, uint64_t total);
