@@ -181,7 +181,7 @@ static int latency_matches_model(void)
         np_unit_cfg cfg;
         np_unit_cost c;
         char err[256];
-        u->cfg_default(&cfg);
+        np_unit_cfg_default(u, &cfg);
         NP_CHECK(np_unit_cost_compute(u, &cfg, &np_cost_default, &c, err, sizeof err) == 0, "%s: %s", u->name, err);
         for (unsigned k = 0; k < c.n_stages; k++)
             NP_CHECK(c.st[k].reg_bits > 0, "%s: stage %s declares no register bank", u->name, c.st[k].name);
@@ -218,7 +218,7 @@ static int unknown_stage_rejected(void)
     np_unit_cfg cfg;
     np_unit_cost c;
     char err[256] = "";
-    u->cfg_default(&cfg);
+    np_unit_cfg_default(u, &cfg);
     NP_CHECK(np_unit_cost_compute(&tampered, &cfg, &np_cost_default, &c, err, sizeof err) != 0, "no datapath");
     printf("no declaration: \"%s\"\n", err);
     return 0;

@@ -127,7 +127,7 @@ int np_dse_run(const np_dse_space *sp, uint64_t samples, uint64_t seed, np_dse_r
             }
             p->v1 = a;
             p->v2 = b;
-            u->cfg_format(&cfg, p->cfg, sizeof p->cfg);
+            np_unit_cfg_format(u, &cfg, p->cfg, sizeof p->cfg);
             p->gates = c.total;
             p->latency = c.latency;
             p->crit = c.crit;
@@ -194,7 +194,7 @@ static const np_dse_point *base_point(const np_dse_result *r)
     char e[256], name[128];
     if (np_unit_configure(r->unit, &cfg, r->space->base, e, sizeof e) != 0)
         return NULL;
-    r->unit->cfg_format(&cfg, name, sizeof name);
+    np_unit_cfg_format(r->unit, &cfg, name, sizeof name);
     for (size_t i = 0; i < r->n; i++)
         if (strcmp(r->pts[i].cfg, name) == 0)
             return &r->pts[i];
