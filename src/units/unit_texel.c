@@ -23,7 +23,7 @@ _Static_assert(sizeof(tx_cfg) <= NP_UNIT_CFG_MAX, "configuration block too large
 
 const np_texel_cfg *np_ut_texel_cfg(const void *cfg) { return &((const tx_cfg *)cfg)->c; }
 
-/* The defaults are np_texel_cfg_default()'s (test fdiff.unit_keys_default compares them). */
+/* The defaults are np_texel_cfg_default()'s (test core.unit_keys_model_defaults compares them). */
 static const np_unit_key keys[] = {
     UT_TEXTURE_KEY(tx_cfg, tex),
     NP_UNIT_KEY("idx_int", tx_cfg, c.idx_int, NP_TEX_IDX_INT_MIN, 11, 10, "I: colour-map index integer bits"),
