@@ -178,10 +178,6 @@ static int configure_units(opts *o)
         }
     }
     int f = unit_index("fdiff"), t = unit_index("texel");
-    if (f < 0 || t < 0) {
-        np_err(CMD, "the registry lacks fdiff or texel");
-        return -1;
-    }
     o->fc = *np_ut_fdiff_cfg(&o->ucfg[f]);
     o->tc = *np_ut_texel_cfg(&o->ucfg[t]);
     return 0;
