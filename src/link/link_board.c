@@ -11,7 +11,7 @@
  * What the emulator chooses where the document leaves a choice:
  *   - It offers every unit of the registry in every valid configuration
  *     (INFO n_slots = 0) unless slots are given; a configuration must be in
- *     canonical form (the unit's cfg_format), compared byte for byte.
+ *     canonical form (np_unit_cfg_format), compared byte for byte.
  *   - It runs each DATA frame's records through the unit's np_pipe, one input
  *     per clock with the output always ready, and drains the pipe at the end
  *     of the frame (a real board may overlap frames: the protocol does not
@@ -192,7 +192,7 @@ static void on_config(np_board *b, const np_link_hdr *h, const uint8_t *payload)
         send_error(b, NP_LINK_E_NO_SUCH_CONFIG, 0, "%.50s", err);
         return;
     }
-    u->cfg_format(&b->cfg, canon, sizeof canon);
+    np_unit_cfg_format(u, &b->cfg, canon, sizeof canon);
     if (strcmp(canon, c.cfg) != 0) {
         send_error(b, NP_LINK_E_NO_SUCH_CONFIG, 0, "configuration not canonical");
         return;
