@@ -17,6 +17,15 @@ void np_err(const char *cmd, const char *fmt, ...)
     fputc('\n', stderr);
 }
 
+int np_errf(char *err, size_t errlen, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err, errlen, fmt, ap);
+    va_end(ap);
+    return -1;
+}
+
 int np_parse_u64(const char *s, uint64_t lo, uint64_t hi, uint64_t *out)
 {
     char *end;

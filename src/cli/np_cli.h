@@ -3,6 +3,7 @@
 #ifndef NP_CLI_H
 #define NP_CLI_H
 
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 
@@ -18,6 +19,9 @@ enum {
 
 /* "noisepipe CMD: message" on stderr. */
 void np_err(const char *cmd, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/* A library function's error: the message into err[errlen] (the caller prints it); returns -1. */
+int np_errf(char *err, size_t errlen, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 
 /* Parse a whole decimal or 0x-hex unsigned number; 0, or -1 if malformed/out of [lo, hi]. */
 int np_parse_u64(const char *s, uint64_t lo, uint64_t hi, uint64_t *out);

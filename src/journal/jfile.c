@@ -16,16 +16,8 @@
 
 enum { CRC_SUFFIX = 11 }; /* " *" + 8 hex digits + newline */
 
-static int fail(char *err, size_t errlen, int rc, const char *fmt, ...)
-    __attribute__((format(printf, 4, 5)));
-static int fail(char *err, size_t errlen, int rc, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-    return rc;
-}
+/* The message into err; returns rc (np_errf with a result other than -1). */
+#define fail(err, errlen, rc, ...) (np_errf((err), (errlen), __VA_ARGS__), (rc))
 
 /* Split "TEXT *crc" and check the CRC: 0 (TEXT left NUL-terminated in line), or -1. */
 static int line_crc_ok(char *line)

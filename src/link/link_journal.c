@@ -7,7 +7,6 @@
 #include "np_link.h"
 
 #include <errno.h>
-#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -19,28 +18,24 @@ enum { BINDINGS = 4 };
 
 static void bit_set(uint8_t *bm, uint64_t i) { bm[i >> 3] = (uint8_t)(bm[i >> 3] | 1u << (i & 7u)); }
 
-static int fail(char *err, size_t errlen, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
-static int fail(char *err, size_t errlen, const char *fmt, ...)
+/* Append f to the growing list *a of *n entries (room for *cap). 0, or -1 when out of memory. */
+static int fail_push(np_journal_fail **a, size_t *n, size_t *cap, const np_journal_fail *f)
 {
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-    return -1;
+    if (*n == *cap) {
+        size_t c = *cap ? 2 * *cap : 64;
+        np_journal_fail *t = realloc(*a, c * sizeof *t);
+        if (!t)
+            return -1;
+        *a = t;
+        *cap = c;
+    }
+    (*a)[(*n)++] = *f;
+    return 0;
 }
 
 static int fail_add(np_journal *jn, const np_journal_fail *f)
 {
-    if (jn->n_fails == jn->cap_fails) {
-        size_t cap = jn->cap_fails ? 2 * jn->cap_fails : 64;
-        np_journal_fail *t = realloc(jn->fails, cap * sizeof *t);
-        if (!t)
-            return -1;
-        jn->fails = t;
-        jn->cap_fails = cap;
-    }
-    jn->fails[jn->n_fails++] = *f;
-    return 0;
+    return fail_push(&jn->fails, &jn->n_fails, &jn->cap_fails, f);
 }
 
 static int parse_hex_u64(const char **s, uint64_t *v)
@@ -93,29 +88,22 @@ static int record_line(void *ctx, const np_jfile_info *info, char *line, uint64_
         const char *c = np_jfile_binding(info, "count");
         uint64_t n;
         if (!c || np_parse_u64(c, 0, UINT64_MAX, &n) != 0)
-            return fail(err, errlen, "no usable count= binding");
+            return np_errf(err, errlen, "no usable count= binding");
         jn->n = n;
         jn->checked = calloc((size_t)(n / 8u + 1u), 1);
         if (!jn->checked)
-            return fail(err, errlen, "out of memory");
+            return np_errf(err, errlen, "out of memory");
     }
     if (line[0] == 'E') {
         np_journal_fail f;
         memset(&f, 0, sizeof f);
         if (parse_hex_u64(&s, &f.index) != 0)
-            return fail(err, errlen, "malformed E line");
-        if (rd->n_pend == rd->cap_pend) {
-            size_t cap = rd->cap_pend ? 2 * rd->cap_pend : 64;
-            np_journal_fail *t = realloc(rd->pend, cap * sizeof *t);
-            if (!t)
-                return fail(err, errlen, "out of memory");
-            rd->pend = t;
-            rd->cap_pend = cap;
-        }
+            return np_errf(err, errlen, "malformed E line");
         for (unsigned k = 0; k < NP_UNIT_MAX_FIELDS && *s; k++)
             if (parse_hex_u64(&s, &f.got[k]) != 0)
                 break;
-        rd->pend[rd->n_pend++] = f;
+        if (fail_push(&rd->pend, &rd->n_pend, &rd->cap_pend, &f) != 0)
+            return np_errf(err, errlen, "out of memory");
         return NP_JFILE_OPEN;
     }
     if (line[0] == 'R') {
@@ -123,23 +111,23 @@ static int record_line(void *ctx, const np_jfile_info *info, char *line, uint64_
         if (parse_hex_u64(&s, &first) != 0 || parse_hex_u64(&s, &count) != 0 ||
             parse_hex_u64(&s, &errs) != 0 || count == 0 || first >= jn->n ||
             count > jn->n - first || errs != rd->n_pend)
-            return fail(err, errlen, "malformed R line");
+            return np_errf(err, errlen, "malformed R line");
         for (uint64_t i = first; i < first + count; i++) {
             if (np_journal_has(jn, i))
-                return fail(err, errlen, "vector %llu is journaled twice: the journal cannot be trusted",
+                return np_errf(err, errlen, "vector %llu is journaled twice: the journal cannot be trusted",
                             (unsigned long long)i);
             bit_set(jn->checked, i);
         }
         for (size_t k = 0; k < rd->n_pend; k++)
             if (rd->pend[k].index < first || rd->pend[k].index - first >= count ||
                 fail_add(jn, &rd->pend[k]) != 0)
-                return fail(err, errlen, "E line outside its range");
+                return np_errf(err, errlen, "E line outside its range");
         jn->n_checked += count;
         jn->n_errors += errs;
         rd->n_pend = 0;
         return NP_JFILE_COMMIT;
     }
-    return fail(err, errlen, "unexpected line");
+    return np_errf(err, errlen, "unexpected line");
 }
 
 /* Read the journal at path into jn through record_line: np_jfile_read or np_jfile_resume. */
@@ -148,7 +136,7 @@ static int read_journal(np_journal *jn, const char *path, const bindings *b, int
 {
     np_jfile_info *info = malloc(sizeof *info);
     if (!info)
-        return fail(err, errlen, "out of memory");
+        return np_errf(err, errlen, "out of memory");
     reader rd = { jn, NULL, 0, 0 };
     int rc = resume ? np_jfile_resume(&jn->file, path, journal_magic, b->ptr, BINDINGS, record_line,
                                       &rd, info, err, errlen)
@@ -177,9 +165,9 @@ static int fresh_start_ok(const char *path, char *err, size_t errlen)
     free(probe.checked);
     free(probe.fails);
     if (rc != NP_JFILE_OK)
-        return fail(err, errlen, "%s exists and is not a usable journal (%s); not overwriting it", path, perr);
+        return np_errf(err, errlen, "%s exists and is not a usable journal (%s); not overwriting it", path, perr);
     if (had > 0 && had < n)
-        return fail(err, errlen,
+        return np_errf(err, errlen,
                     "journal %s holds %llu verified vectors of an unfinished stream: continue it with --resume, or delete it",
                     path, (unsigned long long)had);
     return 0;
@@ -195,7 +183,7 @@ int np_journal_open(np_journal *jn, const char *path, const np_link_job *j, int 
     jn->sync_interval = 0.25;
     jn->checked = calloc((size_t)(j->n / 8u + 1u), 1);
     if (!jn->checked)
-        return fail(err, errlen, "out of memory");
+        return np_errf(err, errlen, "out of memory");
     if (!path)
         return 0;
     bindings b;
@@ -203,7 +191,7 @@ int np_journal_open(np_journal *jn, const char *path, const np_link_job *j, int 
     if (resume) {
         int rc = read_journal(jn, path, &b, 1, err, errlen);
         if (rc == NP_JFILE_MISSING)
-            return fail(err, errlen, "cannot resume from journal %s: %s", path, strerror(ENOENT));
+            return np_errf(err, errlen, "cannot resume from journal %s: %s", path, strerror(ENOENT));
         if (rc == NP_JFILE_MISMATCH) {
             size_t n = strlen(err);
             snprintf(err + n, errlen - n, ": it belongs to other vectors, not resuming");
@@ -230,7 +218,7 @@ int np_journal_append(np_journal *jn, uint64_t first, uint64_t count,
     jn->n_errors += n_fails;
     for (size_t k = 0; k < n_fails; k++)
         if (fail_add(jn, &fails[k]) != 0)
-            return fail(err, errlen, "out of memory");
+            return np_errf(err, errlen, "out of memory");
     if (jn->file.fd < 0)
         return 0;
     for (size_t k = 0; k < n_fails; k++) {
@@ -247,7 +235,7 @@ int np_journal_append(np_journal *jn, uint64_t first, uint64_t count,
     return np_jfile_commit(&jn->file, np_now() - jn->file.last_sync >= jn->sync_interval, err, errlen);
 bad:
     np_jfile_discard(&jn->file);
-    return fail(err, errlen, "cannot write journal %s: %s", jn->file.path, errno ? strerror(errno) : "line too long");
+    return np_errf(err, errlen, "cannot write journal %s: %s", jn->file.path, errno ? strerror(errno) : "line too long");
 }
 
 int np_journal_sync(np_journal *jn, char *err, size_t errlen) { return np_jfile_sync(&jn->file, err, errlen); }

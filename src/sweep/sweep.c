@@ -5,7 +5,6 @@
 #include <inttypes.h>
 #include <math.h>
 #include <pthread.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -385,16 +384,6 @@ typedef struct sweep_run {
     uint64_t done;
 } sweep_run;
 
-static int fail(char *err, size_t errlen, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
-static int fail(char *err, size_t errlen, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-    return -1;
-}
-
 /* A block line read back: into run->blk/have. */
 static int resume_line(void *ctx, const np_jfile_info *info, char *line, uint64_t lineno, char *err,
                        size_t errlen)
@@ -405,9 +394,9 @@ static int resume_line(void *ctx, const np_jfile_info *info, char *line, uint64_
     (void)info;
     (void)lineno;
     if (parse_block(line, &b, &s) != 0)
-        return fail(err, errlen, "malformed block line");
+        return np_errf(err, errlen, "malformed block line");
     if (run->have[b] && !np_sweep_stats_equal(&run->blk[b], &s))
-        return fail(err, errlen, "block %u appears twice with different statistics", b);
+        return np_errf(err, errlen, "block %u appears twice with different statistics", b);
     run->blk[b] = s;
     run->have[b] = 1;
     return NP_JFILE_COMMIT;
@@ -426,7 +415,7 @@ static int journal_open(sweep_run *run, char *err, size_t errlen)
     if (run->o->resume) {
         np_jfile_info *info = malloc(sizeof *info);
         if (!info)
-            return fail(err, errlen, "out of memory");
+            return np_errf(err, errlen, "out of memory");
         rc = np_jfile_resume(&run->jf, path, JOURNAL_MAGIC, b.ptr, HEADER_BINDINGS, resume_line, run,
                              info, err, errlen);
         free(info);
@@ -438,7 +427,7 @@ static int journal_open(sweep_run *run, char *err, size_t errlen)
     if (rc == NP_JFILE_MISSING) {
         rc = np_jfile_create(&run->jf, path, JOURNAL_MAGIC, b.ptr, HEADER_BINDINGS, 0, err, errlen);
         if (rc == NP_JFILE_EXISTS)
-            return fail(err, errlen, "journal %s exists: pass --resume to continue it, or remove it",
+            return np_errf(err, errlen, "journal %s exists: pass --resume to continue it, or remove it",
                         path);
     }
     return rc == NP_JFILE_OK ? 0 : -1;
@@ -496,14 +485,14 @@ int np_sweep_run(const np_sweep_opts *o, np_sweep_result *res, char *err, size_t
     memset(res, 0, sizeof *res);
     np_sweep_stats_init(&res->total);
     if (o->x_first >= o->x_end || o->x_end > NP_SWEEP_CELLS)
-        return fail(err, errlen, "x cells %u:%u: need A < B <= 256", o->x_first, o->x_end);
+        return np_errf(err, errlen, "x cells %u:%u: need A < B <= 256", o->x_first, o->x_end);
     const char *why = np_sweep_unit_check(o->unit, o->cfg);
     if (why)
-        return fail(err, errlen, "unit %s: %s", o->unit->name, why);
+        return np_errf(err, errlen, "unit %s: %s", o->unit->name, why);
 
     sweep_run *run = calloc(1, sizeof *run);
     if (!run)
-        return fail(err, errlen, "out of memory");
+        return np_errf(err, errlen, "out of memory");
     run->o = o;
     sweep_unit_init(&run->su, o->unit, o->cfg, o->use_kernel);
     np_jfile_none(&run->jf);
