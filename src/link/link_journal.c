@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /*
  * link_journal.c - the host's journal of verified ranges (docs/usb-protocol.md,
- * section 8; the format in np_link.h): E and R records in a journal file
+ * section 11; the format in np_link.h): E and R records in a journal file
  * (np_jfile.h) bound to the unit, its configuration and the vectors' hash.
  */
 #include "np_link.h"
