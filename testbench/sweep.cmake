@@ -46,7 +46,7 @@ if(CMAKE_SCRIPT_MODE_FILE)
     np_run("sweep|--z|0x0101|--x-cells|0:6|--journal|${JOURNAL}|--resume" 2 other_z)
     np_run("sweep|--z|0x0100|--config|s_frac=10|--x-cells|0:6|--journal|${JOURNAL}|--resume" 2 other_cfg)
     np_run("sweep|--z|0x0100|--x-cells|0:6|--journal|${JOURNAL}" 2 no_resume)
-    if(NOT other_z MATCHES "was written for 'z 0x0100'" OR NOT other_cfg MATCHES "s_frac=12"
+    if(NOT other_z MATCHES "was written for 'z=0x0100'" OR NOT other_cfg MATCHES "s_frac=12"
        OR NOT no_resume MATCHES "exists")
       message(FATAL_ERROR "a mismatched journal was not refused with a clear message")
     endif()

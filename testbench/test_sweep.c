@@ -418,7 +418,7 @@ static int t_journal_refuse(void)
     printf("existing journal, no resume: %s\n", err);
     o.resume = 1;
     o.z = 0x0001;
-    NP_CHECK(np_sweep_run(&o, &r, err, sizeof err) != 0 && strstr(err, "z 0x0000"), "other z");
+    NP_CHECK(np_sweep_run(&o, &r, err, sizeof err) != 0 && strstr(err, "z=0x0000"), "other z");
     printf("other z: %s\n", err);
     o.z = 0x0000;
     o.cfg = &other;

@@ -18,6 +18,15 @@ void np_err(const char *cmd, const char *fmt, ...)
     fputc('\n', stderr);
 }
 
+int np_errf(char *err, size_t errlen, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err, errlen, fmt, ap);
+    va_end(ap);
+    return -1;
+}
+
 /* Digits of base 10 or 16 only: no sign, blank, prefix or suffix; overflow refused. */
 static int parse_digits(const char *s, unsigned base, uint64_t lo, uint64_t hi, uint64_t *out)
 {

@@ -3,6 +3,7 @@
 #ifndef NP_CLI_H
 #define NP_CLI_H
 
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 
@@ -18,6 +19,9 @@ enum {
 
 /* "noisepipe CMD: message" on stderr. */
 void np_err(const char *cmd, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/* A library function's error: the message into err[errlen] (the caller prints it); returns -1. */
+int np_errf(char *err, size_t errlen, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 
 /*
  * Numbers typed by people or read from headers (docs/bad-input.md). Each is

@@ -9,8 +9,10 @@
  *   link_proto.c   frames, CRC-32, record packing, payload layouts: pure C,
  *                  no USB, shared by the host and the emulator (one implementation)
  *   link_board.c   the board side, on the cycle-accurate models (np_unit pipes)
- *   link_host.c    the host side: session, window, verification, journal,
- *                  and the in-process loopback transport to the emulator
+ *   link_job.c     the host's vectors, packed as they travel, and their hash
+ *   link_journal.c the host's journal of verified ranges (on np_jfile.h)
+ *   link_engine.c  the host's protocol engine: session, window, verification
+ *   link_loopback.c the in-process transport: host engine <-> emulator
  *   link_usb.c     the libusb transport (built only with NOISEPIPE_USB)
  *
  * The host engine and the board are byte-stream state machines: the
@@ -24,6 +26,8 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "np_crc32.h"
+#include "np_jfile.h"
 #include "np_unit.h"
 
 /* ------------------------------------------------------------------------- */
@@ -99,12 +103,16 @@ typedef struct np_link_hdr {
 } np_link_hdr;
 
 /*
- * CRC-32/ISO-HDLC (Ethernet, zlib): reflected polynomial 0xEDB88320, init and
- * final XOR 0xFFFFFFFF. np_link_crc32(0, p, n) is the CRC of p[0..n); pass a
+ * The frames' CRC is the project's CRC-32/ISO-HDLC (np_crc32.h: reflected
+ * polynomial 0xEDB88320, init and final XOR 0xFFFFFFFF), the one the
+ * journals' lines carry. np_link_crc32(0, p, n) is the CRC of p[0..n); pass a
  * previous result as crc to continue it. "123456789" -> 0xCBF43926.
  */
-extern const uint32_t np_link_crc_table[256];
-uint32_t np_link_crc32(uint32_t crc, const void *p, size_t n);
+#define np_link_crc_table np_crc32_table
+static inline uint32_t np_link_crc32(uint32_t crc, const void *p, size_t n)
+{
+    return np_crc32(crc, p, n);
+}
 
 static inline void np_link_put16(uint8_t *p, unsigned v)
 {
@@ -333,7 +341,7 @@ const np_board_stats *np_board_get_stats(const np_board *b);
 const np_link_error *np_board_last_error(const np_board *b);
 
 /* ------------------------------------------------------------------------- */
-/* Vectors to stream (link_host.c): packed as they travel. */
+/* Vectors to stream (link_job.c): packed as they travel. */
 
 typedef struct np_link_job {
     const np_unit *unit;
@@ -359,18 +367,21 @@ int np_link_job_random(np_link_job *j, const np_unit *u, const void *cfg, uint64
 void np_link_job_free(np_link_job *j);
 
 /* ------------------------------------------------------------------------- */
-/* Journal (link_host.c): an append-only text file of verified ranges.
+/* Journal (link_journal.c): the verified ranges, in a journal file (np_jfile.h).
  *
- *   # noisepipe stream journal 1
- *   J <hash> <count> <unit> <configuration...> *<crc>
+ *   # noisepipe stream journal 2
+ *   unit=<unit> *<crc>
+ *   config=<configuration...> *<crc>
+ *   count=<vectors, decimal> *<crc>
+ *   vectors=<hash, 16 hex digits> *<crc>   np_link_job.hash: unit, configuration, every record
  *   E <index> <got word>... *<crc>          a failing vector of the next R line
  *   R <first> <count> <errors> *<crc>       vectors first..first+count-1 verified
  *
- * Numbers are hex (hash 16 digits), words hex; <crc> is the CRC-32 of the
- * line up to the blank before '*'. E lines count only with the R line that
- * covers them; a torn last line (a kill mid-write) is ignored, so what it
- * held is sent again; a complete line with a bad CRC, a range that overlaps
- * another, or a J line for other vectors makes the journal unusable.
+ * Numbers in E and R lines are hex, words hex; <crc> is the CRC-32 of the
+ * line up to the blank before '*'. An E line counts only with the R line that
+ * commits it; a torn tail (a kill mid-write) is ignored and cut off, so what
+ * it held is sent again; a complete line with a bad CRC, a range that
+ * overlaps another, or bindings of other vectors make the journal unusable.
  */
 
 typedef struct np_journal_fail {
@@ -379,8 +390,7 @@ typedef struct np_journal_fail {
 } np_journal_fail;
 
 typedef struct np_journal {
-    int fd;                /* -1: in memory only */
-    char path[4096];
+    np_jfile file;         /* file.fd -1: in memory only */
     uint64_t n;            /* vectors in the job */
     uint8_t *checked;      /* bitmap: 1 = a result is journaled */
     uint64_t n_checked, n_errors;
@@ -388,11 +398,7 @@ typedef struct np_journal {
     np_journal_fail *fails; /* every failing vector, in journal order */
     size_t n_fails, cap_fails;
     unsigned n_out;
-    double last_sync;      /* np_now() of the last fdatasync */
     double sync_interval;  /* seconds between syncs (default 0.25) */
-    uint64_t syncs;
-    char *pend;            /* the line(s) being appended */
-    size_t pend_len, pend_cap;
 } np_journal;
 
 /*
@@ -416,7 +422,7 @@ static inline int np_journal_has(const np_journal *jn, uint64_t i)
 }
 
 /* ------------------------------------------------------------------------- */
-/* Host engine (link_host.c). */
+/* Host engine (link_engine.c). */
 
 typedef enum np_link_fault {
     NP_FAULT_NONE = 0,

@@ -2,11 +2,9 @@
 /* The exhaustive error sweep (np_sweep.h): statistics, blocks, journal, threads. */
 #include "np_sweep.h"
 
-#include <errno.h>
 #include <inttypes.h>
 #include <math.h>
 #include <pthread.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,6 +12,7 @@
 
 #include "np_cli.h"
 #include "np_fixed.h"
+#include "np_jfile.h"
 
 /* ---------------------------------------------------------------- statistics */
 
@@ -289,67 +288,57 @@ int np_sweep_block(const np_unit *u, const void *cfg, uint16_t z, unsigned xcell
 /* ---------------------------------------------------------------- journal */
 
 /*
- * A journal is text: four header lines naming what was swept, then one line
- * per completed block, in the order blocks completed, each ending with an
- * FNV-1a checksum of the rest of the line:
+ * A journal (np_jfile.h) bound to unit, configuration and slice, then one
+ * line per completed block, in the order blocks completed:
  *
- *   noisepipe-sweep-journal 1
- *   unit classic3
- *   config out_bits=8 s_frac=12 lerp_frac=11
- *   z 0x0000
+ *   noisepipe-sweep-journal 2
+ *   unit=classic3 *crc
+ *   config=out_bits=8 s_frac=12 lerp_frac=11 *crc
+ *   z=0x0000 *crc
  *   block 17 n=16777216 cr=... over=0 max=0x1.4p-1 at=0x1134,0x9a01 sum=0x1.8p+21
- *     sum2=0x1.2p+20 hist=c0,c1,...,c32 check=1a2b3c4d        (one line)
+ *     sum2=0x1.2p+20 hist=c0,c1,...,c32 *1a2b3c4d        (one line)
  *
  * Counts are decimal, doubles C99 hex (%a), so a resumed block merges to the
- * same bits as a computed one. A last line without its newline is what a
- * killed run leaves behind: resuming cuts it off and computes that block again.
+ * same bits as a computed one. A torn last line is what a killed run leaves
+ * behind: resuming cuts it off and computes that block again.
  */
-#define JOURNAL_MAGIC "noisepipe-sweep-journal 1"
-enum { HEADER_LINES = 4, JLINE_MAX = 1024 };
+#define JOURNAL_MAGIC "noisepipe-sweep-journal 2"
+enum { HEADER_BINDINGS = 3 };
 
-static uint32_t fnv1a(const char *s, size_t n)
-{
-    uint32_t h = 2166136261u;
-    for (size_t i = 0; i < n; i++)
-        h = (h ^ (uint32_t)(uint8_t)s[i]) * 16777619u;
-    return h;
-}
+typedef struct journal_binds {
+    char text[HEADER_BINDINGS][NP_JFILE_TEXT_MAX];
+    const char *ptr[HEADER_BINDINGS];
+} journal_binds;
 
-static void journal_header(const np_sweep_opts *o, char lines[HEADER_LINES][JLINE_MAX])
+static void journal_bindings(const np_sweep_opts *o, journal_binds *b)
 {
-    char cfgtext[JLINE_MAX - 16];
+    char cfgtext[NP_JFILE_TEXT_MAX - 16];
     np_unit_cfg_format(o->unit, o->cfg, cfgtext, sizeof cfgtext);
-    snprintf(lines[0], JLINE_MAX, "%s", JOURNAL_MAGIC);
-    snprintf(lines[1], JLINE_MAX, "unit %s", o->unit->name);
-    snprintf(lines[2], JLINE_MAX, "config %s", cfgtext);
-    snprintf(lines[3], JLINE_MAX, "z 0x%04x", (unsigned)o->z);
+    snprintf(b->text[0], NP_JFILE_TEXT_MAX, "unit=%s", o->unit->name);
+    snprintf(b->text[1], NP_JFILE_TEXT_MAX, "config=%s", cfgtext);
+    snprintf(b->text[2], NP_JFILE_TEXT_MAX, "z=0x%04x", (unsigned)o->z);
+    for (unsigned k = 0; k < HEADER_BINDINGS; k++)
+        b->ptr[k] = b->text[k];
 }
 
-/* The block line, with its newline; its length. */
-static size_t block_line(char *buf, unsigned blk, const np_sweep_stats *s)
+/* Add the block line to the journal's pending record. 0, or -1. */
+static int block_line(np_jfile *jf, unsigned blk, const np_sweep_stats *s)
 {
-    int n = snprintf(buf, JLINE_MAX,
-                     "block %u n=%" PRIu64 " cr=%" PRIu64 " over=%" PRIu64
-                     " max=%a at=0x%04x,0x%04x sum=%a sum2=%a hist=",
-                     blk, s->n, s->cr, s->over, s->max_err, (unsigned)s->max_x,
-                     (unsigned)s->max_y, s->sum, s->sum2);
-    size_t len = (size_t)n;
+    char hist[NP_SWEEP_HIST_BINS * 21];
+    size_t len = 0;
     for (unsigned b = 0; b < NP_SWEEP_HIST_BINS; b++)
-        len += (size_t)snprintf(buf + len, JLINE_MAX - len, "%s%" PRIu64, b ? "," : "", s->hist[b]);
-    len += (size_t)snprintf(buf + len, JLINE_MAX - len, " check=%08" PRIx32 "\n", fnv1a(buf, len));
-    return len;
+        len += (size_t)snprintf(hist + len, sizeof hist - len, "%s%" PRIu64, b ? "," : "", s->hist[b]);
+    return np_jfile_add(jf,
+                        "block %u n=%" PRIu64 " cr=%" PRIu64 " over=%" PRIu64
+                        " max=%a at=0x%04x,0x%04x sum=%a sum2=%a hist=%s",
+                        blk, s->n, s->cr, s->over, s->max_err, (unsigned)s->max_x,
+                        (unsigned)s->max_y, s->sum, s->sum2, hist);
 }
 
-/* Parse one block line (without its newline); 0, or -1 when malformed. */
+/* Parse one block line (its checksum checked and cut off); 0, or -1 when malformed. */
 static int parse_block(const char *line, unsigned *blk, np_sweep_stats *s)
 {
-    const char *ck = strstr(line, " check=");
-    if (!ck || strlen(ck) != 15)
-        return -1;
     char *end;
-    unsigned long want = strtoul(ck + 7, &end, 16);
-    if (*end != '\0' || (uint32_t)want != fnv1a(line, (size_t)(ck - line)))
-        return -1;
     unsigned b, mx, my;
     int used = -1;
     np_sweep_stats_init(s);
@@ -371,7 +360,7 @@ static int parse_block(const char *line, unsigned *blk, np_sweep_stats *s)
         total += s->hist[k];
         p = end;
     }
-    if (p != ck || b >= NP_SWEEP_CELLS || mx > 0xffffu || my > 0xffffu ||
+    if (*p != '\0' || b >= NP_SWEEP_CELLS || mx > 0xffffu || my > 0xffffu ||
         s->n != NP_SWEEP_BLOCK_INPUTS || total != s->n || s->cr > s->n || s->over > s->n)
         return -1;
     s->max_x = (uint16_t)mx;
@@ -388,142 +377,60 @@ typedef struct sweep_run {
     unsigned char have[NP_SWEEP_CELLS];
     unsigned todo[NP_SWEEP_CELLS], n_todo, next;
     pthread_mutex_t mu;
-    FILE *jf;
+    np_jfile jf;
     int failed;
     char err[512];
     np_progress prog;
     uint64_t done;
 } sweep_run;
 
-static int fail(char *err, size_t errlen, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
-static int fail(char *err, size_t errlen, const char *fmt, ...)
+/* A block line read back: into run->blk/have. */
+static int resume_line(void *ctx, const np_jfile_info *info, char *line, uint64_t lineno, char *err,
+                       size_t errlen)
 {
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-    return -1;
+    sweep_run *run = ctx;
+    unsigned b;
+    np_sweep_stats s;
+    (void)info;
+    (void)lineno;
+    if (parse_block(line, &b, &s) != 0)
+        return np_errf(err, errlen, "malformed block line");
+    if (run->have[b] && !np_sweep_stats_equal(&run->blk[b], &s))
+        return np_errf(err, errlen, "block %u appears twice with different statistics", b);
+    run->blk[b] = s;
+    run->have[b] = 1;
+    return NP_JFILE_COMMIT;
 }
 
 /*
- * Read a journal to resume: check its header against this run, load its
- * blocks into run->blk/have, cut a torn last line off. Opens run->jf for
- * appending. A missing file is started afresh.
+ * Open the journal: resume it (its blocks into run->blk/have; a missing file
+ * is started afresh) or start it (it must not exist).
  */
-static int journal_resume(sweep_run *run, char *err, size_t errlen)
+static int journal_open(sweep_run *run, char *err, size_t errlen)
 {
     const char *path = run->o->journal;
-    char hdr[HEADER_LINES][JLINE_MAX];
-    journal_header(run->o, hdr);
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        if (errno != ENOENT)
-            return fail(err, errlen, "cannot read journal %s: %s", path, strerror(errno));
-        return 1; /* start it */
-    }
-    size_t cap = 1 << 16, len = 0;
-    char *text = malloc(cap + 1);
-    for (size_t got; text && (got = fread(text + len, 1, cap - len, f)) > 0;) {
-        len += got;
-        if (len == cap) {
-            char *t = realloc(text, 2 * cap + 1);
-            if (!t) {
-                free(text);
-                text = NULL;
-                break;
-            }
-            text = t;
-            cap *= 2;
+    journal_binds b;
+    journal_bindings(run->o, &b);
+    int rc = NP_JFILE_MISSING;
+    if (run->o->resume) {
+        np_jfile_info *info = malloc(sizeof *info);
+        if (!info)
+            return np_errf(err, errlen, "out of memory");
+        rc = np_jfile_resume(&run->jf, path, JOURNAL_MAGIC, b.ptr, HEADER_BINDINGS, resume_line, run,
+                             info, err, errlen);
+        free(info);
+        if (rc == NP_JFILE_MISMATCH) {
+            size_t n = strlen(err);
+            snprintf(err + n, errlen - n, ": not resuming (use another journal file)");
         }
     }
-    int rd_err = ferror(f);
-    fclose(f);
-    if (!text)
-        return fail(err, errlen, "cannot read journal %s: out of memory", path);
-    if (rd_err) {
-        free(text);
-        return fail(err, errlen, "cannot read journal %s", path);
-    }
-    text[len] = '\0';
-
-    int rc = 0;
-    size_t pos = 0, keep = 0; /* keep: bytes of whole lines */
-    unsigned lineno = 0;
-    char msg[JLINE_MAX * 2 + 128];
-    while (pos < len && rc == 0) {
-        char *nl = memchr(text + pos, '\n', len - pos);
-        if (!nl)
-            break; /* torn last line */
-        *nl = '\0';
-        const char *line = text + pos;
-        lineno++;
-        if (lineno <= HEADER_LINES) {
-            if (strcmp(line, hdr[lineno - 1]) != 0) {
-                if (lineno == 1)
-                    snprintf(msg, sizeof msg, "%s is not a noisepipe sweep journal", path);
-                else
-                    snprintf(msg, sizeof msg,
-                             "journal %s was written for '%s', this run is '%s': not resuming "
-                             "(use another journal file)",
-                             path, line, hdr[lineno - 1]);
-                snprintf(err, errlen, "%s", msg);
-                rc = -1;
-            }
-        } else {
-            unsigned b;
-            np_sweep_stats s;
-            if (parse_block(line, &b, &s) != 0) {
-                snprintf(err, errlen, "journal %s, line %u: malformed block line", path, lineno);
-                rc = -1;
-            } else if (run->have[b] && !np_sweep_stats_equal(&run->blk[b], &s)) {
-                snprintf(err, errlen, "journal %s, line %u: block %u appears twice with different statistics",
-                         path, lineno, b);
-                rc = -1;
-            } else {
-                run->blk[b] = s;
-                run->have[b] = 1;
-            }
-        }
-        pos = (size_t)(nl - text) + 1;
-        keep = pos;
-    }
-    free(text);
-    if (rc != 0)
-        return rc;
-    if (lineno < HEADER_LINES)
-        return fail(err, errlen, "journal %s: incomplete header%s", path,
-                    len ? "" : " (empty file)");
-    if (keep < len) {
-        fprintf(stderr, "noisepipe sweep: journal %s: dropping an incomplete last line (%zu bytes)\n",
-                path, len - keep);
-        if (truncate(path, (off_t)keep) != 0)
-            return fail(err, errlen, "cannot truncate journal %s: %s", path, strerror(errno));
-    }
-    run->jf = fopen(path, "ab");
-    if (!run->jf)
-        return fail(err, errlen, "cannot append to journal %s: %s", path, strerror(errno));
-    return 0;
-}
-
-static int journal_flush(FILE *f) { return fflush(f) != 0 || fsync(fileno(f)) != 0 ? -1 : 0; }
-
-static int journal_start(sweep_run *run, char *err, size_t errlen)
-{
-    const char *path = run->o->journal;
-    char hdr[HEADER_LINES][JLINE_MAX];
-    journal_header(run->o, hdr);
-    run->jf = fopen(path, "wbx"); /* never overwrite a journal */
-    if (!run->jf) {
-        if (errno == EEXIST)
-            return fail(err, errlen, "journal %s exists: pass --resume to continue it, or remove it",
+    if (rc == NP_JFILE_MISSING) {
+        rc = np_jfile_create(&run->jf, path, JOURNAL_MAGIC, b.ptr, HEADER_BINDINGS, 0, err, errlen);
+        if (rc == NP_JFILE_EXISTS)
+            return np_errf(err, errlen, "journal %s exists: pass --resume to continue it, or remove it",
                         path);
-        return fail(err, errlen, "cannot create journal %s: %s", path, strerror(errno));
     }
-    for (unsigned k = 0; k < HEADER_LINES; k++)
-        fprintf(run->jf, "%s\n", hdr[k]);
-    if (journal_flush(run->jf) != 0)
-        return fail(err, errlen, "cannot write journal %s: %s", path, strerror(errno));
-    return 0;
+    return rc == NP_JFILE_OK ? 0 : -1;
 }
 
 /* ---------------------------------------------------------------- threads */
@@ -547,13 +454,16 @@ static void *worker(void *arg)
         run->blk[blk] = s;
         run->have[blk] = 1;
         run->done += s.n;
-        if (run->jf) {
-            char line[JLINE_MAX];
-            size_t n = block_line(line, blk, &s);
-            if (fwrite(line, 1, n, run->jf) != n || journal_flush(run->jf) != 0) {
+        if (run->jf.fd >= 0) {
+            /* Synced before the next block is taken: a block counts once it is durable. */
+            char jerr[sizeof run->err];
+            if (block_line(&run->jf, blk, &s) != 0) {
                 run->failed = 1;
-                snprintf(run->err, sizeof run->err, "cannot write journal %s: %s", run->o->journal,
-                         strerror(errno));
+                snprintf(run->err, sizeof run->err, "cannot write journal %s: line too long or out of memory",
+                         run->o->journal);
+            } else if (np_jfile_commit(&run->jf, 1, jerr, sizeof jerr) != 0) {
+                run->failed = 1;
+                snprintf(run->err, sizeof run->err, "%s", jerr);
             }
         }
         if (run->o->progress)
@@ -575,25 +485,19 @@ int np_sweep_run(const np_sweep_opts *o, np_sweep_result *res, char *err, size_t
     memset(res, 0, sizeof *res);
     np_sweep_stats_init(&res->total);
     if (o->x_first >= o->x_end || o->x_end > NP_SWEEP_CELLS)
-        return fail(err, errlen, "x cells %u:%u: need A < B <= 256", o->x_first, o->x_end);
+        return np_errf(err, errlen, "x cells %u:%u: need A < B <= 256", o->x_first, o->x_end);
     const char *why = np_sweep_unit_check(o->unit, o->cfg);
     if (why)
-        return fail(err, errlen, "unit %s: %s", o->unit->name, why);
+        return np_errf(err, errlen, "unit %s: %s", o->unit->name, why);
 
     sweep_run *run = calloc(1, sizeof *run);
     if (!run)
-        return fail(err, errlen, "out of memory");
+        return np_errf(err, errlen, "out of memory");
     run->o = o;
     sweep_unit_init(&run->su, o->unit, o->cfg, o->use_kernel);
-    int rc = 0;
-    if (o->journal) {
-        rc = o->resume ? journal_resume(run, err, errlen) : journal_start(run, err, errlen);
-        if (rc == 1)
-            rc = journal_start(run, err, errlen);
-    }
-    if (rc != 0) {
-        if (run->jf)
-            fclose(run->jf);
+    np_jfile_none(&run->jf);
+    if (o->journal && journal_open(run, err, errlen) != 0) {
+        np_jfile_close(&run->jf);
         free(run);
         return -1;
     }
@@ -630,7 +534,7 @@ int np_sweep_run(const np_sweep_opts *o, np_sweep_result *res, char *err, size_t
     res->seconds = np_now() - t0;
     res->computed = run->done;
 
-    if (run->jf && fclose(run->jf) != 0 && !run->failed) {
+    if (np_jfile_close(&run->jf) != 0 && !run->failed) {
         run->failed = 1;
         snprintf(run->err, sizeof run->err, "cannot close journal %s", o->journal);
     }

@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * np_vec.h - golden test vectors: the file format with its one reader and
- * one writer (vecfile.c), the case generator (vecgen.c), the driver that
+ * np_vec.h - golden test vectors: the file format with its columns and
+ * packed words (vec_pack.c), its one reader (vec_read.c) and one writer
+ * (vec_write.c), the case generator (vecgen.c), the driver that
  * runs vectors through a unit's cycle-accurate model (vecdrive.c) and the
  * verifier (verify.c). Everything works on any np_unit; the format is
  * specified in docs/vectors.md.
@@ -115,7 +116,7 @@ uint64_t np_vec_ref_bits(double v);
  */
 void np_vec_compute(const np_vec_header *h, const uint64_t *in, uint64_t *out, uint64_t *ref);
 
-/* --- Reading (vecfile.c) --- */
+/* --- Reading (vec_read.c) --- */
 
 /* A line source: a file or stdin, one reused buffer (no per-line allocation). */
 typedef struct np_vec_lines {
@@ -173,7 +174,7 @@ int np_vec_results_open(np_vec_results *rr, const char *path, const np_vec_heade
 int np_vec_results_read(np_vec_results *rr, np_vec_rec *rec);
 void np_vec_results_close(np_vec_results *rr);
 
-/* --- Writing (vecfile.c) --- */
+/* --- Writing (vec_write.c) --- */
 
 typedef struct np_vec_writer {
     FILE *f;

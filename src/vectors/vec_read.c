@@ -1,77 +1,19 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * vecfile.c - the vector file format: its one reader, one results reader and
- * one writer (text, $readmemh, .coe, results). docs/vectors.md is the
- * specification; every message names FILE:LINE and, for a field, its column.
+ * vec_read.c - the vector file format's one reader and its device results
+ * reader: header lines, columns, every message naming FILE:LINE and, for a
+ * field, its column. docs/vectors.md is the specification.
  */
 #include "np_vec.h"
 
 #include <errno.h>
-#include <fcntl.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/types.h>
-#include <unistd.h>
 
 #include "np_cli.h"
-
-static const char *const kind_name[NP_VEC_KINDS] = { "in", "out", "ref", "got" };
-static const char *const kind_suffix[NP_VEC_KINDS] = { "", "", ".ref", ".got" };
-
-/* Hex digit value + 1, 0 for a character that is not a hex digit. */
-static const unsigned char hexval1[256] = {
-    ['0'] = 1,  ['1'] = 2,  ['2'] = 3,  ['3'] = 4,  ['4'] = 5,  ['5'] = 6,  ['6'] = 7,
-    ['7'] = 8,  ['8'] = 9,  ['9'] = 10, ['a'] = 11, ['b'] = 12, ['c'] = 13, ['d'] = 14,
-    ['e'] = 15, ['f'] = 16, ['A'] = 11, ['B'] = 12, ['C'] = 13, ['D'] = 14, ['E'] = 15,
-    ['F'] = 16,
-};
-static const char hexdigit[16] = "0123456789abcdef";
-
-void np_vec_unit_names(char *buf, size_t len)
-{
-    size_t at = 0;
-    buf[0] = '\0';
-    for (size_t i = 0; np_units[i] && at < len; i++)
-        at += (size_t)snprintf(buf + at, len - at, "%s%s", i ? ", " : "", np_units[i]->name);
-}
-
-static unsigned hex_digits(unsigned bits) { return (bits + 3u) / 4u; }
-
-int np_vec_format_parse(const char *name, np_vec_format *fmt)
-{
-    static const char *const names[] = { "text", "readmemh", "coe", "results" };
-    for (unsigned k = 0; k < sizeof names / sizeof names[0]; k++)
-        if (strcmp(name, names[k]) == 0) {
-            *fmt = (np_vec_format)k;
-            return 0;
-        }
-    return -1;
-}
-
-double np_vec_ref_value(uint64_t bits)
-{
-    double v;
-    _Static_assert(sizeof v == sizeof bits, "binary64 double");
-    memcpy(&v, &bits, sizeof v);
-    return v;
-}
-
-uint64_t np_vec_ref_bits(double v)
-{
-    uint64_t bits;
-    memcpy(&bits, &v, sizeof bits);
-    return bits;
-}
-
-void np_vec_compute(const np_vec_header *h, const uint64_t *in, uint64_t *out, uint64_t *ref)
-{
-    double r[NP_UNIT_MAX_FIELDS];
-    h->unit->eval(&h->cfg, in, out);
-    h->unit->ref(&h->cfg, in, r);
-    for (unsigned k = 0; k < h->fields.n_out; k++)
-        ref[k] = np_vec_ref_bits(r[k]);
-}
+#include "vec_internal.h"
 
 /* np_vec_header_init; all: spec gives every key exactly once (a '# config' line, np_unit_configure_all). */
 static int header_init(np_vec_header *h, const np_unit *u, const char *spec, int all, char *err, size_t errlen)
@@ -88,105 +30,6 @@ static int header_init(np_vec_header *h, const np_unit *u, const char *spec, int
 int np_vec_header_init(np_vec_header *h, const np_unit *u, const char *spec, char *err, size_t errlen)
 {
     return header_init(h, u, spec, 0, err, errlen);
-}
-
-unsigned np_vec_columns(const np_vec_header *h, unsigned mask, np_vec_col *cols)
-{
-    unsigned n = 0;
-    for (unsigned kind = 0; kind < NP_VEC_KINDS; kind++) {
-        if (!(mask & (1u << kind)))
-            continue;
-        unsigned nf = kind == NP_VEC_IN ? h->fields.n_in : h->fields.n_out;
-        for (unsigned k = 0; k < nf; k++, n++) {
-            const np_field *f = kind == NP_VEC_IN ? &h->fields.in[k] : &h->fields.out[k];
-            np_vec_col *c = &cols[n];
-            snprintf(c->name, sizeof c->name, "%s%s", f->name, kind_suffix[kind]);
-            c->kind = (np_vec_kind)kind;
-            c->field = k;
-            c->bits = kind == NP_VEC_REF ? NP_VEC_REF_BITS : f->bits;
-            c->digits = hex_digits(c->bits);
-            snprintf(c->format, sizeof c->format, "%s", kind == NP_VEC_REF ? "binary64" : f->format);
-        }
-    }
-    return n;
-}
-
-/* "NAME KIND BITS FORMAT": a column as a "# field" header line declares it. */
-static void col_decl(const np_vec_col *c, char *buf, size_t len)
-{
-    snprintf(buf, len, "%.23s %s %u %.31s", c->name, kind_name[c->kind], c->bits, c->format);
-}
-
-/* ------------------------------------------------------------------------- */
-/* Packed words: fields concatenated MSB-first, as $readmemh and .coe hold them. */
-
-enum { PACK_LIMBS = (1 + 2 * NP_UNIT_MAX_FIELDS * 64) / 64 + 2 };
-
-/* OR v (masked to bits, 1..64) into bits [pos, pos + bits) of the little-endian limbs. */
-static void limbs_put(uint64_t *limb, unsigned pos, unsigned bits, uint64_t v)
-{
-    unsigned q = pos / 64u, r = pos % 64u;
-    v &= np_vec_mask(bits);
-    limb[q] |= v << r;
-    if (r != 0 && r + bits > 64u)
-        limb[q + 1u] |= v >> (64u - r);
-}
-
-static uint64_t limbs_get(const uint64_t *limb, unsigned pos, unsigned bits)
-{
-    unsigned q = pos / 64u, r = pos % 64u;
-    uint64_t v = limb[q] >> r;
-    if (r != 0 && r + bits > 64u)
-        v |= limb[q + 1u] << (64u - r);
-    return v & np_vec_mask(bits);
-}
-
-static unsigned sum_bits(const unsigned *bits, unsigned n)
-{
-    unsigned t = 0;
-    for (unsigned k = 0; k < n; k++)
-        t += bits[k];
-    return t;
-}
-
-/*
- * Write {vals[0], ..., vals[n-1]} (vals[k] is bits[k] wide, vals[0] most
- * significant) as ceil(total/4) hex digits at p; returns the digit count.
- */
-static unsigned pack_hex(char *p, const uint64_t *vals, const unsigned *bits, unsigned n)
-{
-    uint64_t limb[PACK_LIMBS] = { 0 };
-    unsigned pos = 0;
-    for (unsigned k = n; k-- > 0;) {
-        limbs_put(limb, pos, bits[k], vals[k]);
-        pos += bits[k];
-    }
-    unsigned nd = hex_digits(pos);
-    for (unsigned d = 0; d < nd; d++)
-        p[nd - 1u - d] = hexdigit[limbs_get(limb, 4u * d, 4u)];
-    return nd;
-}
-
-/*
- * Inverse of pack_hex for a token of exactly ceil(total/4) hex digits that
- * the caller checked: 0, or -1 when bits above the total are set.
- */
-static int unpack_hex(const char *tok, unsigned nd, const unsigned *bits, unsigned n,
-                      uint64_t *vals)
-{
-    uint64_t limb[PACK_LIMBS] = { 0 };
-    unsigned total = sum_bits(bits, n);
-    for (unsigned d = 0; d < nd; d++)
-        limbs_put(limb, 4u * d, 4u, (uint64_t)(hexval1[(unsigned char)tok[nd - 1u - d]] - 1u));
-    unsigned spare = 4u * nd - total; /* pad bits of the top digit */
-    if (spare && limbs_get(limb, total, spare) != 0)
-        return -1;
-    unsigned pos = 0;
-    for (unsigned k = n; k-- > 0;) {
-        vals[k] = limbs_get(limb, pos, bits[k]);
-        pos += bits[k];
-    }
-    return 0;
 }
 
 /* ------------------------------------------------------------------------- */
@@ -302,7 +145,7 @@ static int parse_hex(np_vec_lines *L, const np_vec_col *c, const char *tok, size
                     c->name, len, shown, tok, c->digits, c->format);
     uint64_t acc = 0;
     for (size_t k = 0; k < len; k++) {
-        unsigned d = hexval1[(unsigned char)tok[k]];
+        unsigned d = np__vec_hexval1[(unsigned char)tok[k]];
         if (d == 0)
             return lerr(L, "field %s: non-hex digit '%c' in '%.*s'", c->name, tok[k], shown, tok);
         acc = acc << 4 | (uint64_t)(d - 1u);
@@ -448,7 +291,7 @@ static int header_fields(np_vec_reader *r, const hdr_state *hs, uint64_t at)
     unsigned n_all = np_vec_columns(&r->h, NP_VEC_M_IN | NP_VEC_M_OUT | NP_VEC_M_REF | NP_VEC_M_GOT, cols);
     char want[256];
     for (unsigned k = 0; k < n_all && k < hs->n_field; k++) {
-        col_decl(&cols[k], want, sizeof want);
+        np__vec_col_decl(&cols[k], want, sizeof want);
         if (strcmp(hs->field[k].text, want) != 0)
             return hdr_err(r, hs->field[k].line,
                            "field %s: header declares '%s', but unit %s (%s) has '%s'",
@@ -458,7 +301,7 @@ static int header_fields(np_vec_reader *r, const hdr_state *hs, uint64_t at)
         return hdr_err(r, hs->field[n_all].line, "field: '%s' is not a field of unit %s",
                        hs->field[n_all].text, r->h.unit->name);
     if (hs->n_field != n_base && hs->n_field != n_all) {
-        col_decl(&cols[hs->n_field], want, sizeof want);
+        np__vec_col_decl(&cols[hs->n_field], want, sizeof want);
         return hdr_err(r, at, "missing header line '# field %s'", want);
     }
     r->h.has_got = hs->n_field == n_all;
@@ -607,7 +450,7 @@ int np_vec_results_open(np_vec_results *rr, const char *path, const np_vec_heade
     unsigned bits = 0;
     for (unsigned k = 0; k < rr->n_cols; k++)
         bits += rr->cols[k].bits;
-    rr->packed_digits = hex_digits(bits);
+    rr->packed_digits = np__vec_hex_digits(bits);
     return lines_open(&rr->L, path);
 }
 
@@ -619,11 +462,11 @@ static int results_packed(np_vec_results *rr, const char *s, np_vec_rec *rec)
     for (unsigned k = 0; k < rr->n_cols; k++)
         bits[k] = rr->cols[k].bits;
     for (size_t k = 0; k < len; k++)
-        if (!hexval1[(unsigned char)s[k]])
+        if (!np__vec_hexval1[(unsigned char)s[k]])
             return lerr(&rr->L, "packed results word: non-hex digit '%c' in '%s'", s[k], s);
-    if (unpack_hex(s, rr->packed_digits, bits, rr->n_cols, rec->w[NP_VEC_GOT]) != 0)
+    if (np__vec_unpack_hex(s, rr->packed_digits, bits, rr->n_cols, rec->w[NP_VEC_GOT]) != 0)
         return lerr(&rr->L, "packed results word '%s' out of range for %u bits", s,
-                    sum_bits(bits, rr->n_cols));
+                    np__vec_sum_bits(bits, rr->n_cols));
     return 0;
 }
 
@@ -663,170 +506,3 @@ int np_vec_results_read(np_vec_results *rr, np_vec_rec *rec)
 }
 
 void np_vec_results_close(np_vec_results *rr) { lines_close(&rr->L); }
-
-/* ------------------------------------------------------------------------- */
-/* Writer. */
-
-static int werr(np_vec_writer *w, const char *what)
-{
-    snprintf(w->err, sizeof w->err, "%.300s: %.80s: %.100s", w->atomic ? w->path : "<stdout>", what,
-             strerror(errno));
-    return -1;
-}
-
-static int is_packed(np_vec_format fmt) { return fmt == NP_VEC_READMEMH || fmt == NP_VEC_COE; }
-
-/* Bits of the packed word {1'b1 valid, IN..., OUT...}: lists it in bits[]; returns the count. */
-static unsigned word_layout(const np_vec_writer *w, unsigned *bits)
-{
-    bits[0] = 1;
-    for (unsigned k = 0; k < w->n_cols; k++)
-        bits[k + 1u] = w->cols[k].bits;
-    return w->n_cols + 1u;
-}
-
-/* "[56] valid [55:40] x ..." */
-static void word_ruler(const np_vec_writer *w, char *buf, size_t len)
-{
-    unsigned pos = w->word_bits, at = 0;
-    for (unsigned k = 0; k <= w->n_cols && at < len; k++) {
-        unsigned b = k ? w->cols[k - 1u].bits : 1u;
-        const char *name = k ? w->cols[k - 1u].name : "valid";
-        int n = b == 1 ? snprintf(buf + at, len - at, "%s[%u] %s", k ? " " : "", pos - 1u, name)
-                       : snprintf(buf + at, len - at, "%s[%u:%u] %s", k ? " " : "", pos - 1u,
-                                  pos - b, name);
-        if (n < 0)
-            break;
-        at += (unsigned)n;
-        pos -= b;
-    }
-}
-
-static void write_header(np_vec_writer *w)
-{
-    const np_vec_header *h = w->h;
-    const char *c = w->fmt == NP_VEC_TEXT ? "#" : w->fmt == NP_VEC_COE ? ";" : "//";
-    FILE *f = w->f;
-    fprintf(f, "%s noisepipe %s %d\n", c, w->fmt == NP_VEC_RESULTS ? "results" : "vectors",
-            NP_VEC_VERSION);
-    fprintf(f, "%s unit %s\n%s config %s\n", c, h->unit->name, c, h->cfg_text);
-    if (h->has_seed)
-        fprintf(f, "%s seed %llu\n", c, (unsigned long long)h->seed);
-    if (h->level)
-        fprintf(f, "%s level %u\n", c, h->level);
-    fprintf(f, "%s count %llu\n", c, (unsigned long long)h->count);
-    for (unsigned k = 0; k < w->n_cols; k++) {
-        char decl[256];
-        col_decl(&w->cols[k], decl, sizeof decl);
-        fprintf(f, "%s field %s\n", c, decl);
-    }
-    if (h->sources[0])
-        fprintf(f, "%s sources %s\n", c, h->sources);
-    if (is_packed(w->fmt)) {
-        char ruler[NP_VEC_MAX_COLS * 32];
-        word_ruler(w, ruler, sizeof ruler);
-        fprintf(f, "%s word %u bits = %u hex digits per transaction, MSB first: %s\n", c,
-                w->word_bits, hex_digits(w->word_bits), ruler);
-    }
-    if (w->fmt == NP_VEC_COE)
-        fputs("memory_initialization_radix=16;\nmemory_initialization_vector=\n", f);
-}
-
-int np_vec_writer_open(np_vec_writer *w, const char *path, np_vec_format fmt,
-                       const np_vec_header *h)
-{
-    memset(w, 0, sizeof *w);
-    w->fmt = fmt;
-    w->h = h;
-    unsigned mask = fmt == NP_VEC_TEXT ? NP_VEC_M_IN | NP_VEC_M_OUT | NP_VEC_M_REF |
-                                             (h->has_got ? NP_VEC_M_GOT : 0u)
-                    : fmt == NP_VEC_RESULTS ? NP_VEC_M_GOT
-                                            : NP_VEC_M_IN | NP_VEC_M_OUT;
-    w->n_cols = np_vec_columns(h, mask, w->cols);
-    unsigned bits[NP_VEC_MAX_COLS + 1];
-    w->word_bits = sum_bits(bits, word_layout(w, bits));
-    if (!path || strcmp(path, "-") == 0) {
-        w->f = stdout;
-    } else {
-        if (strlen(path) >= sizeof w->path) {
-            snprintf(w->err, sizeof w->err, "%.64s...: path too long", path);
-            return -1;
-        }
-        snprintf(w->path, sizeof w->path, "%s", path);
-        snprintf(w->tmp, sizeof w->tmp, "%s.tmp%ld", path, (long)getpid());
-        w->atomic = 1;
-        int fd = open(w->tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-        if (fd < 0 || !(w->f = fdopen(fd, "w"))) {
-            snprintf(w->err, sizeof w->err, "cannot write %.300s: %.100s", path, strerror(errno));
-            if (fd >= 0) {
-                close(fd);
-                unlink(w->tmp);
-            }
-            return -1;
-        }
-        setvbuf(w->f, NULL, _IOFBF, (size_t)1 << 16);
-    }
-    write_header(w);
-    return 0;
-}
-
-/* Write v as exactly nd hex digits at p (nd <= 16). */
-static void put_hex(char *p, uint64_t v, unsigned nd)
-{
-    for (unsigned k = nd; k-- > 0; v >>= 4)
-        p[k] = hexdigit[v & 15u];
-}
-
-int np_vec_writer_put(np_vec_writer *w, const np_vec_rec *rec)
-{
-    char *p = w->line;
-    if (is_packed(w->fmt)) {
-        uint64_t vals[NP_VEC_MAX_COLS + 1];
-        unsigned bits[NP_VEC_MAX_COLS + 1];
-        unsigned n = word_layout(w, bits);
-        vals[0] = 1; /* valid */
-        for (unsigned k = 0; k < w->n_cols; k++)
-            vals[k + 1u] = rec->w[w->cols[k].kind][w->cols[k].field];
-        p += pack_hex(p, vals, bits, n);
-        if (w->fmt == NP_VEC_COE)
-            *p++ = w->n + 1u == w->h->count ? ';' : ',';
-    } else {
-        for (unsigned k = 0; k < w->n_cols; k++) {
-            const np_vec_col *c = &w->cols[k];
-            put_hex(p, rec->w[c->kind][c->field] & np_vec_mask(c->bits), c->digits);
-            p += c->digits;
-            *p++ = ' ';
-        }
-        p--; /* the last blank */
-    }
-    *p++ = '\n';
-    w->n++;
-    if (fwrite(w->line, 1, (size_t)(p - w->line), w->f) != (size_t)(p - w->line))
-        return werr(w, "write error");
-    return 0;
-}
-
-int np_vec_writer_close(np_vec_writer *w, int commit)
-{
-    int rc = 0;
-    if (commit && w->n != w->h->count) {
-        snprintf(w->err, sizeof w->err, "%.300s: wrote %llu transactions, but the header says %llu",
-                 w->atomic ? w->path : "<stdout>", (unsigned long long)w->n,
-                 (unsigned long long)w->h->count);
-        rc = -1;
-    }
-    if (!w->atomic) {
-        if ((fflush(w->f) != 0 || ferror(w->f)) && rc == 0)
-            rc = werr(w, "write error");
-        return rc;
-    }
-    int bad = ferror(w->f);
-    if ((fclose(w->f) != 0 || bad) && rc == 0)
-        rc = werr(w, "write error");
-    w->f = NULL;
-    if (commit && rc == 0 && rename(w->tmp, w->path) != 0)
-        rc = werr(w, "cannot rename the finished file into place");
-    if (!commit || rc != 0)
-        unlink(w->tmp);
-    return rc;
-}
