@@ -42,9 +42,12 @@ add_test(NAME render.cli_bad_scene COMMAND ${CMAKE_COMMAND}
   -DWANT_RC=2 "-DWANT=render_bad_scene.json: field 'image.width': expected an integer in 1..4096"
   -P ${CMAKE_CURRENT_SOURCE_DIR}/render_expect.cmake)
 # The report (error against run time, plots; docs/plots is its output for the seed
-# scenes) and the benchmark run end to end.
-add_test(NAME render.report COMMAND noisepipe render --report ${CMAKE_CURRENT_BINARY_DIR}/render-report --repeat 1)
+# scenes; `noisepipe render --report DIR` is its alias) and the benchmark run end to end.
+add_test(NAME render.report COMMAND noisepipe report runtime -o ${CMAKE_CURRENT_BINARY_DIR}/render-report --repeat 1)
 set_tests_properties(render.report PROPERTIES PASS_REGULAR_EXPRESSION "report: 94 configurations")
+add_test(NAME render.report_alias COMMAND noisepipe render --report ${CMAKE_CURRENT_BINARY_DIR}/render-report-alias
+  --repeat 1 embedded:wood)
+set_tests_properties(render.report_alias PROPERTIES PASS_REGULAR_EXPRESSION "report: 47 configurations")
 add_test(NAME render.bench COMMAND noisepipe render --bench --repeat 1
   ${PROJECT_SOURCE_DIR}/vectors/scenes/wood.json ${PROJECT_SOURCE_DIR}/vectors/scenes/marble.json)
 set_tests_properties(render.bench PROPERTIES PASS_REGULAR_EXPRESSION "bench marble.*hardware cycles per frame")

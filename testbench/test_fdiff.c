@@ -349,26 +349,26 @@ static int stiff_span_one_zero(void)
     /* Zero length: no pixel, no set-up, in the bit-exact model and in the cycle model. */
     np_span zero = one;
     zero.n = 0;
-    np_fdiff_counts c;
+    np_span_counts c;
     memset(&c, 0, sizeof c);
     np_tex_pixel px[1];
     np_fdiff_span(&cfg, &r, &zero, px, &c, NULL);
     NP_CHECK(c.spans == 1 && c.pixels == 0 && c.span_setups == 0 && c.setup_cycles == 0, "zero-length span did work");
-    np_fdiff_sim sim;
-    NP_CHECK(np_fdiff_sim_init(&sim, &cfg, &r) == 0, "init");
+    np_span_sim sim;
+    NP_CHECK(np_span_sim_init(&sim, &np_fdiff_engine, &cfg, &r) == 0, "init");
     const np_span *list[3] = { &zero, &one, &zero };
     unsigned next = 0, outs = 0;
-    while ((next < 3 || !np_fdiff_sim_idle(&sim)) && sim.stats.cycles < 1000) {
-        np_fdiff_port p;
+    while ((next < 3 || !np_span_sim_idle(&sim)) && sim.stats.cycles < 1000) {
+        np_span_port p;
         memset(&p, 0, sizeof p);
         p.in_valid = next < 3;
         p.in = p.in_valid ? list[next] : NULL;
         p.out_ready = 1;
-        np_fdiff_sim_eval(&sim, &p);
+        np_span_sim_eval(&sim, &p);
         outs += (unsigned)p.out_valid;
         if (p.in_valid && p.in_ready)
             next++;
-        np_fdiff_sim_clock(&sim, &p);
+        np_span_sim_clock(&sim, &p);
     }
     unsigned setup = np_tex_sched_cycles(&np_fdiff_sched_quad, cfg.setup_mults, cfg.mult_lat) +
                      np_tex_sched_cycles(&np_tex_sched_octave_diag, cfg.setup_mults, cfg.mult_lat) +
@@ -383,7 +383,7 @@ static int stiff_span_one_zero(void)
     NP_CHECK(outs == 1, "outputs %u", outs);
     NP_CHECK(sim.stats.cycles == want, "cycles %llu, want %llu", (unsigned long long)sim.stats.cycles,
              (unsigned long long)want);
-    np_fdiff_sim_free(&sim);
+    np_span_sim_free(&sim);
     return 0;
 }
 
@@ -739,26 +739,26 @@ static int cycle_vs_model(void)
         np_span *sp = calloc(NS, sizeof *sp);
         np_tex_pixel *want = calloc(NS * 300, sizeof *want);
         size_t nw = 0;
-        np_fdiff_counts cnt;
+        np_span_counts cnt;
         memset(&cnt, 0, sizeof cnt);
         for (unsigned i = 0; i < NS; i++) {
             sp[i] = rand_span(&g);
             np_fdiff_span(&cfg, &r, &sp[i], want + nw, &cnt, NULL);
             nw += sp[i].n;
         }
-        np_fdiff_sim m;
-        NP_CHECK(np_fdiff_sim_init(&m, &cfg, &r) == 0, "init");
+        np_span_sim m;
+        NP_CHECK(np_span_sim_init(&m, &np_fdiff_engine, &cfg, &r) == 0, "init");
         size_t next = 0, got = 0, bad = 0;
         int stall_phase = 0;
-        while ((next < NS || !np_fdiff_sim_idle(&m)) && m.stats.cycles < 50000000u) {
+        while ((next < NS || !np_span_sim_idle(&m)) && m.stats.cycles < 50000000u) {
             if (np_rng_below(&g, 64) == 0)
                 stall_phase = (int)np_rng_below(&g, 3);
-            np_fdiff_port p;
+            np_span_port p;
             memset(&p, 0, sizeof p);
             p.in_valid = next < NS && np_rng_below(&g, 4) != 0;
             p.in = next < NS ? &sp[next] : NULL;
             p.out_ready = stall_phase == 0 ? 1 : stall_phase == 1 ? np_rng_below(&g, 2) == 0 : np_rng_below(&g, 8) == 0;
-            np_fdiff_sim_eval(&m, &p);
+            np_span_sim_eval(&m, &p);
             if (p.out_valid && p.out_ready) {
                 if (got >= nw || memcmp(&p.out, &want[got], sizeof p.out) != 0)
                     bad++;
@@ -766,7 +766,7 @@ static int cycle_vs_model(void)
             }
             if (p.in_valid && p.in_ready)
                 next++;
-            np_fdiff_sim_clock(&m, &p);
+            np_span_sim_clock(&m, &p);
         }
         printf("trial %u: %u octaves, %zu spans, %zu pixels in %llu cycles (set-up stalls %llu, output stalls %llu, "
                "idle %llu); %zu mismatches\n",
@@ -779,7 +779,7 @@ static int cycle_vs_model(void)
                  "set-up counts differ");
         NP_CHECK(m.stats.setup_stalls == cnt.setup_cycles, "stall cycles %llu != set-up cycles %llu",
                  (unsigned long long)m.stats.setup_stalls, (unsigned long long)cnt.setup_cycles);
-        np_fdiff_sim_free(&m);
+        np_span_sim_free(&m);
         free(sp);
         free(want);
     }
@@ -795,7 +795,7 @@ static int cycle_count(void)
     np_fdiff_cfg cfg = np_fdiff_cfg_default();
     enum { NS = 200 };
     np_span sp[NS];
-    np_fdiff_counts cnt;
+    np_span_counts cnt;
     memset(&cnt, 0, sizeof cnt);
     np_tex_pixel *px = calloc(300, sizeof *px);
     for (unsigned i = 0; i < NS; i++) {
@@ -803,19 +803,19 @@ static int cycle_count(void)
         np_fdiff_span(&cfg, &r, &sp[i], px, &cnt, NULL);
     }
     free(px);
-    np_fdiff_sim m;
-    NP_CHECK(np_fdiff_sim_init(&m, &cfg, &r) == 0, "init");
+    np_span_sim m;
+    NP_CHECK(np_span_sim_init(&m, &np_fdiff_engine, &cfg, &r) == 0, "init");
     size_t next = 0;
-    while (next < NS || !np_fdiff_sim_idle(&m)) {
-        np_fdiff_port p;
+    while (next < NS || !np_span_sim_idle(&m)) {
+        np_span_port p;
         memset(&p, 0, sizeof p);
         p.in_valid = next < NS;
         p.in = p.in_valid ? &sp[next] : NULL;
         p.out_ready = 1;
-        np_fdiff_sim_eval(&m, &p);
+        np_span_sim_eval(&m, &p);
         if (p.in_valid && p.in_ready)
             next++;
-        np_fdiff_sim_clock(&m, &p);
+        np_span_sim_clock(&m, &p);
     }
     uint64_t want = NS + cnt.setup_cycles + cnt.pixels + NP_FDIFF_TAIL_STAGES;
     printf("%u spans, %llu pixels, %llu set-up cycles (%llu span, %llu cell set-ups): %llu cycles, predicted %llu\n", NS,
@@ -833,7 +833,7 @@ static int cycle_count(void)
            np_tex_sched_products(&np_tex_sched_octave),
            np_tex_sched_cycles(&np_tex_sched_octave_diag, cfg.setup_mults, cfg.mult_lat),
            np_tex_sched_products(&np_tex_sched_octave_diag));
-    np_fdiff_sim_free(&m);
+    np_span_sim_free(&m);
     return 0;
 }
 
@@ -899,7 +899,7 @@ static int texel_cycle_vs_model(void)
     np_span sp[NS];
     np_tex_pixel *want = calloc(NS * 300, sizeof *want);
     size_t nw = 0;
-    np_texel_counts cnt;
+    np_span_counts cnt;
     memset(&cnt, 0, sizeof cnt);
     for (unsigned i = 0; i < NS; i++) {
         sp[i] = rand_span(&g);
@@ -907,16 +907,16 @@ static int texel_cycle_vs_model(void)
         nw += sp[i].n;
     }
     for (int traffic = 0; traffic < 2; traffic++) {
-        np_texel_sim m;
-        NP_CHECK(np_texel_sim_init(&m, &cfg, &r) == 0, "init");
+        np_span_sim m;
+        NP_CHECK(np_span_sim_init(&m, &np_texel_engine, &cfg, &r) == 0, "init");
         size_t next = 0, got = 0, bad = 0;
-        while ((next < NS || !np_texel_sim_idle(&m)) && m.stats.cycles < 10000000u) {
-            np_texel_port p;
+        while ((next < NS || !np_span_sim_idle(&m)) && m.stats.cycles < 10000000u) {
+            np_span_port p;
             memset(&p, 0, sizeof p);
             p.in_valid = next < NS && (!traffic || np_rng_below(&g, 3) != 0);
             p.in = next < NS ? &sp[next] : NULL;
             p.out_ready = !traffic || np_rng_below(&g, 3) != 0;
-            np_texel_sim_eval(&m, &p);
+            np_span_sim_eval(&m, &p);
             if (p.out_valid && p.out_ready) {
                 if (got >= nw || memcmp(&p.out, &want[got], sizeof p.out) != 0)
                     bad++;
@@ -924,7 +924,7 @@ static int texel_cycle_vs_model(void)
             }
             if (p.in_valid && p.in_ready)
                 next++;
-            np_texel_sim_clock(&m, &p);
+            np_span_sim_clock(&m, &p);
         }
         uint64_t pred = NS + cnt.setup_cycles + cnt.pixels + NP_TEXEL_STAGES;
         printf("texel, traffic %d: %zu pixels in %llu cycles (no-traffic prediction %llu), %zu mismatches\n", traffic,
@@ -933,7 +933,7 @@ static int texel_cycle_vs_model(void)
         if (!traffic)
             NP_CHECK(m.stats.cycles == pred, "cycles %llu != %llu", (unsigned long long)m.stats.cycles,
                      (unsigned long long)pred);
-        np_texel_sim_free(&m);
+        np_span_sim_free(&m);
     }
     free(want);
     return 0;
@@ -1180,7 +1180,9 @@ static int texel_datapath_widths(void)
         for (int variant = 0; variant < 2; variant++) {
             np_tex_regs r = wide_regs(&g, variant ? 3u : 8u, variant);
             dp_begin(&c, np_texel_datapath(&cfg, &r, c.ops, DP_MAX));
-            np_texel_ctx ctx = { &cfg, &r };
+            np_texel_front front;
+            np_texel_engine.init(&front, &cfg, &r);
+            const np_span_ctx *ctx = np_span_ctx_of(&front);
             for (unsigned n = 0; n < 20000; n++) {
                 np_texel_sig s;
                 memset(&s, 0, sizeof s);
@@ -1192,7 +1194,7 @@ static int texel_datapath_widths(void)
                     s.s[a] = n % 16u == 1 ? (n & 32u ? -((int64_t)1 << 47) : ((int64_t)1 << 47) - 1)
                                           : np_sext(np_rng_next(&g), NP_TEX_S_BITS);
                 for (unsigned k = 0; k < NP_TEXEL_STAGES; k++) {
-                    np_texel_stages[k].fn(&ctx, &s);
+                    np_texel_stages[k].fn(ctx, &s);
                     np_texel_trace(&cfg, &r, k, &s, c.t, c.nt);
                 }
                 /* The windows suffice: the rounding reads nothing above them. */
@@ -1273,7 +1275,7 @@ static int fdiff_datapath_widths(void)
                 if (np_span_check(&sp) != NULL)
                     continue;
                 np_fdiff_core core;
-                np_fdiff_counts cnt;
+                np_span_counts cnt;
                 memset(&cnt, 0, sizeof cnt);
                 np_fdiff_core_init(&core, &cfg, &r);
                 np_fdiff_core_begin(&core, &sp, &cnt);

@@ -25,7 +25,9 @@
 
 #include "np_fdiff.h"
 #include "np_scene.h"
+#include "np_span.h"
 #include "np_texel.h"
+#include "np_unit.h"
 
 typedef struct np_rspan {
     np_span hw;           /* what the units read */
@@ -79,9 +81,34 @@ void np_render_frame_free(np_render_frame *fr);
 /* The float reference image (fills fr->ref, fr->ref_seconds). 0, or -1 when out of memory. */
 int np_render_reference(np_render_frame *fr);
 
-/* The units' images: bit-exact model, then (if cycles) the cycle-accurate model. 0, or -1 (no memory). */
-int np_render_fdiff(const np_render_frame *fr, const np_fdiff_cfg *cfg, int cycles, np_render_run *run);
-int np_render_texel(const np_render_frame *fr, const np_texel_cfg *cfg, int cycles, np_render_run *run);
+/*
+ * A span unit's image of the frame: its engine's bit-exact model
+ * (np_span_run), then (if cycles) its cycle-accurate model (np_span_sim),
+ * from the frame's span descriptors and registers; every span engine alike.
+ * 0, or -1 (no memory, or u has no span engine).
+ */
+int np_render_engine(const np_render_frame *fr, const np_span_engine *e, const void *ecfg, int cycles,
+                     np_render_run *run);
+/* The same for registry unit u with configuration block cfg (np_unit.span). */
+int np_render_unit(const np_render_frame *fr, const np_unit *u, const void *cfg, int cycles, np_render_run *run);
+
+/* A unit that renders a scene, configured for it. */
+typedef struct np_render_unit_cfg {
+    const np_unit *u;
+    np_unit_cfg cfg;
+    char text[256]; /* the configuration without the texture, "key=value,key=value" (golden hash lists) */
+} np_render_unit_cfg;
+
+enum { NP_RENDER_MAX_UNITS = 8 };
+
+/*
+ * The units that render scene sc: every registry unit with a span engine
+ * (np_unit.span) whose cfg_scene accepts sc, in registry order, configured
+ * by cfg_scene and then by spec(ctx, u) ("key=value,...", NULL for none)
+ * over that. Writes up to NP_RENDER_MAX_UNITS into us; the count, or -1 with err.
+ */
+int np_render_units(const np_scene *sc, const char *(*spec)(const void *ctx, const np_unit *u), const void *ctx,
+                    np_render_unit_cfg *us, char *err, size_t errlen);
 void np_render_run_free(np_render_run *run);
 
 /* Error of an 8-bit image against the reference, over the covered pixels. */

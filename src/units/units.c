@@ -35,6 +35,11 @@ double np_unit_field_value(const np_field *f, uint64_t word)
 int np_unit_configure(const np_unit *u, void *cfg, const char *spec, char *err, size_t errlen)
 {
     u->cfg_default(cfg);
+    return np_unit_configure_over(u, cfg, spec, err, errlen);
+}
+
+int np_unit_configure_over(const np_unit *u, void *cfg, const char *spec, char *err, size_t errlen)
+{
     if (spec && *spec) {
         char buf[512];
         if (strlen(spec) >= sizeof buf) {
