@@ -241,25 +241,17 @@ static double time_model(const np_render_frame *fr, const np_render_unit_cfg *uc
     return best;
 }
 
-/* uc configured with "fixed" and then "key=value" over base; 0, or -1 when the configuration is not valid. */
+/* uc: base with "fixed" and (with_key) key = value over its keys; 0, or -1 when that is not a valid configuration. */
 static int sweep_cfg(const np_render_unit_cfg *base, const np_unit_sweep *w, int with_key, unsigned value,
                      np_render_unit_cfg *uc)
 {
-    char err[256], kv[64];
+    char err[256], more[256];
     *uc = *base;
-    snprintf(kv, sizeof kv, "%s=%u", w->key, value);
-    if (np_unit_configure_over(uc->u, &uc->cfg, w->fixed, err, sizeof err) ||
-        (with_key && np_unit_configure_over(uc->u, &uc->cfg, kv, err, sizeof err)))
-        return -1;
-    char all[512];
-    uc->u->cfg_format(&uc->cfg, all, sizeof all);
-    /* The text without the texture, as np_render_units gives it. */
-    size_t n = 0;
-    uc->text[0] = '\0';
-    for (char *save = NULL, *tok = strtok_r(all, " ", &save); tok; tok = strtok_r(NULL, " ", &save))
-        if (strncmp(tok, "texture=", 8) != 0 && n < sizeof uc->text)
-            n += (size_t)snprintf(uc->text + n, sizeof uc->text - n, "%s%s", n ? "," : "", tok);
-    return 0;
+    if (with_key)
+        snprintf(more, sizeof more, "%s%s%s=%u", w->fixed ? w->fixed : "", w->fixed ? "," : "", w->key, value);
+    else
+        snprintf(more, sizeof more, "%s", w->fixed ? w->fixed : "");
+    return np_render_unit_reconfigure(uc, more, err, sizeof err);
 }
 
 /* One unit's sweeps on the frame: rows appended at rows[*n]. 0, or -1. */
@@ -334,7 +326,7 @@ static int report_images(const char *dir, const np_render_frame *fr, const np_re
         np_render_unit_cfg few = us[i];
         np_render_run r;
         char name[96];
-        if (!sp->extra_cfg || np_unit_configure_over(few.u, &few.cfg, sp->extra_cfg, err, sizeof err) ||
+        if (!sp->extra_cfg || np_render_unit_reconfigure(&few, sp->extra_cfg, err, sizeof err) ||
             np_render_unit(fr, few.u, &few.cfg, 0, &r))
             continue;
         snprintf(name, sizeof name, "%s_%s", us[i].u->name, sp->extra_name);

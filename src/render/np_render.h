@@ -64,16 +64,6 @@ typedef struct np_render_run {
     np_render_err err;
 } np_render_run;
 
-/*
- * Unit configurations as text: "key=value,key=value" over the defaults
- * (np_fdiff_cfg_default, np_texel_cfg_default). 0, or -1 with a message
- * naming the key and its range. Format: every key, fixed order, commas.
- */
-int np_render_fdiff_cfg_parse(np_fdiff_cfg *c, const char *spec, char *err, size_t errlen);
-void np_render_fdiff_cfg_format(const np_fdiff_cfg *c, char *buf, size_t len);
-int np_render_texel_cfg_parse(np_texel_cfg *c, const char *spec, char *err, size_t errlen);
-void np_render_texel_cfg_format(const np_texel_cfg *c, char *buf, size_t len);
-
 /* Scan-convert the scene and compile its texture. 0, or -1 with err. */
 int np_render_prepare(const np_scene *sc, np_render_frame *fr, char *err, size_t errlen);
 void np_render_frame_free(np_render_frame *fr);
@@ -95,8 +85,10 @@ int np_render_unit(const np_render_frame *fr, const np_unit *u, const void *cfg,
 /* A unit that renders a scene, configured for it. */
 typedef struct np_render_unit_cfg {
     const np_unit *u;
-    np_unit_cfg cfg;
-    char text[256]; /* the configuration without the texture, "key=value,key=value" (golden hash lists) */
+    np_unit_cfg cfg;   /* what the unit renders with */
+    np_unit_cfg scene; /* as the scene configured it (cfg_scene) */
+    char spec[512];    /* the keys given over the defaults ("key=value,...") */
+    char text[256];    /* cfg without the scene's keys, "key=value,key=value" (golden hash lists) */
 } np_render_unit_cfg;
 
 enum { NP_RENDER_MAX_UNITS = 8 };
@@ -104,11 +96,14 @@ enum { NP_RENDER_MAX_UNITS = 8 };
 /*
  * The units that render scene sc: every registry unit with a span engine
  * (np_unit.span) whose cfg_scene accepts sc, in registry order, configured
- * by cfg_scene and then by spec(ctx, u) ("key=value,...", NULL for none)
- * over that. Writes up to NP_RENDER_MAX_UNITS into us; the count, or -1 with err.
+ * by spec(ctx, u) ("key=value,...", NULL for none) over the defaults and
+ * by cfg_scene for the keys the scene sets (NP_UNIT_KEY_SCENE: the
+ * texture). Writes up to NP_RENDER_MAX_UNITS into us; the count, or -1 with err.
  */
 int np_render_units(const np_scene *sc, const char *(*spec)(const void *ctx, const np_unit *u), const void *ctx,
                     np_render_unit_cfg *us, char *err, size_t errlen);
+/* Configure c again from its spec and then more ("key=value,..."; a key given twice is an error). 0, or -1. */
+int np_render_unit_reconfigure(np_render_unit_cfg *c, const char *more, char *err, size_t errlen);
 void np_render_run_free(np_render_run *run);
 
 /* Error of an 8-bit image against the reference, over the covered pixels. */

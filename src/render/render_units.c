@@ -5,21 +5,19 @@
 #include <stdio.h>
 #include <string.h>
 
-/* u's configuration as "key=value,..." without the texture (the texture is the scene's). */
-static void cfg_text(const np_unit *u, const void *cfg, char *buf, size_t len)
+int np_render_unit_reconfigure(np_render_unit_cfg *c, const char *more, char *err, size_t errlen)
 {
-    char all[512];
-    u->cfg_format(cfg, all, sizeof all);
-    size_t n = 0;
-    buf[0] = '\0';
-    for (char *save = NULL, *tok = strtok_r(all, " ", &save); tok && n < len; tok = strtok_r(NULL, " ", &save)) {
-        if (strncmp(tok, "texture=", 8) == 0)
-            continue;
-        int w = snprintf(buf + n, len - n, "%s%s", n ? "," : "", tok);
-        if (w < 0)
-            break;
-        n += (size_t)w;
-    }
+    const np_unit *u = c->u;
+    char spec[sizeof c->spec + 256];
+    snprintf(spec, sizeof spec, "%s%s%s", c->spec, *c->spec && more && *more ? "," : "", more ? more : "");
+    if (np_unit_configure(u, &c->cfg, spec, err, errlen) != 0)
+        return -1;
+    /* The keys the scene sets are the scene's. */
+    for (const np_unit_key *k = u->keys; k && k->name; k++)
+        if (k->flags & NP_UNIT_KEY_SCENE)
+            memcpy(c->cfg.bytes + k->offset, c->scene.bytes + k->offset, k->size);
+    np_unit_cfg_format_opt(u, &c->cfg, NP_UNIT_FMT_COMMAS | NP_UNIT_FMT_NO_SCENE, c->text, sizeof c->text);
+    return 0;
 }
 
 int np_render_units(const np_scene *sc, const char *(*spec)(const void *ctx, const np_unit *u), const void *ctx,
@@ -38,18 +36,23 @@ int np_render_units(const np_scene *sc, const char *(*spec)(const void *ctx, con
         memset(c, 0, sizeof *c);
         c->u = u;
         char why[512];
-        int rc = u->cfg_scene(&c->cfg, sc, why, sizeof why);
+        int rc = u->cfg_scene(&c->scene, sc, why, sizeof why);
         if (rc < 0) {
             snprintf(err, errlen, "%s: %s", u->name, why);
             return -1;
         }
         if (rc == 0)
             continue;
-        if (np_unit_configure_over(u, &c->cfg, spec ? spec(ctx, u) : NULL, why, sizeof why) != 0) {
+        const char *s = spec ? spec(ctx, u) : NULL;
+        if (s && strlen(s) >= sizeof c->spec) {
+            snprintf(err, errlen, "%s configuration too long", u->name);
+            return -1;
+        }
+        snprintf(c->spec, sizeof c->spec, "%s", s ? s : "");
+        if (np_render_unit_reconfigure(c, NULL, why, sizeof why) != 0) {
             snprintf(err, errlen, "%s configuration: %s", u->name, why);
             return -1;
         }
-        cfg_text(u, &c->cfg, c->text, sizeof c->text);
         n++;
     }
     return n;

@@ -117,22 +117,6 @@ int np_su_cfg_scene(const np_su *su, void *cfg, const np_scene *sc, char *err, s
     return np_ut_texture_add(name, &sc->tex, tex, err, errlen) == 0 ? 1 : -1;
 }
 
-int np_ut_texture_set(const char *value, unsigned *tex, char *err, size_t errlen)
-{
-    for (unsigned i = 0; np_texreg_builtin_name(i); i++)
-        if (strcmp(np_texreg_builtin_name(i), value) == 0 && i < N_TEX) {
-            *tex = i;
-            return 0;
-        }
-    for (unsigned i = 0; i < ut_n_scene; i++)
-        if (strcmp(ut_scene_name[i], value) == 0) {
-            *tex = N_TEX + i;
-            return 0;
-        }
-    snprintf(err, errlen, "texture=%s: unknown texture (built-in: wood, marble, ramp; or a scene's, scene:NAME)", value);
-    return -1;
-}
-
 void np_su_ref(const np_su *su, const void *cfg, const uint64_t *in, double *out)
 {
     const np_ref_texture *t = ut_ref_texture(np_su_texture(&su->span, cfg));

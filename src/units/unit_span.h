@@ -46,6 +46,8 @@
 #include "np_texture.h"
 #include "np_unit.h"
 
+extern const np_unit np_unit_fdiff, np_unit_texel;
+
 enum { UT_S, UT_T, UT_R, UT_DS, UT_DT, UT_DR, UT_N, UT_K, UT_NIN, UT_NDESC = UT_K };
 
 /* --- Textures and descriptors (shared by every span unit) --- */
@@ -54,6 +56,7 @@ enum { UT_S, UT_T, UT_R, UT_DS, UT_DT, UT_DR, UT_N, UT_K, UT_NIN, UT_NDESC = UT_
 void np_ut_span(const uint64_t *in, np_span *sp);
 /* The registers of built-in texture number tex (compiled once, thread-safe). */
 const np_tex_regs *np_ut_regs(unsigned tex);
+/* The name of texture number tex; NULL past the last one defined. */
 const char *np_ut_texture_name(unsigned tex);
 /*
  * A scene's texture as a named texture of the registry (after the built-in
@@ -63,8 +66,14 @@ const char *np_ut_texture_name(unsigned tex);
  * Call before any thread uses the texture.
  */
 int np_ut_texture_add(const char *name, const np_ref_texture *t, unsigned *tex, char *err, size_t errlen);
-/* "texture=NAME": 0, or -1 with a message listing the names. */
-int np_ut_texture_set(const char *value, unsigned *tex, char *err, size_t errlen);
+/*
+ * The units' texture key (an enumeration: np_ut_texture_name's words, the
+ * built-in textures then the scenes' "scene:NAME"), over member of type.
+ */
+#define UT_TEXTURE_KEY(type, member)                                                                     \
+    NP_UNIT_KEY_WORDS("texture", type, member, 0, 2, 0,                                                  \
+                      "texture in the registers: a built-in one, or a scene's (scene:NAME, added by a render)", \
+                      np_ut_texture_name, NP_UNIT_KEY_SCENE)
 
 /* --- The adapter --- */
 
@@ -120,10 +129,10 @@ static inline unsigned np_su_texture(const np_unit_span *s, const void *cfg)
 void np_su_add_setup(np_unit_timing *t, const char *what, unsigned products, unsigned cycles);
 
 /*
- * The unit's bindings of the adapter for su (an np_su) and its cfg_default
- * function: the callbacks that need su, and the stream model.
+ * The unit's bindings of the adapter for su (an np_su) and its np_unit
+ * (for its defaults): the callbacks that need su, and the stream model.
  */
-#define NP_SU_DEFINE(SU, CFG_DEFAULT)                                                                                  \
+#define NP_SU_DEFINE(SU, UNIT)                                                                                  \
     static void su_front(const void *cfg, void *sig) { np_su_front(&SU, cfg, sig); }                                  \
     static void su_eval(const void *cfg, const uint64_t *in, uint64_t *out) { np_su_eval(&SU, cfg, in, out); }        \
     static void su_ref(const void *cfg, const uint64_t *in, double *out) { np_su_ref(&SU, cfg, in, out); }            \
@@ -131,7 +140,7 @@ void np_su_add_setup(np_unit_timing *t, const char *what, unsigned products, uns
     static int su_stream_init(void *state, const void *cfg) { return np_su_stream_init(&SU, state, cfg); }            \
     static int su_cfg_scene(void *cfg, const struct np_scene *sc, char *err, size_t errlen)                           \
     {                                                                                                                  \
-        CFG_DEFAULT(cfg);                                                                                              \
+        np_unit_cfg_default(&UNIT, cfg);                                                                               \
         return np_su_cfg_scene(&SU, cfg, sc, err, errlen);                                                             \
     }                                                                                                                  \
     static const np_unit_stream su_stream = {                                                                         \
