@@ -2,12 +2,18 @@
 # The scanline texturing units (forward differences and per pixel), scenes,
 # the reference renderer, golden images and image files (docs/fdiff.md,
 # docs/render.md).
-np_test_program(test_fdiff test_fdiff.c)
+# One program per concern (the CTest names are the same as before the split):
+# the forward-difference unit, the per-pixel unit, and what they share; the
+# fixtures and the cycle-model driver in span_test.c.
+np_test_program(test_fdiff test_fdiff.c span_test.c)
 np_add_cases(test_fdiff fdiff
   stiff_span65536 stiff_deriv_tiny stiff_deriv_huge stiff_cell_edge_on_pixel stiff_span_one_zero
   stiff_wrap stiff_quadric_long guard_search setup_exact appendix_coefficients drift_identity
-  cycle_vs_model cycle_count texel_exact_weights texel_cycle_vs_model colour_stage
-  front_end_rounding lattice_distribution cfg_validation datapath_widths texel_datapath_widths)
+  cycle_vs_model cycle_count datapath_widths)
+np_test_program(test_texel test_texel.c span_test.c)
+np_add_cases(test_texel fdiff texel_exact_weights texel_cycle_vs_model texel_datapath_widths)
+np_test_program(test_texture test_texture.c span_test.c)
+np_add_cases(test_texture fdiff colour_stage front_end_rounding lattice_distribution cfg_validation)
 
 np_test_program(test_render test_render.c)
 target_link_libraries(test_render PRIVATE np_render)
