@@ -315,6 +315,10 @@ static void e_init(void *core, const void *cfg, const np_tex_regs *r) { np_fdiff
 static unsigned e_begin(void *core, const np_span *sp, np_span_counts *cnt) { return np_fdiff_core_begin(core, sp, cnt); }
 static unsigned e_advance(void *core, np_span_counts *cnt) { return np_fdiff_core_advance(core, cnt); }
 static void e_issue(const void *core, void *sig) { ((np_span_sig *)sig)->x = np_fdiff_core_x(core); }
+static size_t e_datapath(const void *cfg, const np_tex_regs *r, np_op *ops, size_t max)
+{
+    return np_fdiff_datapath(cfg, r, ops, max);
+}
 
 const np_span_engine np_fdiff_engine = {
     .name = "fdiff",
@@ -327,6 +331,7 @@ const np_span_engine np_fdiff_engine = {
     .advance = e_advance,
     .issue = e_issue,
     .seek = NULL, /* the forward differences are sequential */
+    .datapath = e_datapath,
 };
 
 static void probe_pixel(const void *pctx, const void *core, const void *sig, uint32_t k)
@@ -347,10 +352,8 @@ void np_fdiff_span(const np_fdiff_cfg *cfg, const np_tex_regs *r, const np_span 
 {
     np_fdiff_core c;
     np_span_sig sig;
-    np_span_counts dummy;
-    memset(&dummy, 0, sizeof dummy);
     np_fdiff_core_init(&c, cfg, r);
-    np_span_run(&np_fdiff_engine, &c, &sig, sp, out, counts ? counts : &dummy, probe ? probe_pixel : NULL,
+    np_span_run(&np_fdiff_engine, &c, &sig, sp, out, counts, probe ? probe_pixel : NULL,
                 probe);
 }
 

@@ -49,6 +49,11 @@ void np_span_run(const np_span_engine *e, void *core, void *sig, const np_span *
                  np_span_counts *cnt, np_span_probe_fn probe, const void *pctx)
 {
     const np_span_ctx *ctx = np_span_ctx_of(core);
+    np_span_counts dummy;
+    if (!cnt) {
+        memset(&dummy, 0, sizeof dummy);
+        cnt = &dummy;
+    }
     e->begin(core, sp, cnt);
     for (uint32_t k = 0; k < sp->n; k++) {
         issue(e, core, sig, sp, k);

@@ -47,6 +47,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "np_datapath.h"
 #include "np_fixed.h"
 #include "np_pipe.h"
 #include "np_texture.h"
@@ -131,6 +132,8 @@ typedef struct np_span_engine {
      * (a vector generator evaluating one pixel at a time uses it).
      */
     void (*seek)(void *core, const np_span *sp, uint32_t k);
+    /* The unit's datapath declaration for cfg and registers r (np_datapath.h): up to max ops, returns the count. */
+    size_t (*datapath)(const void *cfg, const np_tex_regs *r, np_op *ops, size_t max);
 } np_span_engine;
 
 static inline const np_span_ctx *np_span_ctx_of(const void *core) { return (const np_span_ctx *)core; }
@@ -140,7 +143,7 @@ typedef void (*np_span_probe_fn)(const void *pctx, const void *core, const void 
 
 /*
  * The bit-exact model for one span: out[0..n) receives the pixels, counts
- * is incremented. core is an initialised state, sig a bundle of sig_size
+ * (may be NULL) is incremented. core is an initialised state, sig a bundle of sig_size
  * bytes (scratch). Preconditions: the configuration, np_tex_regs_check and
  * np_span_check pass.
  */

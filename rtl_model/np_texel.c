@@ -216,6 +216,11 @@ static void front_seek(void *core, const np_span *sp, uint32_t k)
         f->s[a] = sp->s[a] + (int64_t)k * sp->ds[a];
 }
 
+static size_t front_datapath(const void *cfg, const np_tex_regs *r, np_op *ops, size_t max)
+{
+    return np_texel_datapath(cfg, r, ops, max);
+}
+
 const np_span_engine np_texel_engine = {
     .name = "texel",
     .core_size = sizeof(np_texel_front),
@@ -227,6 +232,7 @@ const np_span_engine np_texel_engine = {
     .advance = front_advance,
     .issue = front_issue,
     .seek = front_seek,
+    .datapath = front_datapath,
 };
 
 static void probe_pixel(const void *pctx, const void *core, const void *sig, uint32_t k)
@@ -245,10 +251,8 @@ void np_texel_span(const np_texel_cfg *cfg, const np_tex_regs *r, const np_span 
 {
     np_texel_front f;
     np_texel_sig sig;
-    np_span_counts dummy;
-    memset(&dummy, 0, sizeof dummy);
     front_init(&f, cfg, r);
-    np_span_run(&np_texel_engine, &f, &sig, sp, out, counts ? counts : &dummy, probe ? probe_pixel : NULL, probe);
+    np_span_run(&np_texel_engine, &f, &sig, sp, out, counts, probe ? probe_pixel : NULL, probe);
 }
 
 /* --- Datapath declaration --- */

@@ -16,6 +16,7 @@
 #include "np_rng.h"
 #include "np_span.h"
 #include "np_texture.h"
+#include "np_unit.h"
 
 /*
  * The "grey ramp" registers: one octave, identity transform, a' = 1
@@ -46,6 +47,19 @@ typedef struct span_dp_check {
 void span_dp_begin(span_dp_check *c, size_t nops);
 /* 0, or 1 after NP_CHECK failures; print: one line per signal. */
 int span_dp_end(const span_dp_check *c, const char *what, int print);
+
+/* Drive the unit's signals for cfg (configuration ci) and r through c's traces, with g. */
+typedef void (*span_dp_trace_fn)(const void *cfg, unsigned ci, const np_tex_regs *r, np_rng *g, span_dp_check *c);
+/*
+ * The datapath-width check of registry unit `unit`: for each of the n_cfg
+ * configurations (specs: "key=value,..." over the defaults; the engine's
+ * configuration inside the unit's block is handed on) and two register sets
+ * (span_wide_regs: 8 octaves and a 256-entry repeating table; 3 octaves and a
+ * clamped one), the engine's declaration against what trace saw (np_rng seeded with
+ * seed). Prints the first configuration's signals. 0, or 1 on a failed check.
+ */
+int span_dp_widths(const char *unit, const char *const *specs, unsigned n_cfg, uint64_t seed,
+                   span_dp_trace_fn trace);
 
 /*
  * Traffic at the ports, one call per cycle: in_valid (only asked when a

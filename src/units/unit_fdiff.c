@@ -50,12 +50,6 @@ static double error_bound(const void *cfg)
     return 0.5 + (double)np_tex_colour_slope(r) * (idx + ldexp(1.0, -(int)k->c.w_frac - 1));
 }
 
-static size_t datapath(const void *cfg, np_op *ops, size_t max)
-{
-    const fd_cfg *k = cfg;
-    return np_fdiff_datapath(&k->c, np_ut_regs(k->tex), ops, max);
-}
-
 /*
  * The stream model's timing (np_fdiff.h): 1 clock to accept a descriptor,
  * the span set-up stall, then the colour pipeline; one pixel per clock while
@@ -117,7 +111,6 @@ const np_unit np_unit_fdiff = {
     .keys = keys,
     .cfg_check = cfg_check,
     .error_bound_lsb = error_bound,
-    .datapath = datapath,
     .timing = timing,
     NP_SU_MEMBERS(fd_su),
 };

@@ -369,6 +369,12 @@ int np_su_stream_init(const np_su *su, void *state, const void *cfg)
                             np_ut_regs(np_su_texture(&su->span, cfg)));
 }
 
+size_t np_su_datapath(const np_su *su, const void *cfg, np_op *ops, size_t max)
+{
+    return su->span.engine->datapath(np_su_engine_cfg(&su->span, cfg), np_ut_regs(np_su_texture(&su->span, cfg)),
+                                     ops, max);
+}
+
 void np_su_stream_free(void *state) { np_span_sim_free(&((np_su_stream *)state)->sim); }
 
 void np_su_stream_eval(void *state, np_unit_stream_port *p)

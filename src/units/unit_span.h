@@ -95,6 +95,7 @@ void np_su_eval(const np_su *su, const void *cfg, const uint64_t *in, uint64_t *
 void np_su_ref(const np_su *su, const void *cfg, const uint64_t *in, double *out);
 int np_su_pipe_init(np_su *su, np_stage_fn front, np_pipe *p, const void *cfg);
 int np_su_stream_init(const np_su *su, void *state, const void *cfg);
+size_t np_su_datapath(const np_su *su, const void *cfg, np_op *ops, size_t max);
 /* cfg_scene: register the scene's texture and select it (1: the scene uses the unit). cfg holds the defaults. */
 int np_su_cfg_scene(const np_su *su, void *cfg, const struct np_scene *sc, char *err, size_t errlen);
 
@@ -138,6 +139,7 @@ void np_su_add_setup(np_unit_timing *t, const char *what, unsigned products, uns
     static void su_ref(const void *cfg, const uint64_t *in, double *out) { np_su_ref(&SU, cfg, in, out); }            \
     static int su_pipe_init(np_pipe *p, const void *cfg) { return np_su_pipe_init(&SU, su_front, p, cfg); }           \
     static int su_stream_init(void *state, const void *cfg) { return np_su_stream_init(&SU, state, cfg); }            \
+    static size_t su_datapath(const void *cfg, np_op *ops, size_t max) { return np_su_datapath(&SU, cfg, ops, max); } \
     static int su_cfg_scene(void *cfg, const struct np_scene *sc, char *err, size_t errlen)                           \
     {                                                                                                                  \
         np_unit_cfg_default(&UNIT, cfg);                                                                               \
@@ -162,6 +164,6 @@ void np_su_add_setup(np_unit_timing *t, const char *what, unsigned products, uns
 #define NP_SU_MEMBERS(SU)                                                                                              \
     .fields = np_su_fields, .eval = su_eval, .ref = su_ref, .tolerance_lsb = 1.0, .pipe_init = su_pipe_init,        \
     .sig_set_in = np_su_sig_set_in, .sig_get_out = np_su_sig_get_out, .boundary = np_su_boundary,                    \
-    .stream = &su_stream, .cfg_scene = su_cfg_scene, .span = &SU.span
+    .stream = &su_stream, .cfg_scene = su_cfg_scene, .datapath = su_datapath, .span = &SU.span
 
 #endif /* UNIT_SPAN_H */

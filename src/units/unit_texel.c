@@ -44,12 +44,6 @@ static double error_bound(const void *cfg)
     return 0.5 + (double)np_tex_colour_slope(r) * (np_texel_error_bound_index(&k->c, r) + w);
 }
 
-static size_t datapath(const void *cfg, np_op *ops, size_t max)
-{
-    const tx_cfg *k = cfg;
-    return np_texel_datapath(&k->c, np_ut_regs(k->tex), ops, max);
-}
-
 /*
  * The stream model's timing (np_texel.h): 1 clock to accept a descriptor,
  * the front end's set-up stall, then the nine pipeline stages; one pixel per
@@ -96,7 +90,6 @@ const np_unit np_unit_texel = {
     .keys = keys,
     .cfg_check = cfg_check,
     .error_bound_lsb = error_bound,
-    .datapath = datapath,
     .timing = timing,
     NP_SU_MEMBERS(tx_su),
 };
