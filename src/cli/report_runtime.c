@@ -428,6 +428,15 @@ static int write_table(const char *dir, const row *rows, size_t n)
     return (fclose(md) | fclose(csv)) != 0 ? -1 : 0;
 }
 
+/* Is unit name among the units that render the scene? */
+static int renders(const np_render_unit_cfg *us, int nu, const char *name)
+{
+    for (int i = 0; i < nu; i++)
+        if (strcmp(us[i].u->name, name) == 0)
+            return 1;
+    return 0;
+}
+
 /* Rows the sweeps of the units that render scene sc can write. */
 static size_t max_rows(const np_render_unit_cfg *us, int nu)
 {
@@ -483,8 +492,11 @@ int np_report_runtime(const char *dir, const char *const *scenes, unsigned n_sce
             if (sweep_unit(&fr, &us[i], rep, rows, &n))
                 rc = NP_EXIT_USAGE;
         if (rc == NP_EXIT_OK &&
-            (plot_errors(dir, sc.name, us, nu, rows, n, 0) || plot_errors(dir, sc.name, us, nu, rows, n, 1) ||
-             plot_scan(dir, &sc, &fr, 0) || plot_scan(dir, &sc, &fr, np_fdiff_cfg_default().guard)))
+            (plot_errors(dir, sc.name, us, nu, rows, n, 0) || plot_errors(dir, sc.name, us, nu, rows, n, 1)))
+            rc = NP_EXIT_USAGE;
+        /* The seed's figures 10 and 11: forward differences against per pixel, where the scene has both. */
+        if (rc == NP_EXIT_OK && renders(us, nu, "fdiff") && renders(us, nu, "texel") &&
+            (plot_scan(dir, &sc, &fr, 0) || plot_scan(dir, &sc, &fr, np_fdiff_cfg_default().guard)))
             rc = NP_EXIT_USAGE;
         np_render_frame_free(&fr);
         np_scene_free(&sc);
