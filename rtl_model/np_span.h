@@ -32,7 +32,7 @@
  * (n = 0) costs its accepting clock and nothing else. With no gaps and no
  * backpressure a run of spans therefore takes
  *   spans + set-up cycles + pixels + n_stages   clocks
- * (tests fdiff.cycle_count and texel.cycle_vs_model check it).
+ * (tests fdiff.cycle_count and fdiff.texel_cycle_vs_model check it).
  *
  * --- Engine state and signal bundle (conventions) ---
  * An engine's state begins with an np_span_ctx: the context its pipeline

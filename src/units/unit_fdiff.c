@@ -97,6 +97,9 @@ static const np_unit_sweep fd_sweeps[] = {
     { "fdiff K=0, set-up multipliers", NULL, "setup_mults", rep_p, N_P, 0, 4 },
 };
 
+_Static_assert(sizeof(np_fdiff_core) <= NP_SU_CORE_MAX && sizeof(np_span_sig) + NP_SU_SIG_HEAD <= NP_SU_SIG_MAX &&
+                   (unsigned)NP_FDIFF_TAIL_STAGES <= (unsigned)NP_SU_STAGES_MAX,
+               "the engine fits the span-unit adapter");
 static np_su fd_su = {
     .span = { &np_fdiff_engine, offsetof(fd_cfg, c), offsetof(fd_cfg, tex), fd_sweeps,
               sizeof fd_sweeps / sizeof fd_sweeps[0], "g4", "guard=4" },

@@ -224,8 +224,6 @@ typedef union su_align {
     void *d;
 } su_align;
 
-enum { SU_CORE_MAX = 4096, SU_SIG_MAX = 4096 };
-
 /*
  * The per-transaction bundle: the transaction's words, then (set by the
  * front stage) which unit and the stage context, then the engine's bundle.
@@ -238,6 +236,7 @@ typedef struct su_sig {
 } su_sig;
 
 static size_t su_sig_size(const np_su *su) { return offsetof(su_sig, t) + su->span.engine->sig_size; }
+_Static_assert(offsetof(su_sig, t) <= NP_SU_SIG_HEAD, "NP_SU_SIG_HEAD holds the bundle's head");
 
 /*
  * The state at pixel k of a sequential engine (no seek): run from the span's
@@ -253,7 +252,7 @@ typedef struct su_cache {
     np_span sp;
     uint32_t k;
     np_span_counts cnt;
-    su_align core[SU_CORE_MAX / sizeof(su_align)];
+    su_align core[NP_SU_CORE_MAX / sizeof(su_align)];
 } su_cache;
 static _Thread_local su_cache cache;
 
@@ -289,7 +288,7 @@ void np_su_front(const np_su *su, const void *cfg, void *sig)
     su_sig *s = sig;
     const np_span_engine *e = su->span.engine;
     np_span sp;
-    su_align local[SU_CORE_MAX / sizeof(su_align)];
+    su_align local[NP_SU_CORE_MAX / sizeof(su_align)];
     np_ut_span(s->in, &sp);
     sp.n = NP_TEX_SPAN_MAX; /* the value of pixel k does not depend on n */
     const uint32_t k = (uint32_t)np_trunc_u(s->in[UT_K], 16);
@@ -321,7 +320,7 @@ static pthread_mutex_t su_lock = PTHREAD_MUTEX_INITIALIZER;
 int np_su_pipe_init(np_su *su, np_stage_fn front, np_pipe *p, const void *cfg)
 {
     const np_span_engine *e = su->span.engine;
-    if (e->n_stages > NP_SU_STAGES_MAX || su_sig_size(su) > SU_SIG_MAX || e->core_size > SU_CORE_MAX)
+    if (e->n_stages > NP_SU_STAGES_MAX || su_sig_size(su) > NP_SU_SIG_MAX || e->core_size > NP_SU_CORE_MAX)
         return -1;
     pthread_mutex_lock(&su_lock);
     if (!su->built) {
@@ -351,7 +350,7 @@ void np_su_sig_get_out(const void *cfg, const void *sig, uint64_t *out)
 
 void np_su_eval(const np_su *su, const void *cfg, const uint64_t *in, uint64_t *out)
 {
-    su_align buf[SU_SIG_MAX / sizeof(su_align)];
+    su_align buf[NP_SU_SIG_MAX / sizeof(su_align)];
     const np_span_engine *e = su->span.engine;
     np_su_sig_set_in(buf, in);
     np_su_front(su, cfg, buf);

@@ -77,6 +77,9 @@ static const np_unit_sweep tx_sweeps[] = {
     { "texel, weight bits", NULL, "weight_frac", rep_wt, sizeof rep_wt / sizeof rep_wt[0], 0, 3 },
 };
 
+_Static_assert(sizeof(np_texel_front) <= NP_SU_CORE_MAX && sizeof(np_texel_sig) + NP_SU_SIG_HEAD <= NP_SU_SIG_MAX &&
+                   (unsigned)NP_TEXEL_STAGES <= (unsigned)NP_SU_STAGES_MAX,
+               "the engine fits the span-unit adapter");
 static np_su tx_su = {
     .span = { &np_texel_engine, offsetof(tx_cfg, c), offsetof(tx_cfg, tex), tx_sweeps, 1, NULL, NULL },
     .engine_cfg_size = sizeof(np_texel_cfg),
