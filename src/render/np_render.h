@@ -102,7 +102,7 @@ enum { NP_RENDER_MAX_UNITS = 8 };
  */
 int np_render_units(const np_scene *sc, const char *(*spec)(const void *ctx, const np_unit *u), const void *ctx,
                     np_render_unit_cfg *us, char *err, size_t errlen);
-/* Configure c again from its spec and then more ("key=value,..."; a key given twice is an error). 0, or -1. */
+/* Configure c again from its spec and more ("key=value,..."; more's keys win over the spec's). 0, or -1. */
 int np_render_unit_reconfigure(np_render_unit_cfg *c, const char *more, char *err, size_t errlen);
 void np_render_run_free(np_render_run *run);
 

@@ -5,11 +5,29 @@
 #include <stdio.h>
 #include <string.h>
 
+/* Does the "key=value,..." list kv set key (len characters)? */
+static int sets(const char *kv, const char *key, size_t len)
+{
+    for (const char *p = kv; p && *p; p += strcspn(p, ","), p += *p == ',')
+        if (strcspn(p, "=") == len && strncmp(p, key, len) == 0)
+            return 1;
+    return 0;
+}
+
 int np_render_unit_reconfigure(np_render_unit_cfg *c, const char *more, char *err, size_t errlen)
 {
     const np_unit *u = c->u;
     char spec[sizeof c->spec + 256];
-    snprintf(spec, sizeof spec, "%s%s%s", c->spec, *c->spec && more && *more ? "," : "", more ? more : "");
+    size_t n = 0;
+    spec[0] = '\0';
+    /* c's keys, but those more sets (more wins), then more. */
+    for (const char *p = c->spec; *p && n < sizeof spec; p += strcspn(p, ","), p += *p == ',') {
+        size_t len = strcspn(p, ",");
+        if (!sets(more, p, strcspn(p, "=")))
+            n += (size_t)snprintf(spec + n, sizeof spec - n, "%s%.*s", n ? "," : "", (int)len, p);
+    }
+    if (more && *more && n < sizeof spec)
+        snprintf(spec + n, sizeof spec - n, "%s%s", n ? "," : "", more);
     if (np_unit_configure(u, &c->cfg, spec, err, errlen) != 0)
         return -1;
     /* The keys the scene sets are the scene's. */
