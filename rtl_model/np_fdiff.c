@@ -222,9 +222,14 @@ void np_fdiff_core_init(np_fdiff_core *c, const np_fdiff_cfg *cfg, const np_tex_
     c->r = r;
     c->F = np_fdiff_frac(cfg);
     c->W = np_fdiff_width(cfg);
+    c->ctx.cfg = cfg;
+    c->ctx.r = r;
+    c->ctx.F = c->F;
+    c->ctx.W = c->W;
+    c->ctx.fw = cfg->w_frac;
 }
 
-unsigned np_fdiff_core_begin(np_fdiff_core *c, const np_span *sp, np_fdiff_counts *cnt)
+unsigned np_fdiff_core_begin(np_fdiff_core *c, const np_span *sp, np_span_counts *cnt)
 {
     c->sp = *sp;
     c->k = 0;
@@ -257,7 +262,7 @@ np_s128 np_fdiff_core_x(const np_fdiff_core *c)
     return x;
 }
 
-unsigned np_fdiff_core_advance(np_fdiff_core *c, np_fdiff_counts *cnt)
+unsigned np_fdiff_core_advance(np_fdiff_core *c, np_span_counts *cnt)
 {
     const unsigned W = c->W, K = c->cfg->resetup;
     c->k++;
@@ -304,134 +309,53 @@ unsigned np_fdiff_core_advance(np_fdiff_core *c, np_fdiff_counts *cnt)
     return cycles;
 }
 
-void np_fdiff_span(const np_fdiff_cfg *cfg, const np_tex_regs *r, const np_span *sp,
-                   np_tex_pixel *out, np_fdiff_counts *counts, const np_fdiff_probe *probe)
+/* --- The engine (np_span.h) --- */
+
+static void e_init(void *core, const void *cfg, const np_tex_regs *r) { np_fdiff_core_init(core, cfg, r); }
+static unsigned e_begin(void *core, const np_span *sp, np_span_counts *cnt) { return np_fdiff_core_begin(core, sp, cnt); }
+static unsigned e_advance(void *core, np_span_counts *cnt) { return np_fdiff_core_advance(core, cnt); }
+static void e_issue(const void *core, void *sig) { ((np_span_sig *)sig)->x = np_fdiff_core_x(core); }
+static size_t e_datapath(const void *cfg, const np_tex_regs *r, np_op *ops, size_t max)
 {
-    np_fdiff_core c;
-    np_fdiff_counts dummy;
-    np_fdiff_counts *cnt = counts ? counts : &dummy;
-    memset(&dummy, 0, sizeof dummy);
-    np_fdiff_core_init(&c, cfg, r);
-    np_fdiff_core_begin(&c, sp, cnt);
-    for (uint32_t k = 0; k < sp->n; k++) {
-        np_s128 x = np_fdiff_core_x(&c);
-        out[k].x = (uint16_t)(sp->x0 + k);
-        out[k].y = sp->y;
-        np_tex_colour(r, x, c.F, cfg->w_frac, out[k].rgb);
-        if (probe) {
-            if (probe->x)
-                probe->x[k] = x;
-            for (unsigned o = 0; o < r->n_oct; o++)
-                if (probe->noise[o])
-                    probe->noise[o][k] = c.oct[o].d[0];
-            if (probe->setup)
-                probe->setup[k] = (uint16_t)c.last_setup;
-        }
-        cnt->pixels++;
-        np_fdiff_core_advance(&c, cnt);
-    }
+    return np_fdiff_datapath(cfg, r, ops, max);
 }
 
-/* --- Cycle-accurate model --- */
-
-static np_fdiff_tail_sig *tail_sig(void *s) { return (np_fdiff_tail_sig *)s; }
-
-static void stage_c1(const void *cv, void *sv)
-{
-    const np_fdiff_tail_ctx *t = cv;
-    np_fdiff_tail_sig *s = tail_sig(sv);
-    np_tex_colour_split(t->r, s->x, t->F, t->fw, &s->seg, &s->w);
-}
-
-static void stage_c2(const void *cv, void *sv)
-{
-    const np_fdiff_tail_ctx *t = cv;
-    np_fdiff_tail_sig *s = tail_sig(sv);
-    np_tex_colour_mix(t->r, s->seg, s->w, t->fw, s->prod);
-}
-
-static void stage_c3(const void *cv, void *sv)
-{
-    const np_fdiff_tail_ctx *t = cv;
-    np_fdiff_tail_sig *s = tail_sig(sv);
-    np_tex_colour_round(s->prod, t->fw, s->rgb);
-}
-
-const np_stage_desc np_fdiff_tail_stages[NP_FDIFF_TAIL_STAGES] = {
-    { "C1", stage_c1 }, { "C2", stage_c2 }, { "C3", stage_c3 },
+const np_span_engine np_fdiff_engine = {
+    .name = "fdiff",
+    .core_size = sizeof(np_fdiff_core),
+    .sig_size = sizeof(np_span_sig),
+    .stages = np_span_colour_stages,
+    .n_stages = NP_FDIFF_TAIL_STAGES,
+    .init = e_init,
+    .begin = e_begin,
+    .advance = e_advance,
+    .issue = e_issue,
+    .seek = NULL, /* the forward differences are sequential */
+    .datapath = e_datapath,
 };
 
-int np_fdiff_sim_init(np_fdiff_sim *m, const np_fdiff_cfg *cfg, const np_tex_regs *r)
+static void probe_pixel(const void *pctx, const void *core, const void *sig, uint32_t k)
 {
-    memset(m, 0, sizeof *m);
-    np_fdiff_core_init(&m->core, cfg, r);
-    m->tctx.r = r;
-    m->tctx.F = np_fdiff_frac(cfg);
-    m->tctx.fw = cfg->w_frac;
-    return np_pipe_init(&m->tail, np_fdiff_tail_stages, NP_FDIFF_TAIL_STAGES, sizeof(np_fdiff_tail_sig),
-                        &m->tctx);
+    const np_fdiff_probe *probe = pctx;
+    const np_fdiff_core *c = core;
+    if (probe->x)
+        probe->x[k] = ((const np_span_sig *)sig)->x;
+    for (unsigned o = 0; o < c->r->n_oct; o++)
+        if (probe->noise[o])
+            probe->noise[o][k] = c->oct[o].d[0];
+    if (probe->setup)
+        probe->setup[k] = (uint16_t)c->last_setup;
 }
 
-void np_fdiff_sim_free(np_fdiff_sim *m) { np_pipe_free(&m->tail); }
-
-void np_fdiff_sim_reset(np_fdiff_sim *m)
+void np_fdiff_span(const np_fdiff_cfg *cfg, const np_tex_regs *r, const np_span *sp,
+                   np_tex_pixel *out, np_span_counts *counts, const np_fdiff_probe *probe)
 {
-    np_pipe_reset(&m->tail);
-    np_fdiff_core_init(&m->core, m->core.cfg, m->core.r);
-    m->busy = 0;
-    m->stall = 0;
-    memset(&m->stats, 0, sizeof m->stats);
+    np_fdiff_core c;
+    np_span_sig sig;
+    np_fdiff_core_init(&c, cfg, r);
+    np_span_run(&np_fdiff_engine, &c, &sig, sp, out, counts, probe ? probe_pixel : NULL,
+                probe);
 }
-
-void np_fdiff_sim_eval(np_fdiff_sim *m, np_fdiff_port *p)
-{
-    p->in_ready = !m->busy;
-    m->tport.in_valid = m->busy && m->stall == 0;
-    if (m->tport.in_valid) {
-        memset(&m->pending, 0, sizeof m->pending);
-        m->pending.x = np_fdiff_core_x(&m->core);
-        m->pending.px = (uint16_t)(m->core.sp.x0 + m->core.k);
-        m->pending.py = m->core.sp.y;
-    }
-    m->tport.in_sig = &m->pending;
-    m->tport.out_ready = p->out_ready;
-    np_pipe_eval(&m->tail, &m->tport);
-    p->out_valid = m->tport.out_valid;
-    if (p->out_valid) {
-        const np_fdiff_tail_sig *o = m->tport.out_sig;
-        p->out.x = o->px;
-        p->out.y = o->py;
-        memcpy(p->out.rgb, o->rgb, sizeof p->out.rgb);
-    }
-}
-
-void np_fdiff_sim_clock(np_fdiff_sim *m, const np_fdiff_port *p)
-{
-    np_fdiff_stats *st = &m->stats;
-    st->cycles++;
-    int issued = m->tport.in_valid && m->tport.in_ready;
-    np_pipe_clock(&m->tail, &m->tport); /* reads the pending bundle */
-    if (m->busy) {
-        if (m->stall > 0) {
-            m->stall--;
-            st->setup_stalls++;
-        } else if (issued) {
-            st->counts.pixels++;
-            m->stall = np_fdiff_core_advance(&m->core, &st->counts);
-            if (m->core.k >= m->core.sp.n)
-                m->busy = 0;
-        } else {
-            st->out_stalls++;
-        }
-    } else if (p->in_valid) {
-        m->stall = np_fdiff_core_begin(&m->core, p->in, &st->counts);
-        m->busy = p->in->n > 0;
-    } else {
-        st->idle++;
-    }
-}
-
-int np_fdiff_sim_idle(const np_fdiff_sim *m) { return !m->busy && np_pipe_occupancy(&m->tail) == 0; }
 
 /* --- Datapath declaration --- */
 

@@ -76,6 +76,7 @@
 #include "np_datapath.h"
 #include "np_fixed.h"
 #include "np_pipe.h"
+#include "np_span.h"
 #include "np_texture.h"
 
 #ifdef __cplusplus
@@ -87,7 +88,7 @@ enum {
     NP_FDIFF_GUARD_MAX = 100,
     NP_FDIFF_MULTS_MAX = 64,
     NP_FDIFF_LAT_MAX = 16,
-    NP_FDIFF_TAIL_STAGES = 3 /* colour map: C1 split, C2 mix, C3 round */
+    NP_FDIFF_TAIL_STAGES = NP_SPAN_COLOUR_STAGES /* colour map: C1 split, C2 mix, C3 round */
 };
 
 typedef struct np_fdiff_cfg {
@@ -146,16 +147,6 @@ void np_fdiff_quad_setup(const np_fdiff_cfg *cfg, const np_tex_regs *r, const in
 np_s128 np_fdiff_noise_exact(const np_tex_regs *r, unsigned oct, const uint64_t u[3],
                              const int64_t du[3], int64_t k);
 
-/* Counts of the work done. */
-typedef struct np_fdiff_counts {
-    uint64_t spans;          /* descriptors, empty ones included */
-    uint64_t pixels;
-    uint64_t span_setups;    /* front end + quadric + every octave's first cell */
-    uint64_t cell_setups;    /* octave set-ups on a cell change */
-    uint64_t interval_setups;/* octave or quadric set-ups after K steps */
-    uint64_t setup_cycles;   /* the stall the set-ups cost */
-} np_fdiff_counts;
-
 /* Optional per-pixel observation of the bit-exact model (any pointer may be NULL). */
 typedef struct np_fdiff_probe {
     np_s128 *x;                          /* index x per pixel */
@@ -169,40 +160,22 @@ typedef struct np_fdiff_probe {
  * np_tex_regs_check and np_span_check pass.
  */
 void np_fdiff_span(const np_fdiff_cfg *cfg, const np_tex_regs *r, const np_span *sp,
-                   np_tex_pixel *out, np_fdiff_counts *counts, const np_fdiff_probe *probe);
+                   np_tex_pixel *out, np_span_counts *counts, const np_fdiff_probe *probe);
 
-/* --- Cycle-accurate model --- */
+/* --- The engine (np_span.h): the core and its colour pipeline --- */
 
 /*
- * Ports, one cycle: the testbench sets in_valid/in and out_ready, calls
- * np_fdiff_sim_eval (the model drives in_ready, out_valid, out), consumes
- * the output if out_valid && out_ready, then calls np_fdiff_sim_clock.
- * A descriptor transfers when in_valid && in_ready; in_ready is high only
- * while the unit is idle (a span's descriptor is read after the previous
- * span's last pixel has left the core). Timing per span: 1 clock to accept,
- * then the span set-up stall, then one pixel per clock into the colour
- * pipeline (NP_FDIFF_TAIL_STAGES deep) except for the set-up stalls, and
- * output backpressure stalls the core.
+ * The span sequencer of np_span.h runs this engine: np_span_run is the
+ * bit-exact model above, np_span_sim the cycle-accurate one. Timing per span
+ * (np_span.h): 1 clock to accept, the span set-up stall, then one pixel per
+ * clock into the colour pipeline (NP_FDIFF_TAIL_STAGES deep) except for the
+ * cell and interval set-up stalls.
  */
-typedef struct np_fdiff_port {
-    int in_valid;
-    const np_span *in;
-    int out_ready;
-    int in_ready;
-    int out_valid;
-    np_tex_pixel out;
-} np_fdiff_port;
+extern const np_span_engine np_fdiff_engine;
 
-typedef struct np_fdiff_stats {
-    uint64_t cycles;
-    uint64_t setup_stalls;   /* clocks the core spent in set-up */
-    uint64_t out_stalls;     /* clocks the core held a pixel the tail could not take */
-    uint64_t idle;           /* clocks the core waited for a descriptor */
-    np_fdiff_counts counts;
-} np_fdiff_stats;
-
-/* Internal state of the core (shared by the bit-exact model and the cycle model). */
+/* The core's state (the engine state of np_fdiff_engine). */
 typedef struct np_fdiff_core {
+    np_span_ctx ctx;     /* first (np_span.h) */
     const np_fdiff_cfg *cfg;
     const np_tex_regs *r;
     unsigned F, W;
@@ -222,55 +195,17 @@ typedef struct np_fdiff_core {
 } np_fdiff_core;
 
 /*
- * The core step by step (what np_fdiff_span and the cycle model are made of):
- * init once; begin loads a span and returns the set-up clocks before its
- * first pixel (0 for an empty span); x is pixel k's colour index
- * (Q + sum of the octaves' n, an adder tree mod 2^W); advance steps to pixel
- * k + 1 and returns the set-up clocks it needs first (0: none, or the span
- * ended). counts is incremented (not NULL).
+ * The core step by step (the engine's begin and advance): init once; begin
+ * loads a span and returns the set-up clocks before its first pixel (0 for
+ * an empty span); x is pixel k's colour index (Q + sum of the octaves' n, an
+ * adder tree mod 2^W); advance steps to pixel k + 1 and returns the set-up
+ * clocks it needs first (0: none, or the span ended). counts is incremented
+ * (not NULL).
  */
 void np_fdiff_core_init(np_fdiff_core *c, const np_fdiff_cfg *cfg, const np_tex_regs *r);
-unsigned np_fdiff_core_begin(np_fdiff_core *c, const np_span *sp, np_fdiff_counts *counts);
+unsigned np_fdiff_core_begin(np_fdiff_core *c, const np_span *sp, np_span_counts *counts);
 np_s128 np_fdiff_core_x(const np_fdiff_core *c);
-unsigned np_fdiff_core_advance(np_fdiff_core *c, np_fdiff_counts *counts);
-
-/* The colour pipeline's signal bundle (formats as np_texture.h). */
-typedef struct np_fdiff_tail_sig {
-    np_s128 x;         /* s(W) QI.F */
-    uint16_t px, py;
-    unsigned seg;      /* u8 */
-    uint32_t w;        /* u(Fw+1) Q1.Fw */
-    int64_t prod[3];   /* s(10+Fw) Q9.Fw */
-    uint8_t rgb[3];
-} np_fdiff_tail_sig;
-
-typedef struct np_fdiff_tail_ctx {
-    const np_tex_regs *r;
-    unsigned F, fw;
-} np_fdiff_tail_ctx;
-
-/* The colour pipeline's stages C1 C2 C3 (np_pipe stage functions; cfg is an np_fdiff_tail_ctx). */
-extern const np_stage_desc np_fdiff_tail_stages[NP_FDIFF_TAIL_STAGES];
-
-typedef struct np_fdiff_sim {
-    np_fdiff_core core;
-    np_pipe tail;
-    int busy;            /* a span is in the core */
-    unsigned stall;      /* set-up clocks left before pixel k can issue */
-    np_fdiff_stats stats;
-    np_fdiff_tail_ctx tctx;
-    np_fdiff_tail_sig pending; /* the bundle offered to the tail this cycle */
-    np_pipe_port tport;
-} np_fdiff_sim;
-
-/* cfg and r must outlive the model. 0, or -1 when out of memory. */
-int np_fdiff_sim_init(np_fdiff_sim *m, const np_fdiff_cfg *cfg, const np_tex_regs *r);
-void np_fdiff_sim_free(np_fdiff_sim *m);
-void np_fdiff_sim_reset(np_fdiff_sim *m);
-void np_fdiff_sim_eval(np_fdiff_sim *m, np_fdiff_port *p);
-void np_fdiff_sim_clock(np_fdiff_sim *m, const np_fdiff_port *p);
-/* Nothing in flight: no span in the core, the tail empty. */
-int np_fdiff_sim_idle(const np_fdiff_sim *m);
+unsigned np_fdiff_core_advance(np_fdiff_core *c, np_span_counts *counts);
 
 /* --- Timing and datapath declaration (np_datapath.h) --- */
 

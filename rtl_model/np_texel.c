@@ -52,9 +52,10 @@ static np_texel_sig *sig_of(void *s) { return (np_texel_sig *)s; }
 
 static void stage_l(const void *cv, void *sv)
 {
-    const np_texel_ctx *t = cv;
+    const np_span_ctx *t = cv;
+    const np_texel_cfg *cfg = t->cfg;
     np_texel_sig *s = sig_of(sv);
-    const unsigned sh = NP_TEX_FC - t->cfg->weight_frac;
+    const unsigned sh = NP_TEX_FC - cfg->weight_frac;
     for (unsigned o = 0; o < t->r->n_oct; o++) {
         np_tex_lattice(np_tex_cell(s->u[o][0]), np_tex_cell(s->u[o][1]), np_tex_cell(s->u[o][2]), s->n[o]);
         for (unsigned a = 0; a < 3; a++)
@@ -74,37 +75,41 @@ static np_s128 lerp(unsigned wt, uint32_t w, np_s128 a, np_s128 b)
 
 static void stage_i1(const void *cv, void *sv)
 {
-    const np_texel_ctx *t = cv;
+    const np_span_ctx *t = cv;
+    const np_texel_cfg *cfg = t->cfg;
     np_texel_sig *s = sig_of(sv);
     for (unsigned o = 0; o < t->r->n_oct; o++)
         for (unsigned p = 0; p < 4; p++)
-            s->l1[o][p] = lerp(t->cfg->weight_frac, s->w[o][0], (np_s128)s->n[o][2 * p],
+            s->l1[o][p] = lerp(cfg->weight_frac, s->w[o][0], (np_s128)s->n[o][2 * p],
                                (np_s128)s->n[o][2 * p + 1]);
 }
 
 static void stage_i2(const void *cv, void *sv)
 {
-    const np_texel_ctx *t = cv;
+    const np_span_ctx *t = cv;
+    const np_texel_cfg *cfg = t->cfg;
     np_texel_sig *s = sig_of(sv);
     for (unsigned o = 0; o < t->r->n_oct; o++)
         for (unsigned p = 0; p < 2; p++)
-            s->l2[o][p] = lerp(t->cfg->weight_frac, s->w[o][1], s->l1[o][2 * p], s->l1[o][2 * p + 1]);
+            s->l2[o][p] = lerp(cfg->weight_frac, s->w[o][1], s->l1[o][2 * p], s->l1[o][2 * p + 1]);
 }
 
 static void stage_i3(const void *cv, void *sv)
 {
-    const np_texel_ctx *t = cv;
+    const np_span_ctx *t = cv;
+    const np_texel_cfg *cfg = t->cfg;
     np_texel_sig *s = sig_of(sv);
     for (unsigned o = 0; o < t->r->n_oct; o++)
-        s->l3[o] = lerp(t->cfg->weight_frac, s->w[o][2], s->l2[o][0], s->l2[o][1]);
+        s->l3[o] = lerp(cfg->weight_frac, s->w[o][2], s->l2[o][0], s->l2[o][1]);
 }
 
 static void stage_a(const void *cv, void *sv)
 {
-    const np_texel_ctx *t = cv;
+    const np_span_ctx *t = cv;
+    const np_texel_cfg *cfg = t->cfg;
     np_texel_sig *s = sig_of(sv);
-    const unsigned F = np_texel_frac(t->cfg), W = np_texel_width(t->cfg);
-    const unsigned nf = NP_TEX_LAT_FRAC + 3u * t->cfg->weight_frac + NP_TEX_AMP_FRAC;
+    const unsigned F = t->F, W = t->W;
+    const unsigned nf = NP_TEX_LAT_FRAC + 3u * cfg->weight_frac + NP_TEX_AMP_FRAC;
     for (unsigned o = 0; o < t->r->n_oct; o++)
         s->N[o] = np_tex_to_index(np_mul128((np_s128)t->r->oct[o].amp, s->l3[o]), nf, F, W);
     s->q = np_tex_to_index(s->qx, NP_TEX_Q_EXACT_FRAC, F, W);
@@ -112,40 +117,18 @@ static void stage_a(const void *cv, void *sv)
 
 static void stage_s(const void *cv, void *sv)
 {
-    const np_texel_ctx *t = cv;
+    const np_span_ctx *t = cv;
     np_texel_sig *s = sig_of(sv);
-    const unsigned W = np_texel_width(t->cfg);
     np_s128 x = s->q;
     for (unsigned o = 0; o < t->r->n_oct; o++)
-        x = np_wrap_s128(np_add128(x, s->N[o]), W);
-    s->x = x;
-}
-
-static void stage_c1(const void *cv, void *sv)
-{
-    const np_texel_ctx *t = cv;
-    np_texel_sig *s = sig_of(sv);
-    np_tex_colour_split(t->r, s->x, np_texel_frac(t->cfg), t->cfg->w_frac, &s->seg, &s->cw);
-}
-
-static void stage_c2(const void *cv, void *sv)
-{
-    const np_texel_ctx *t = cv;
-    np_texel_sig *s = sig_of(sv);
-    np_tex_colour_mix(t->r, s->seg, s->cw, t->cfg->w_frac, s->prod);
-}
-
-static void stage_c3(const void *cv, void *sv)
-{
-    const np_texel_ctx *t = cv;
-    np_texel_sig *s = sig_of(sv);
-    np_tex_colour_round(s->prod, t->cfg->w_frac, s->rgb);
+        x = np_wrap_s128(np_add128(x, s->N[o]), t->W);
+    s->head.x = x;
 }
 
 const np_stage_desc np_texel_stages[NP_TEXEL_STAGES] = {
     { "L", stage_l },   { "I1", stage_i1 }, { "I2", stage_i2 },
     { "I3", stage_i3 }, { "A", stage_a },   { "S", stage_s },
-    { "C1", stage_c1 }, { "C2", stage_c2 }, { "C3", stage_c3 },
+    { "C1", np_span_stage_c1 }, { "C2", np_span_stage_c2 }, { "C3", np_span_stage_c3 },
 };
 
 /* --- Front end: span set-up and the DDAs --- */
@@ -156,146 +139,121 @@ unsigned np_texel_span_setup_cycles(const np_texel_cfg *cfg, const np_tex_regs *
     return r->n_oct * np_tex_sched_cycles(front, cfg->setup_mults, cfg->mult_lat);
 }
 
-static unsigned front_begin(const np_texel_ctx *t, const np_span *sp, uint64_t u[][3], int64_t du[][3],
-                            int64_t s[3], np_texel_counts *cnt)
+static void front_init(void *core, const void *cfg, const np_tex_regs *r)
 {
+    np_texel_front *f = core;
+    const np_texel_cfg *c = cfg;
+    memset(f, 0, sizeof *f);
+    f->ctx.cfg = c;
+    f->ctx.r = r;
+    f->ctx.F = np_texel_frac(c);
+    f->ctx.W = np_texel_width(c);
+    f->ctx.fw = c->w_frac;
+}
+
+static unsigned front_begin(void *core, const np_span *sp, np_span_counts *cnt)
+{
+    np_texel_front *f = core;
+    const np_tex_regs *r = f->ctx.r;
+    f->sp = *sp;
+    f->k = 0;
     cnt->spans++;
     if (sp->n == 0)
         return 0;
-    const unsigned cycles = np_texel_span_setup_cycles(t->cfg, t->r);
-    for (unsigned o = 0; o < t->r->n_oct; o++) {
+    const unsigned cycles = np_texel_span_setup_cycles(f->ctx.cfg, r);
+    for (unsigned o = 0; o < r->n_oct; o++) {
         np_tex_oct_span os;
-        np_tex_octave_span(t->r, o, sp->s, sp->ds, &os);
-        memcpy(u[o], os.u, sizeof os.u);
-        memcpy(du[o], os.du, sizeof os.du);
+        np_tex_octave_span(r, o, sp->s, sp->ds, &os);
+        memcpy(f->u[o], os.u, sizeof os.u);
+        memcpy(f->du[o], os.du, sizeof os.du);
     }
-    memcpy(s, sp->s, 3 * sizeof s[0]);
+    memcpy(f->s, sp->s, sizeof f->s);
     cnt->span_setups++;
     cnt->setup_cycles += cycles;
     return cycles;
 }
 
-static void front_load(const np_texel_ctx *t, const np_span *sp, uint32_t k, const uint64_t u[][3],
-                       const int64_t s[3], np_texel_sig *sig)
+/* One DDA step of every coordinate; no set-up ever follows. */
+static unsigned front_advance(void *core, np_span_counts *cnt)
 {
-    memset(sig, 0, sizeof *sig);
-    sig->px = (uint16_t)(sp->x0 + k);
-    sig->py = sp->y;
-    for (unsigned o = 0; o < t->r->n_oct; o++)
-        memcpy(sig->u[o], u[o], sizeof sig->u[o]);
-    memcpy(sig->s, s, sizeof sig->s);
+    (void)cnt;
+    np_texel_front *f = core;
+    if (++f->k >= f->sp.n)
+        return 0;
+    for (unsigned o = 0; o < f->ctx.r->n_oct; o++)
+        for (unsigned a = 0; a < 3; a++)
+            f->u[o][a] = np_tex_dda(f->u[o][a], f->du[o][a]);
+    for (unsigned a = 0; a < 3; a++)
+        f->s[a] += f->sp.ds[a];
+    return 0;
 }
 
-static void front_step(const np_texel_ctx *t, const np_span *sp, uint64_t u[][3], const int64_t du[][3],
-                       int64_t s[3])
+static void front_issue(const void *core, void *sig)
 {
-    for (unsigned o = 0; o < t->r->n_oct; o++)
-        for (unsigned a = 0; a < 3; a++)
-            u[o][a] = np_tex_dda(u[o][a], du[o][a]);
+    const np_texel_front *f = core;
+    np_texel_sig *s = sig;
+    for (unsigned o = 0; o < f->ctx.r->n_oct; o++)
+        memcpy(s->u[o], f->u[o], sizeof s->u[o]);
+    memcpy(s->s, f->s, sizeof s->s);
+}
+
+/* Pixel k placed directly: u0 + k du (mod 256) and s + k ds, the values the DDAs reach. */
+static void front_seek(void *core, const np_span *sp, uint32_t k)
+{
+    np_texel_front *f = core;
+    const np_tex_regs *r = f->ctx.r;
+    f->sp = *sp;
+    f->k = k;
+    for (unsigned o = 0; o < r->n_oct; o++) {
+        np_tex_oct_span os;
+        np_tex_octave_span(r, o, sp->s, sp->ds, &os);
+        for (unsigned a = 0; a < 3; a++) {
+            f->du[o][a] = os.du[a];
+            f->u[o][a] = np_trunc_u(os.u[a] + (uint64_t)k * (uint64_t)os.du[a], NP_TEX_U_BITS);
+        }
+    }
     for (unsigned a = 0; a < 3; a++)
-        s[a] += sp->ds[a];
+        f->s[a] = sp->s[a] + (int64_t)k * sp->ds[a];
+}
+
+static size_t front_datapath(const void *cfg, const np_tex_regs *r, np_op *ops, size_t max)
+{
+    return np_texel_datapath(cfg, r, ops, max);
+}
+
+const np_span_engine np_texel_engine = {
+    .name = "texel",
+    .core_size = sizeof(np_texel_front),
+    .sig_size = sizeof(np_texel_sig),
+    .stages = np_texel_stages,
+    .n_stages = NP_TEXEL_STAGES,
+    .init = front_init,
+    .begin = front_begin,
+    .advance = front_advance,
+    .issue = front_issue,
+    .seek = front_seek,
+    .datapath = front_datapath,
+};
+
+static void probe_pixel(const void *pctx, const void *core, const void *sig, uint32_t k)
+{
+    const np_texel_probe *probe = pctx;
+    const np_texel_sig *s = sig;
+    if (probe->x)
+        probe->x[k] = s->head.x;
+    for (unsigned o = 0; o < np_span_ctx_of(core)->r->n_oct; o++)
+        if (probe->noise[o])
+            probe->noise[o][k] = s->N[o];
 }
 
 void np_texel_span(const np_texel_cfg *cfg, const np_tex_regs *r, const np_span *sp,
-                   np_tex_pixel *out, np_texel_counts *counts, const np_texel_probe *probe)
+                   np_tex_pixel *out, np_span_counts *counts, const np_texel_probe *probe)
 {
-    np_texel_ctx t = { cfg, r };
-    np_texel_counts dummy;
-    np_texel_counts *cnt = counts ? counts : &dummy;
-    uint64_t u[NP_TEX_MAX_OCTAVES][3];
-    int64_t du[NP_TEX_MAX_OCTAVES][3], s[3];
+    np_texel_front f;
     np_texel_sig sig;
-    memset(&dummy, 0, sizeof dummy);
-    front_begin(&t, sp, u, du, s, cnt);
-    for (uint32_t k = 0; k < sp->n; k++) {
-        front_load(&t, sp, k, u, s, &sig);
-        for (unsigned st = 0; st < NP_TEXEL_STAGES; st++)
-            np_texel_stages[st].fn(&t, &sig);
-        out[k].x = sig.px;
-        out[k].y = sig.py;
-        memcpy(out[k].rgb, sig.rgb, sizeof sig.rgb);
-        if (probe) {
-            if (probe->x)
-                probe->x[k] = sig.x;
-            for (unsigned o = 0; o < r->n_oct; o++)
-                if (probe->noise[o])
-                    probe->noise[o][k] = sig.N[o];
-        }
-        cnt->pixels++;
-        front_step(&t, sp, u, du, s);
-    }
+    front_init(&f, cfg, r);
+    np_span_run(&np_texel_engine, &f, &sig, sp, out, counts, probe ? probe_pixel : NULL, probe);
 }
-
-/* --- Cycle-accurate model --- */
-
-int np_texel_sim_init(np_texel_sim *m, const np_texel_cfg *cfg, const np_tex_regs *r)
-{
-    memset(m, 0, sizeof *m);
-    m->ctx.cfg = cfg;
-    m->ctx.r = r;
-    return np_pipe_init(&m->pipe, np_texel_stages, NP_TEXEL_STAGES, sizeof(np_texel_sig), &m->ctx);
-}
-
-void np_texel_sim_free(np_texel_sim *m) { np_pipe_free(&m->pipe); }
-
-void np_texel_sim_reset(np_texel_sim *m)
-{
-    np_pipe_reset(&m->pipe);
-    m->busy = 0;
-    m->stall = 0;
-    m->k = 0;
-    memset(&m->stats, 0, sizeof m->stats);
-}
-
-void np_texel_sim_eval(np_texel_sim *m, np_texel_port *p)
-{
-    p->in_ready = !m->busy;
-    m->pport.in_valid = m->busy && m->stall == 0;
-    if (m->pport.in_valid)
-        front_load(&m->ctx, &m->sp, m->k, m->u, m->s, &m->pending);
-    m->pport.in_sig = &m->pending;
-    m->pport.out_ready = p->out_ready;
-    np_pipe_eval(&m->pipe, &m->pport);
-    p->out_valid = m->pport.out_valid;
-    if (p->out_valid) {
-        const np_texel_sig *o = m->pport.out_sig;
-        p->out.x = o->px;
-        p->out.y = o->py;
-        memcpy(p->out.rgb, o->rgb, sizeof p->out.rgb);
-    }
-}
-
-void np_texel_sim_clock(np_texel_sim *m, const np_texel_port *p)
-{
-    np_texel_stats *st = &m->stats;
-    st->cycles++;
-    int issued = m->pport.in_valid && m->pport.in_ready;
-    np_pipe_clock(&m->pipe, &m->pport);
-    if (m->busy) {
-        if (m->stall > 0) {
-            m->stall--;
-            st->setup_stalls++;
-        } else if (issued) {
-            st->counts.pixels++;
-            m->k++;
-            if (m->k >= m->sp.n)
-                m->busy = 0;
-            else
-                front_step(&m->ctx, &m->sp, m->u, m->du, m->s);
-        } else {
-            st->out_stalls++;
-        }
-    } else if (p->in_valid) {
-        m->sp = *p->in;
-        m->k = 0;
-        m->stall = front_begin(&m->ctx, &m->sp, m->u, m->du, m->s, &st->counts);
-        m->busy = m->sp.n > 0;
-    } else {
-        st->idle++;
-    }
-}
-
-int np_texel_sim_idle(const np_texel_sim *m) { return !m->busy && np_pipe_occupancy(&m->pipe) == 0; }
 
 /* --- Datapath declaration --- */
 
@@ -429,10 +387,10 @@ void np_texel_trace(const np_texel_cfg *cfg, const np_tex_regs *r, unsigned k, c
         np_tex_trace128(t, n, "q", s->q);
         break;
     case 5:
-        np_tex_trace128(t, n, "x", s->x);
+        np_tex_trace128(t, n, "x", s->head.x);
         break;
     case 8:
-        np_tex_trace_colour(r, s->seg, s->cw, s->prod, s->rgb, cfg->w_frac, t, n);
+        np_tex_trace_colour(r, s->head.seg, s->head.cw, s->head.prod, s->head.pix.rgb, cfg->w_frac, t, n);
         break;
     default:
         break;

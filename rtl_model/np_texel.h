@@ -41,6 +41,7 @@
 #include "np_datapath.h"
 #include "np_fixed.h"
 #include "np_pipe.h"
+#include "np_span.h"
 #include "np_texture.h"
 
 #ifdef __cplusplus
@@ -70,9 +71,9 @@ static inline unsigned np_texel_width(const np_texel_cfg *c) { return 1u + c->id
 /* The guaranteed bound above, in index units, for registers r. */
 double np_texel_error_bound_index(const np_texel_cfg *cfg, const np_tex_regs *r);
 
-/* The signal bundle (formats above). */
+/* The signal bundle (formats above); x, seg, cw, prod and the colour in the head (np_span.h). */
 typedef struct np_texel_sig {
-    uint16_t px, py;
+    np_span_sig head;                   /* first (np_span.h); head.x: S, then C1 C2 C3 */
     uint64_t u[NP_TEX_MAX_OCTAVES][3];  /* input: octave coordinates */
     int64_t s[3];                       /* input: texture coordinate */
     uint8_t n[NP_TEX_MAX_OCTAVES][8];   /* L */
@@ -83,23 +84,32 @@ typedef struct np_texel_sig {
     np_s128 l3[NP_TEX_MAX_OCTAVES];     /* I3 */
     np_s128 N[NP_TEX_MAX_OCTAVES];      /* A */
     np_s128 q;                          /* A */
-    np_s128 x;                          /* S */
-    unsigned seg;                       /* C1 */
-    uint32_t cw;
-    int64_t prod[3];                    /* C2 */
-    uint8_t rgb[3];                     /* C3 */
 } np_texel_sig;
 
-typedef struct np_texel_ctx {
-    const np_texel_cfg *cfg;
-    const np_tex_regs *r;
-} np_texel_ctx;
-
+/* The pipeline L I1 I2 I3 A S C1 C2 C3 (np_pipe stage functions; cfg is the np_span_ctx of the state). */
 extern const np_stage_desc np_texel_stages[NP_TEXEL_STAGES];
 
-typedef struct np_texel_counts {
-    uint64_t spans, pixels, span_setups, setup_cycles;
-} np_texel_counts;
+/*
+ * The engine's state: the span front end (np_texture.h), the DDAs that step
+ * the octave coordinates u and the texture coordinate s along the span.
+ */
+typedef struct np_texel_front {
+    np_span_ctx ctx;     /* first (np_span.h); ctx.cfg is the np_texel_cfg */
+    np_span sp;
+    uint32_t k;
+    uint64_t u[NP_TEX_MAX_OCTAVES][3];
+    int64_t du[NP_TEX_MAX_OCTAVES][3];
+    int64_t s[3];
+} np_texel_front;
+
+/*
+ * The engine (np_span.h): the sequencer runs it as the bit-exact model
+ * (np_span_run, np_texel_span) and as the cycle-accurate model (np_span_sim):
+ * 1 clock to accept a descriptor, the front end's set-up stall, then one
+ * pixel per clock into the nine stages. Its seek places pixel k directly
+ * (u0 + k du mod 256, s + k ds: the DDA's values, by a multiply).
+ */
+extern const np_span_engine np_texel_engine;
 
 typedef struct np_texel_probe {
     np_s128 *x;
@@ -108,45 +118,7 @@ typedef struct np_texel_probe {
 
 /* The bit-exact model for one span (preconditions as np_fdiff_span). */
 void np_texel_span(const np_texel_cfg *cfg, const np_tex_regs *r, const np_span *sp,
-                   np_tex_pixel *out, np_texel_counts *counts, const np_texel_probe *probe);
-
-/* --- Cycle-accurate model: the same ports and timing rules as np_fdiff_sim --- */
-
-typedef struct np_texel_port {
-    int in_valid;
-    const np_span *in;
-    int out_ready;
-    int in_ready;
-    int out_valid;
-    np_tex_pixel out;
-} np_texel_port;
-
-typedef struct np_texel_stats {
-    uint64_t cycles, setup_stalls, out_stalls, idle;
-    np_texel_counts counts;
-} np_texel_stats;
-
-typedef struct np_texel_sim {
-    np_texel_ctx ctx;
-    np_pipe pipe;
-    np_span sp;
-    uint32_t k;
-    uint64_t u[NP_TEX_MAX_OCTAVES][3];
-    int64_t du[NP_TEX_MAX_OCTAVES][3];
-    int64_t s[3];
-    int busy;
-    unsigned stall;
-    np_texel_sig pending;
-    np_pipe_port pport;
-    np_texel_stats stats;
-} np_texel_sim;
-
-int np_texel_sim_init(np_texel_sim *m, const np_texel_cfg *cfg, const np_tex_regs *r);
-void np_texel_sim_free(np_texel_sim *m);
-void np_texel_sim_reset(np_texel_sim *m);
-void np_texel_sim_eval(np_texel_sim *m, np_texel_port *p);
-void np_texel_sim_clock(np_texel_sim *m, const np_texel_port *p);
-int np_texel_sim_idle(const np_texel_sim *m);
+                   np_tex_pixel *out, np_span_counts *counts, const np_texel_probe *probe);
 
 /* The span set-up stall: the front end's schedule per octave on the engine (np_tex_sched). */
 unsigned np_texel_span_setup_cycles(const np_texel_cfg *cfg, const np_tex_regs *r);

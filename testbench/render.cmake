@@ -2,12 +2,18 @@
 # The scanline texturing units (forward differences and per pixel), scenes,
 # the reference renderer, golden images and image files (docs/fdiff.md,
 # docs/render.md).
-np_test_program(test_fdiff test_fdiff.c)
+# One program per concern (the CTest names are the same as before the split):
+# the forward-difference unit, the per-pixel unit, and what they share; the
+# fixtures and the cycle-model driver in span_test.c.
+np_test_program(test_fdiff test_fdiff.c span_test.c)
 np_add_cases(test_fdiff fdiff
   stiff_span65536 stiff_deriv_tiny stiff_deriv_huge stiff_cell_edge_on_pixel stiff_span_one_zero
   stiff_wrap stiff_quadric_long guard_search setup_exact appendix_coefficients drift_identity
-  cycle_vs_model cycle_count texel_exact_weights texel_cycle_vs_model colour_stage
-  front_end_rounding lattice_distribution cfg_validation datapath_widths texel_datapath_widths)
+  cycle_vs_model cycle_count datapath_widths)
+np_test_program(test_texel test_texel.c span_test.c)
+np_add_cases(test_texel fdiff texel_exact_weights texel_cycle_vs_model texel_datapath_widths)
+np_test_program(test_texture test_texture.c span_test.c)
+np_add_cases(test_texture fdiff colour_stage front_end_rounding lattice_distribution cfg_validation)
 
 np_test_program(test_render test_render.c)
 target_link_libraries(test_render PRIVATE np_render)
@@ -42,9 +48,12 @@ add_test(NAME render.cli_bad_scene COMMAND ${CMAKE_COMMAND}
   -DWANT_RC=2 "-DWANT=render_bad_scene.json: field 'image.width': expected an integer in 1..4096"
   -P ${CMAKE_CURRENT_SOURCE_DIR}/render_expect.cmake)
 # The report (error against run time, plots; docs/plots is its output for the seed
-# scenes) and the benchmark run end to end.
-add_test(NAME render.report COMMAND noisepipe render --report ${CMAKE_CURRENT_BINARY_DIR}/render-report --repeat 1)
+# scenes; `noisepipe render --report DIR` is its alias) and the benchmark run end to end.
+add_test(NAME render.report COMMAND noisepipe report runtime -o ${CMAKE_CURRENT_BINARY_DIR}/render-report --repeat 1)
 set_tests_properties(render.report PROPERTIES PASS_REGULAR_EXPRESSION "report: 94 configurations")
+add_test(NAME render.report_alias COMMAND noisepipe render --report ${CMAKE_CURRENT_BINARY_DIR}/render-report-alias
+  --repeat 1 embedded:wood)
+set_tests_properties(render.report_alias PROPERTIES PASS_REGULAR_EXPRESSION "report: 47 configurations")
 add_test(NAME render.bench COMMAND noisepipe render --bench --repeat 1
   ${PROJECT_SOURCE_DIR}/vectors/scenes/wood.json ${PROJECT_SOURCE_DIR}/vectors/scenes/marble.json)
 set_tests_properties(render.bench PROPERTIES PASS_REGULAR_EXPRESSION "bench marble.*hardware cycles per frame")

@@ -1,10 +1,11 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * The scanline texturing units: the forward-difference unit np_fdiff (set-up
- * against the seed's Appendix and the exact polynomial, the drift identity
- * and its bound, the stiff and extreme cases, the guard-bit search, the cycle
- * model), the per-pixel unit np_texel, the shared colour stage, and the
- * distribution of the lattice values derived from np_hash6.
+ * The forward-difference unit np_fdiff: set-up against the seed's Appendix
+ * and the exact polynomial, the drift identity and its bound, the stiff and
+ * extreme cases, the guard-bit search, the cycle model (the span sequencer
+ * with np_fdiff_engine), the datapath declaration. The per-pixel unit is in
+ * test_texel.c, what both share in test_texture.c, the fixtures in
+ * span_test.c.
  *
  * The stiff cases use a "grey ramp" texture: one octave, identity transform,
  * a' = 1 (x = n), a clamped two-entry map black..white, so colour = 255 n:
@@ -21,23 +22,9 @@
 #include "np_ref.h"
 #include "np_rng.h"
 #include "np_test.h"
-#include "np_texel.h"
+#include "span_test.h"
 
 /* --- Fixtures --- */
-
-static np_tex_regs ramp_regs(void)
-{
-    np_tex_regs r;
-    memset(&r, 0, sizeof r);
-    r.n_oct = 1;
-    for (int a = 0; a < 3; a++)
-        r.oct[0].m[a][a] = 1 << NP_TEX_M_FRAC;
-    r.oct[0].amp = 1 << NP_TEX_AMP_FRAC;
-    r.cmap_n = 2;
-    r.cmap_repeat = 0;
-    memset(r.cmap[1], 255, 3);
-    return r;
-}
 
 static np_ref_texture ramp_ref(void)
 {
@@ -56,20 +43,6 @@ static np_ref_texture ramp_ref(void)
     return t;
 }
 
-/* A descriptor from dyadic values (exact in Q15.32). */
-static np_span mk_span(uint16_t y, uint16_t x0, uint32_t n, const double s[3], const double ds[3])
-{
-    np_span sp;
-    memset(&sp, 0, sizeof sp);
-    sp.y = y;
-    sp.x0 = x0;
-    sp.n = n;
-    for (int a = 0; a < 3; a++) {
-        sp.s[a] = (int64_t)ldexp(s[a], NP_TEX_FC);
-        sp.ds[a] = (int64_t)ldexp(ds[a], NP_TEX_FC);
-    }
-    return sp;
-}
 
 static double span_coord(const np_span *sp, int a, uint32_t k)
 {
@@ -227,13 +200,13 @@ static np_span case_long(int v)
     static const double ds[N_LONG][3] = { { 0x1.ffe0p-17, 0x1.fep-17, 0x1.fcp-17 },
                                           { 0x1.f7p-18, -0x1.c3p-18, 0x1.b5p-18 },
                                           { 0x1.fffcp-17, -0x1.ff3p-17, 0x1.ffd1p-17 } };
-    return mk_span(0, 0, NP_TEX_SPAN_MAX, s0[v], ds[v]);
+    return span_mk(0, 0, NP_TEX_SPAN_MAX, s0[v], ds[v]);
 }
 
 static int stiff_span65536(void)
 {
     np_fdiff_cfg cfg = np_fdiff_cfg_default();
-    np_tex_regs r = ramp_regs();
+    np_tex_regs r = span_ramp_regs();
     np_ref_texture t = ramp_ref();
     for (int v = 0; v < N_LONG; v++) {
         np_span sp = case_long(v);
@@ -251,13 +224,13 @@ static int stiff_span65536(void)
 static int stiff_deriv_tiny(void)
 {
     np_fdiff_cfg cfg = np_fdiff_cfg_default();
-    np_tex_regs r = ramp_regs();
+    np_tex_regs r = span_ramp_regs();
     np_ref_texture t = ramp_ref();
     /* One LSB of Q15.32 per pixel on every axis, and on one axis only (the others 0). */
     const double one = 0x1p-32;
-    np_span a = mk_span(0, 0, NP_TEX_SPAN_MAX, (double[3]){ 5.5, 6.25, 7.75 }, (double[3]){ one, one, one });
-    np_span b = mk_span(0, 0, NP_TEX_SPAN_MAX, (double[3]){ 5.5, 6.25, 7.75 }, (double[3]){ 0, -one, 0 });
-    np_span c = mk_span(0, 0, NP_TEX_SPAN_MAX, (double[3]){ 1.0 - 0x1p-20, 6.25, 7.75 }, (double[3]){ one, 0, 0 });
+    np_span a = span_mk(0, 0, NP_TEX_SPAN_MAX, (double[3]){ 5.5, 6.25, 7.75 }, (double[3]){ one, one, one });
+    np_span b = span_mk(0, 0, NP_TEX_SPAN_MAX, (double[3]){ 5.5, 6.25, 7.75 }, (double[3]){ 0, -one, 0 });
+    np_span c = span_mk(0, 0, NP_TEX_SPAN_MAX, (double[3]){ 1.0 - 0x1p-20, 6.25, 7.75 }, (double[3]){ one, 0, 0 });
     const np_span *cases[3] = { &a, &b, &c };
     for (int i = 0; i < 3; i++) {
         measure m;
@@ -273,15 +246,15 @@ static int stiff_deriv_tiny(void)
 static int stiff_deriv_huge(void)
 {
     np_fdiff_cfg cfg = np_fdiff_cfg_default();
-    np_tex_regs r = ramp_regs();
+    np_tex_regs r = span_ramp_regs();
     np_ref_texture t = ramp_ref();
     const double top = 256.0 - 0x1p-32; /* the largest step s41 Q8.32 holds */
     /* Largest representable: the octave step wraps to -2^-32 (period 256), the lattice points repeat. */
-    np_span a = mk_span(0, 0, 120, (double[3]){ -15000.25, -15000.5, 100.125 }, (double[3]){ top, top, -top });
+    np_span a = span_mk(0, 0, 120, (double[3]){ -15000.25, -15000.5, 100.125 }, (double[3]){ top, top, -top });
     /* Near the octave step's own limit (|du| < 128): a new cell every pixel. */
-    np_span b = mk_span(0, 0, 200, (double[3]){ 0.5, 0.25, 0.125 }, (double[3]){ 127.75, -127.5, 100.0 });
+    np_span b = span_mk(0, 0, 200, (double[3]){ 0.5, 0.25, 0.125 }, (double[3]){ 127.75, -127.5, 100.0 });
     /* Mixed: one axis huge, the others tiny. */
-    np_span c = mk_span(0, 0, 120, (double[3]){ -15000.0, 3.5, 4.5 }, (double[3]){ 250.0 + 0x1p-20, 0x1p-32, -0x1p-30 });
+    np_span c = span_mk(0, 0, 120, (double[3]){ -15000.0, 3.5, 4.5 }, (double[3]){ 250.0 + 0x1p-20, 0x1p-32, -0x1p-30 });
     const np_span *cases[3] = { &a, &b, &c };
     for (int i = 0; i < 3; i++) {
         measure m;
@@ -301,10 +274,10 @@ static int stiff_deriv_huge(void)
 static int stiff_cell_edge_on_pixel(void)
 {
     np_fdiff_cfg cfg = np_fdiff_cfg_default();
-    np_tex_regs r = ramp_regs();
+    np_tex_regs r = span_ramp_regs();
     np_ref_texture t = ramp_ref();
     /* u = 0.5 + k/4: integers at k = 2, 6, 10, ...; all three axes cross together at those pixels. */
-    np_span sp = mk_span(0, 0, 64, (double[3]){ 0.5, 3.5, 9.5 }, (double[3]){ 0.25, 0.25, -0.25 });
+    np_span sp = span_mk(0, 0, 64, (double[3]){ 0.5, 3.5, 9.5 }, (double[3]){ 0.25, 0.25, -0.25 });
     uint16_t set[64];
     np_s128 nz[64];
     np_tex_pixel px[64];
@@ -338,9 +311,9 @@ static int stiff_cell_edge_on_pixel(void)
 static int stiff_span_one_zero(void)
 {
     np_fdiff_cfg cfg = np_fdiff_cfg_default();
-    np_tex_regs r = ramp_regs();
+    np_tex_regs r = span_ramp_regs();
     np_ref_texture t = ramp_ref();
-    np_span one = mk_span(7, 9, 1, (double[3]){ 12.3125, 45.5, 6.0078125 }, (double[3]){ 0.5, 0.5, 0.5 });
+    np_span one = span_mk(7, 9, 1, (double[3]){ 12.3125, 45.5, 6.0078125 }, (double[3]){ 0.5, 0.5, 0.5 });
     measure m;
     run_span(&cfg, &r, &t, &one, &m);
     report("span_one", &cfg, &m);
@@ -349,26 +322,26 @@ static int stiff_span_one_zero(void)
     /* Zero length: no pixel, no set-up, in the bit-exact model and in the cycle model. */
     np_span zero = one;
     zero.n = 0;
-    np_fdiff_counts c;
+    np_span_counts c;
     memset(&c, 0, sizeof c);
     np_tex_pixel px[1];
     np_fdiff_span(&cfg, &r, &zero, px, &c, NULL);
     NP_CHECK(c.spans == 1 && c.pixels == 0 && c.span_setups == 0 && c.setup_cycles == 0, "zero-length span did work");
-    np_fdiff_sim sim;
-    NP_CHECK(np_fdiff_sim_init(&sim, &cfg, &r) == 0, "init");
+    np_span_sim sim;
+    NP_CHECK(np_span_sim_init(&sim, &np_fdiff_engine, &cfg, &r) == 0, "init");
     const np_span *list[3] = { &zero, &one, &zero };
     unsigned next = 0, outs = 0;
-    while ((next < 3 || !np_fdiff_sim_idle(&sim)) && sim.stats.cycles < 1000) {
-        np_fdiff_port p;
+    while ((next < 3 || !np_span_sim_idle(&sim)) && sim.stats.cycles < 1000) {
+        np_span_port p;
         memset(&p, 0, sizeof p);
         p.in_valid = next < 3;
         p.in = p.in_valid ? list[next] : NULL;
         p.out_ready = 1;
-        np_fdiff_sim_eval(&sim, &p);
+        np_span_sim_eval(&sim, &p);
         outs += (unsigned)p.out_valid;
         if (p.in_valid && p.in_ready)
             next++;
-        np_fdiff_sim_clock(&sim, &p);
+        np_span_sim_clock(&sim, &p);
     }
     unsigned setup = np_tex_sched_cycles(&np_fdiff_sched_quad, cfg.setup_mults, cfg.mult_lat) +
                      np_tex_sched_cycles(&np_tex_sched_octave_diag, cfg.setup_mults, cfg.mult_lat) +
@@ -383,18 +356,18 @@ static int stiff_span_one_zero(void)
     NP_CHECK(outs == 1, "outputs %u", outs);
     NP_CHECK(sim.stats.cycles == want, "cycles %llu, want %llu", (unsigned long long)sim.stats.cycles,
              (unsigned long long)want);
-    np_fdiff_sim_free(&sim);
+    np_span_sim_free(&sim);
     return 0;
 }
 
 static int stiff_wrap(void)
 {
     np_fdiff_cfg cfg = np_fdiff_cfg_default();
-    np_tex_regs r = ramp_regs();
+    np_tex_regs r = span_ramp_regs();
     np_ref_texture t = ramp_ref();
     /* Up across 256 (cell 255 -> 0), down across 0 (cell 0 -> 255), and an offset octave wrapping too. */
-    np_span up = mk_span(0, 0, 400, (double[3]){ 255.5, 511.75, 100.0 }, (double[3]){ 0x1p-8, 0x1p-9, 0x1p-7 });
-    np_span down = mk_span(0, 0, 400, (double[3]){ 0.5, -255.75, 256.25 }, (double[3]){ -0x1p-8, -0x1p-9, -0x1p-7 });
+    np_span up = span_mk(0, 0, 400, (double[3]){ 255.5, 511.75, 100.0 }, (double[3]){ 0x1p-8, 0x1p-9, 0x1p-7 });
+    np_span down = span_mk(0, 0, 400, (double[3]){ 0.5, -255.75, 256.25 }, (double[3]){ -0x1p-8, -0x1p-9, -0x1p-7 });
     const np_span *cases[2] = { &up, &down };
     for (int i = 0; i < 2; i++) {
         measure m;
@@ -411,7 +384,7 @@ static int stiff_wrap(void)
 /* The quadric's forward differences over a 65,536-pixel span: f = A s^2 + 2B st + ... ramp colour. */
 static double quad_case(const np_fdiff_cfg *cfg, int print)
 {
-    np_tex_regs r = ramp_regs();
+    np_tex_regs r = span_ramp_regs();
     np_ref_texture t = ramp_ref();
     r.n_oct = 0;
     t.n_oct = 0;
@@ -421,7 +394,7 @@ static double quad_case(const np_fdiff_cfg *cfg, int print)
         t.quad[i] = k[i];
         r.k[i] = (int64_t)ldexp(k[i], NP_TEX_K_FRAC);
     }
-    np_span sp = mk_span(0, 0, NP_TEX_SPAN_MAX, (double[3]){ 0x1p-20, 0.25, 0.5 },
+    np_span sp = span_mk(0, 0, NP_TEX_SPAN_MAX, (double[3]){ 0x1p-20, 0.25, 0.5 },
                          (double[3]){ 0x1.fffp-17, 0x1.0p-17, 0x1.8p-18 });
     np_tex_pixel *px = calloc(sp.n, sizeof *px);
     np_s128 *xs = calloc(sp.n, sizeof *xs);
@@ -467,7 +440,7 @@ static int stiff_quadric_long(void)
 /* Every stiff case's worst colour error for a configuration, and which case it is. */
 static double all_cases(const np_fdiff_cfg *cfg, double *worst_long, const char **which)
 {
-    np_tex_regs r = ramp_regs();
+    np_tex_regs r = span_ramp_regs();
     np_ref_texture t = ramp_ref();
     const double one = 0x1p-32, top = 256.0 - 0x1p-32;
     static const char *const names[] = { "span65536[0]", "span65536[1]", "span65536[2]", "deriv_tiny",
@@ -475,13 +448,13 @@ static double all_cases(const np_fdiff_cfg *cfg, double *worst_long, const char 
                                          "wrap_down", "quadric_long" };
     np_span sp[10] = {
         case_long(0), case_long(1), case_long(2),
-        mk_span(0, 0, NP_TEX_SPAN_MAX, (double[3]){ 5.5, 6.25, 7.75 }, (double[3]){ one, one, one }),
-        mk_span(0, 0, 120, (double[3]){ -15000.25, -15000.5, 100.125 }, (double[3]){ top, top, -top }),
-        mk_span(0, 0, 200, (double[3]){ 0.5, 0.25, 0.125 }, (double[3]){ 127.75, -127.5, 100.0 }),
-        mk_span(0, 0, 64, (double[3]){ 0.5, 3.5, 9.5 }, (double[3]){ 0.25, 0.25, -0.25 }),
-        mk_span(7, 9, 1, (double[3]){ 12.3125, 45.5, 6.0078125 }, (double[3]){ 0.5, 0.5, 0.5 }),
-        mk_span(0, 0, 400, (double[3]){ 255.5, 511.75, 100.0 }, (double[3]){ 0x1p-8, 0x1p-9, 0x1p-7 }),
-        mk_span(0, 0, 400, (double[3]){ 0.5, -255.75, 256.25 }, (double[3]){ -0x1p-8, -0x1p-9, -0x1p-7 }),
+        span_mk(0, 0, NP_TEX_SPAN_MAX, (double[3]){ 5.5, 6.25, 7.75 }, (double[3]){ one, one, one }),
+        span_mk(0, 0, 120, (double[3]){ -15000.25, -15000.5, 100.125 }, (double[3]){ top, top, -top }),
+        span_mk(0, 0, 200, (double[3]){ 0.5, 0.25, 0.125 }, (double[3]){ 127.75, -127.5, 100.0 }),
+        span_mk(0, 0, 64, (double[3]){ 0.5, 3.5, 9.5 }, (double[3]){ 0.25, 0.25, -0.25 }),
+        span_mk(7, 9, 1, (double[3]){ 12.3125, 45.5, 6.0078125 }, (double[3]){ 0.5, 0.5, 0.5 }),
+        span_mk(0, 0, 400, (double[3]){ 255.5, 511.75, 100.0 }, (double[3]){ 0x1p-8, 0x1p-9, 0x1p-7 }),
+        span_mk(0, 0, 400, (double[3]){ 0.5, -255.75, 256.25 }, (double[3]){ -0x1p-8, -0x1p-9, -0x1p-7 }),
     };
     double w = 0, wl = 0;
     *which = "";
@@ -564,7 +537,7 @@ static int setup_exact(void)
 {
     /* The set-up's exact differences equal the finite differences of the exact trilinear polynomial. */
     np_fdiff_cfg cfg = np_fdiff_cfg_default();
-    np_tex_regs r = ramp_regs();
+    np_tex_regs r = span_ramp_regs();
     np_rng g;
     np_rng_seed(&g, 11);
     unsigned bad = 0, n = 200000;
@@ -601,7 +574,7 @@ static int appendix_coefficients(void)
      * The unit's regrouped set-up must give the same differences exactly.
      */
     np_fdiff_cfg cfg = np_fdiff_cfg_default();
-    np_tex_regs r = ramp_regs();
+    np_tex_regs r = span_ramp_regs();
     np_rng g;
     np_rng_seed(&g, 12);
     unsigned bad = 0, n = 100000;
@@ -656,7 +629,7 @@ static int drift_identity(void)
 {
     /* Random spans of random length through random cells: identity and bound at every pixel. */
     np_fdiff_cfg cfg = np_fdiff_cfg_default();
-    np_tex_regs r = ramp_regs();
+    np_tex_regs r = span_ramp_regs();
     np_ref_texture t = ramp_ref();
     np_rng g;
     np_rng_seed(&g, 13);
@@ -670,7 +643,7 @@ static int drift_identity(void)
                 s0[a] = ldexp((double)np_rng_below(&g, (uint64_t)1 << 40), -32) - 64.0;
                 ds[a] = ldexp((double)np_rng_below(&g, (uint64_t)1 << 30) - (double)(1u << 29), -32 - (int)np_rng_below(&g, 6));
             }
-            np_span sp = mk_span(0, 0, 1u + (uint32_t)np_rng_below(&g, 3000), s0, ds);
+            np_span sp = span_mk(0, 0, 1u + (uint32_t)np_rng_below(&g, 3000), s0, ds);
             measure m;
             run_span(&cfg, &r, &t, &sp, &m);
             idb += m.identity_bad;
@@ -687,50 +660,13 @@ static int drift_identity(void)
 
 /* --- Cycle-accurate model --- */
 
-static np_tex_regs multi_regs(np_rng *g, unsigned n_oct)
-{
-    np_tex_regs r = ramp_regs();
-    r.n_oct = n_oct;
-    r.cmap_n = 8;
-    r.cmap_repeat = 1;
-    for (unsigned k = 0; k < 8; k++)
-        for (int ch = 0; ch < 3; ch++)
-            r.cmap[k][ch] = (uint8_t)np_rng_below(g, 256);
-    for (unsigned o = 0; o < n_oct; o++) {
-        for (int a = 0; a < 3; a++)
-            for (int b = 0; b < 3; b++)
-                r.oct[o].m[a][b] = (int32_t)(a == b ? (1 << (16 + o)) : (int32_t)np_rng_below(g, 1u << 15) - (1 << 14));
-        r.oct[o].amp = (int32_t)((1u << (14 + 2)) >> o);
-        r.oct[o].o[0] = (int64_t)np_rng_below(g, (uint64_t)1 << 40);
-    }
-    r.k[0] = 3 << 24;
-    r.k[7] = -(5 << 22);
-    r.k[9] = 1 << 20;
-    return r;
-}
-
-static np_span rand_span(np_rng *g)
-{
-    np_span sp;
-    memset(&sp, 0, sizeof sp);
-    sp.y = (uint16_t)np_rng_below(g, 1024);
-    sp.x0 = (uint16_t)np_rng_below(g, 1024);
-    uint64_t kind = np_rng_below(g, 8);
-    sp.n = kind == 0 ? 0 : kind == 1 ? 1 : (uint32_t)np_rng_below(g, 300);
-    for (int a = 0; a < 3; a++) {
-        sp.s[a] = (int64_t)np_rng_below(g, (uint64_t)1 << 38) - ((int64_t)1 << 37);
-        sp.ds[a] = np_asr((int64_t)np_rng_below(g, (uint64_t)1 << 32) - ((int64_t)1 << 31), (unsigned)np_rng_below(g, 8));
-    }
-    return sp;
-}
-
 static int cycle_vs_model(void)
 {
     /* Random spans, random input gaps and output stalls: the cycle model's pixels == the bit-exact model's. */
     np_rng g;
     np_rng_seed(&g, 21);
     for (unsigned trial = 0; trial < 4; trial++) {
-        np_tex_regs r = multi_regs(&g, 1u + trial);
+        np_tex_regs r = span_multi_regs(&g, 1u + trial);
         np_fdiff_cfg cfg = np_fdiff_cfg_default();
         cfg.resetup = trial == 2 ? 7u : 0u;
         cfg.guard = 8u * trial;
@@ -739,47 +675,27 @@ static int cycle_vs_model(void)
         np_span *sp = calloc(NS, sizeof *sp);
         np_tex_pixel *want = calloc(NS * 300, sizeof *want);
         size_t nw = 0;
-        np_fdiff_counts cnt;
+        np_span_counts cnt;
         memset(&cnt, 0, sizeof cnt);
         for (unsigned i = 0; i < NS; i++) {
-            sp[i] = rand_span(&g);
+            sp[i] = span_rand(&g);
             np_fdiff_span(&cfg, &r, &sp[i], want + nw, &cnt, NULL);
             nw += sp[i].n;
         }
-        np_fdiff_sim m;
-        NP_CHECK(np_fdiff_sim_init(&m, &cfg, &r) == 0, "init");
-        size_t next = 0, got = 0, bad = 0;
-        int stall_phase = 0;
-        while ((next < NS || !np_fdiff_sim_idle(&m)) && m.stats.cycles < 50000000u) {
-            if (np_rng_below(&g, 64) == 0)
-                stall_phase = (int)np_rng_below(&g, 3);
-            np_fdiff_port p;
-            memset(&p, 0, sizeof p);
-            p.in_valid = next < NS && np_rng_below(&g, 4) != 0;
-            p.in = next < NS ? &sp[next] : NULL;
-            p.out_ready = stall_phase == 0 ? 1 : stall_phase == 1 ? np_rng_below(&g, 2) == 0 : np_rng_below(&g, 8) == 0;
-            np_fdiff_sim_eval(&m, &p);
-            if (p.out_valid && p.out_ready) {
-                if (got >= nw || memcmp(&p.out, &want[got], sizeof p.out) != 0)
-                    bad++;
-                got++;
-            }
-            if (p.in_valid && p.in_ready)
-                next++;
-            np_fdiff_sim_clock(&m, &p);
-        }
+        span_drive_result d;
+        NP_CHECK(span_drive(&np_fdiff_engine, &cfg, &r, sp, NS, want, nw, &g, span_traffic_phases, 50000000u, &d) == 0,
+                 "init");
         printf("trial %u: %u octaves, %zu spans, %zu pixels in %llu cycles (set-up stalls %llu, output stalls %llu, "
                "idle %llu); %zu mismatches\n",
-               trial, r.n_oct, (size_t)NS, got, (unsigned long long)m.stats.cycles,
-               (unsigned long long)m.stats.setup_stalls, (unsigned long long)m.stats.out_stalls,
-               (unsigned long long)m.stats.idle, bad);
-        NP_CHECK(got == nw && bad == 0, "got %zu of %zu, %zu mismatches", got, nw, bad);
-        NP_CHECK(m.stats.counts.cell_setups == cnt.cell_setups && m.stats.counts.interval_setups == cnt.interval_setups &&
-                     m.stats.counts.setup_cycles == cnt.setup_cycles,
+               trial, r.n_oct, (size_t)NS, d.got, (unsigned long long)d.stats.cycles,
+               (unsigned long long)d.stats.setup_stalls, (unsigned long long)d.stats.out_stalls,
+               (unsigned long long)d.stats.idle, d.bad);
+        NP_CHECK(d.got == nw && d.bad == 0, "got %zu of %zu, %zu mismatches", d.got, nw, d.bad);
+        NP_CHECK(d.stats.counts.cell_setups == cnt.cell_setups && d.stats.counts.interval_setups == cnt.interval_setups &&
+                     d.stats.counts.setup_cycles == cnt.setup_cycles,
                  "set-up counts differ");
-        NP_CHECK(m.stats.setup_stalls == cnt.setup_cycles, "stall cycles %llu != set-up cycles %llu",
-                 (unsigned long long)m.stats.setup_stalls, (unsigned long long)cnt.setup_cycles);
-        np_fdiff_sim_free(&m);
+        NP_CHECK(d.stats.setup_stalls == cnt.setup_cycles, "stall cycles %llu != set-up cycles %llu",
+                 (unsigned long long)d.stats.setup_stalls, (unsigned long long)cnt.setup_cycles);
         free(sp);
         free(want);
     }
@@ -791,37 +707,25 @@ static int cycle_count(void)
     /* With no stalls and no gaps: cycles = spans + set-up cycles + pixels + pipeline latency. */
     np_rng g;
     np_rng_seed(&g, 22);
-    np_tex_regs r = multi_regs(&g, 3);
+    np_tex_regs r = span_multi_regs(&g, 3);
     np_fdiff_cfg cfg = np_fdiff_cfg_default();
     enum { NS = 200 };
     np_span sp[NS];
-    np_fdiff_counts cnt;
+    np_span_counts cnt;
     memset(&cnt, 0, sizeof cnt);
     np_tex_pixel *px = calloc(300, sizeof *px);
     for (unsigned i = 0; i < NS; i++) {
-        sp[i] = rand_span(&g);
+        sp[i] = span_rand(&g);
         np_fdiff_span(&cfg, &r, &sp[i], px, &cnt, NULL);
     }
     free(px);
-    np_fdiff_sim m;
-    NP_CHECK(np_fdiff_sim_init(&m, &cfg, &r) == 0, "init");
-    size_t next = 0;
-    while (next < NS || !np_fdiff_sim_idle(&m)) {
-        np_fdiff_port p;
-        memset(&p, 0, sizeof p);
-        p.in_valid = next < NS;
-        p.in = p.in_valid ? &sp[next] : NULL;
-        p.out_ready = 1;
-        np_fdiff_sim_eval(&m, &p);
-        if (p.in_valid && p.in_ready)
-            next++;
-        np_fdiff_sim_clock(&m, &p);
-    }
+    span_drive_result d;
+    NP_CHECK(span_drive(&np_fdiff_engine, &cfg, &r, sp, NS, NULL, 0, NULL, NULL, UINT64_MAX, &d) == 0, "init");
     uint64_t want = NS + cnt.setup_cycles + cnt.pixels + NP_FDIFF_TAIL_STAGES;
     printf("%u spans, %llu pixels, %llu set-up cycles (%llu span, %llu cell set-ups): %llu cycles, predicted %llu\n", NS,
            (unsigned long long)cnt.pixels, (unsigned long long)cnt.setup_cycles, (unsigned long long)cnt.span_setups,
-           (unsigned long long)cnt.cell_setups, (unsigned long long)m.stats.cycles, (unsigned long long)want);
-    NP_CHECK(m.stats.cycles == want, "cycles %llu, predicted %llu", (unsigned long long)m.stats.cycles,
+           (unsigned long long)cnt.cell_setups, (unsigned long long)d.stats.cycles, (unsigned long long)want);
+    NP_CHECK(d.stats.cycles == want, "cycles %llu, predicted %llu", (unsigned long long)d.stats.cycles,
              (unsigned long long)want);
     printf("set-up costs (P = %u multipliers, latency %u): cell %u cycles (%u products), quadric %u (%u), octave "
            "front end %u (%u), diagonal %u (%u)\n",
@@ -833,478 +737,84 @@ static int cycle_count(void)
            np_tex_sched_products(&np_tex_sched_octave),
            np_tex_sched_cycles(&np_tex_sched_octave_diag, cfg.setup_mults, cfg.mult_lat),
            np_tex_sched_products(&np_tex_sched_octave_diag));
-    np_fdiff_sim_free(&m);
     return 0;
 }
 
-/* --- The per-pixel unit --- */
+/* --- The datapath declaration against the model (np_fdiff_datapath; rule and registers: span_test.h) --- */
 
-static int texel_exact_weights(void)
+/* The signals of cell set-ups (random cells and the extremes) and of spans through the core and the colour stages. */
+static void fdiff_trace(const void *vcfg, unsigned ci, const np_tex_regs *r, np_rng *g, span_dp_check *c)
 {
-    /* With WT = 32 the per-pixel unit is the exact polynomial rounded once: equal to the FD set-up's n0. */
-    np_rng g;
-    np_rng_seed(&g, 31);
-    np_tex_regs r = multi_regs(&g, 2);
-    np_texel_cfg tc = np_texel_cfg_default();
-    tc.weight_frac = 32;
-    np_fdiff_cfg fc = np_fdiff_cfg_default();
-    fc.guard = tc.guard;
-    unsigned bad = 0, n = 0;
-    double worst_ratio = 0;
-    for (unsigned it = 0; it < 3000; it++) {
-        np_span sp = rand_span(&g);
-        if (sp.n == 0)
+    const np_fdiff_cfg *cfg = vcfg;
+    const unsigned F = np_fdiff_frac(cfg);
+    /* Cell set-ups: random cells and steps, and the extremes (fractions 0 / max, steps -2^39). */
+    for (unsigned n = 0; n < 40000; n++) {
+        uint64_t u[3];
+        int64_t du[3];
+        rand_cell(g, u, du);
+        if (n % 4u == 0)
+            for (int a = 0; a < 3; a++) {
+                u[a] = (u[a] & ~(uint64_t)NP_MASK(NP_TEX_FC)) | (n & 8u ? NP_MASK(NP_TEX_FC) : 0u);
+                du[a] = n & 16u ? -((int64_t)1 << 39) : ((int64_t)1 << 39) - 1;
+            }
+        unsigned o = (unsigned)np_rng_below(g, r->n_oct);
+        np_s128 d[4];
+        np_fdiff_setup_sig sig;
+        np_fdiff_cell_setup_sig(cfg, r, o, u, du, d, &sig);
+        np_fdiff_trace_setup(cfg, &sig, c->t, c->nt);
+        uint8_t lat[8];
+        np_tex_lattice(np_tex_cell(u[0]), np_tex_cell(u[1]), np_tex_cell(u[2]), lat);
+        for (int k = 0; k < 8; k++)
+            np_tex_trace(c->t, c->nt, "n", lat[k]);
+        for (unsigned j = 0; j < 4; j++)
+            NP_CHECK(np_tex_to_index(np_wrap_s128(sig.y[j], np_fdiff_y_window(cfg)), NP_FDIFF_EXACT_FRAC, F,
+                                     np_fdiff_width(cfg)) == d[j],
+                     "cfg %u: set-up window too narrow", ci);
+    }
+    /* Spans through the core, then the colour stages on each pixel's x. */
+    for (unsigned n = 0; n < 300; n++) {
+        np_span sp;
+        memset(&sp, 0, sizeof sp);
+        sp.n = 1u + (uint32_t)np_rng_below(g, 200);
+        for (int a = 0; a < 3; a++) {
+            sp.s[a] = np_sext(np_rng_next(g), 40);
+            sp.ds[a] = np_asr(np_sext(np_rng_next(g), 32), (unsigned)np_rng_below(g, 24));
+        }
+        if (np_span_check(&sp) != NULL)
             continue;
-        np_tex_pixel a[300], b[300];
-        np_s128 nt[2][300], nf[2][300];
-        uint16_t set[300];
-        np_texel_probe pt = { NULL, { nt[0], nt[1] } };
-        np_fdiff_probe pf = { NULL, { nf[0], nf[1] }, set };
-        np_texel_span(&tc, &r, &sp, a, NULL, &pt);
-        np_fdiff_span(&fc, &r, &sp, b, NULL, &pf);
-        for (uint32_t k = 0; k < sp.n; k++)
-            for (unsigned o = 0; o < 2; o++)
-                if (set[k] & (1u << o)) {
-                    n++;
-                    bad += nt[o][k] != nf[o][k];
-                }
-        /* And WT = 16 against exact weights: within the per-pixel bound. */
-        np_texel_cfg t16 = tc;
-        t16.weight_frac = 16;
-        np_texel_probe p16 = { NULL, { nf[0], nf[1] } };
-        np_texel_span(&t16, &r, &sp, b, NULL, &p16);
-        double bound = np_texel_error_bound_index(&t16, &r) * ldexp(1.0, (int)np_texel_frac(&t16));
+        np_fdiff_core core;
+        np_span_counts cnt;
+        memset(&cnt, 0, sizeof cnt);
+        np_fdiff_core_init(&core, cfg, r);
+        np_fdiff_core_begin(&core, &sp, &cnt);
         for (uint32_t k = 0; k < sp.n; k++) {
-            double d = 0;
-            for (unsigned o = 0; o < 2; o++)
-                d += fabs((double)(nf[o][k] - nt[o][k]));
-            worst_ratio = fmax(worst_ratio, d / bound);
-        }
-    }
-    printf("%u set-up pixels: per-pixel unit (WT = 32) == forward-difference set-up value: %u mismatches; "
-           "WT = 16: worst |error| / bound = %.3f\n",
-           n, bad, worst_ratio);
-    NP_CHECK(bad == 0 && n > 1000, "%u mismatches of %u", bad, n);
-    NP_CHECK(worst_ratio <= 1.0, "WT = 16 exceeds its bound (%.3f)", worst_ratio);
-    return 0;
-}
-
-static int texel_cycle_vs_model(void)
-{
-    np_rng g;
-    np_rng_seed(&g, 32);
-    np_tex_regs r = multi_regs(&g, 3);
-    np_texel_cfg cfg = np_texel_cfg_default();
-    enum { NS = 120 };
-    np_span sp[NS];
-    np_tex_pixel *want = calloc(NS * 300, sizeof *want);
-    size_t nw = 0;
-    np_texel_counts cnt;
-    memset(&cnt, 0, sizeof cnt);
-    for (unsigned i = 0; i < NS; i++) {
-        sp[i] = rand_span(&g);
-        np_texel_span(&cfg, &r, &sp[i], want + nw, &cnt, NULL);
-        nw += sp[i].n;
-    }
-    for (int traffic = 0; traffic < 2; traffic++) {
-        np_texel_sim m;
-        NP_CHECK(np_texel_sim_init(&m, &cfg, &r) == 0, "init");
-        size_t next = 0, got = 0, bad = 0;
-        while ((next < NS || !np_texel_sim_idle(&m)) && m.stats.cycles < 10000000u) {
-            np_texel_port p;
-            memset(&p, 0, sizeof p);
-            p.in_valid = next < NS && (!traffic || np_rng_below(&g, 3) != 0);
-            p.in = next < NS ? &sp[next] : NULL;
-            p.out_ready = !traffic || np_rng_below(&g, 3) != 0;
-            np_texel_sim_eval(&m, &p);
-            if (p.out_valid && p.out_ready) {
-                if (got >= nw || memcmp(&p.out, &want[got], sizeof p.out) != 0)
-                    bad++;
-                got++;
-            }
-            if (p.in_valid && p.in_ready)
-                next++;
-            np_texel_sim_clock(&m, &p);
-        }
-        uint64_t pred = NS + cnt.setup_cycles + cnt.pixels + NP_TEXEL_STAGES;
-        printf("texel, traffic %d: %zu pixels in %llu cycles (no-traffic prediction %llu), %zu mismatches\n", traffic,
-               got, (unsigned long long)m.stats.cycles, (unsigned long long)pred, bad);
-        NP_CHECK(got == nw && bad == 0, "got %zu of %zu, %zu mismatches", got, nw, bad);
-        if (!traffic)
-            NP_CHECK(m.stats.cycles == pred, "cycles %llu != %llu", (unsigned long long)m.stats.cycles,
-                     (unsigned long long)pred);
-        np_texel_sim_free(&m);
-    }
-    free(want);
-    return 0;
-}
-
-/* --- Shared pieces --- */
-
-static int colour_stage(void)
-{
-    /* The colour stage against the float colour map at the same index: error <= 1/2 + slope 2^-(Fw+1). */
-    np_rng g;
-    np_rng_seed(&g, 41);
-    double worst = 0;
-    for (int mode = 0; mode < 2; mode++) {
-        np_tex_regs r = multi_regs(&g, 1);
-        np_ref_colormap c;
-        memset(&c, 0, sizeof c);
-        r.cmap_repeat = mode == 0;
-        c.repeat = r.cmap_repeat;
-        c.n = r.cmap_n;
-        c.f0 = 0;
-        c.f1 = 1;
-        for (unsigned k = 0; k < c.n; k++)
-            for (int ch = 0; ch < 3; ch++)
-                c.c[k][ch] = r.cmap[k][ch];
-        double S = c.repeat ? (double)c.n : (double)(c.n - 1u);
-        unsigned F = 40, fw = 12, W = 1 + 10 + F;
-        double bound = 0.5 + np_tex_colour_slope(&r) * ldexp(1.0, -(int)fw - 1);
-        for (unsigned it = 0; it < 200000; it++) {
-            np_s128 x = np_wrap_s128(np_asr128((np_s128)(int64_t)np_rng_next(&g), (unsigned)np_rng_below(&g, 12) + 2u), W);
+            np_fdiff_trace_core(&core, c->t, c->nt);
+            unsigned seg;
+            uint32_t w;
+            int64_t prod[3];
             uint8_t rgb[3];
-            double ref[3];
-            np_tex_colour(&r, x, F, fw, rgb);
-            np_ref_colour(&c, ldexp((double)x, -(int)F) / S, ref);
-            for (int ch = 0; ch < 3; ch++) {
-                double e = fabs((double)rgb[ch] - ref[ch]);
-                worst = fmax(worst, e / bound);
-            }
+            np_tex_colour_split(r, np_fdiff_core_x(&core), F, cfg->w_frac, &seg, &w);
+            np_tex_colour_mix(r, seg, w, cfg->w_frac, prod);
+            np_tex_colour_round(prod, cfg->w_frac, rgb);
+            np_tex_trace_colour(r, seg, w, prod, rgb, cfg->w_frac, c->t, c->nt);
+            np_fdiff_core_advance(&core, &cnt);
         }
     }
-    printf("colour stage: worst error / bound (1/2 + slope 2^-(Fw+1)) = %.4f over 400,000 indices\n", worst);
-    NP_CHECK(worst <= 1.0, "colour stage exceeds its bound: %.4f", worst);
-    return 0;
-}
-
-static int front_end_rounding(void)
-{
-    /* u0 and du against the exact M s + o and M ds (integers at 48 fraction bits): |error| <= 2^-33 mod 256. */
-    np_rng g;
-    np_rng_seed(&g, 42);
-    np_s128 worst = 0;
-    const unsigned sh = NP_TEX_M_FRAC, wu = NP_TEX_U_BITS + NP_TEX_M_FRAC;
-    for (unsigned it = 0; it < 100000; it++) {
-        np_tex_regs r = multi_regs(&g, 1);
-        np_span sp = rand_span(&g);
-        np_tex_oct_span os;
-        np_tex_octave_span(&r, 0, sp.s, sp.ds, &os);
-        for (int a = 0; a < 3; a++) {
-            np_s128 u = (np_s128)r.oct[0].o[a] * ((np_s128)1 << sh), du = 0;
-            for (int b = 0; b < 3; b++) {
-                u += (np_s128)r.oct[0].m[a][b] * sp.s[b];
-                du += (np_s128)r.oct[0].m[a][b] * sp.ds[b];
-            }
-            np_s128 eu = np_wrap_s128((np_s128)os.u[a] * ((np_s128)1 << sh) - u, wu);
-            np_s128 ed = np_wrap_s128((np_s128)os.du[a] * ((np_s128)1 << sh) - du, wu);
-            eu = eu < 0 ? -eu : eu;
-            ed = ed < 0 ? -ed : ed;
-            worst = eu > worst ? eu : worst;
-            worst = ed > worst ? ed : worst;
-        }
-    }
-    printf("front end: worst |u0 - exact|, |du - exact| = %.4f x 2^-33 (bound 1), modulo 256, exact integer check\n",
-           ldexp((double)worst, -(int)sh + 1));
-    NP_CHECK(worst <= ((np_s128)1 << (sh - 1u)), "front-end rounding beyond 2^-33");
-    return 0;
-}
-
-static int lattice_distribution(void)
-{
-    /*
-     * The lattice values n = np_hash6 / 64 over the whole tile (2^24 points):
-     * the histogram, its moments against a uniform 6-bit value, chi-square.
-     */
-    static uint64_t hist[64];
-    memset(hist, 0, sizeof hist);
-    for (unsigned i = 0; i < 256; i++)
-        for (unsigned j = 0; j < 256; j++)
-            for (unsigned k = 0; k < 256; k++)
-                hist[np_hash6((uint8_t)i, (uint8_t)j, (uint8_t)k)]++;
-    const double N = 16777216.0, E = N / 64.0;
-    double mean = 0, m2 = 0, chi = 0, ent = 0;
-    uint64_t lo = UINT64_MAX, hi = 0, tot = 0, zero = 0;
-    for (unsigned h = 0; h < 64; h++) {
-        double p = (double)hist[h] / N, v = h / 64.0;
-        mean += p * v;
-        m2 += p * v * v;
-        chi += ((double)hist[h] - E) * ((double)hist[h] - E) / E;
-        if (hist[h])
-            ent -= p * log2(p);
-        lo = hist[h] < lo ? hist[h] : lo;
-        hi = hist[h] > hi ? hist[h] : hi;
-        tot += hist[h];
-        zero += hist[h] == 0;
-    }
-    double var = m2 - mean * mean;
-    printf("lattice values n = np_hash6 / 64 over 2^24 lattice points:\n");
-    for (unsigned h = 0; h < 64; h += 8) {
-        printf("  ");
-        for (unsigned k = h; k < h + 8; k++)
-            printf("%2u:%7llu ", k, (unsigned long long)hist[k]);
-        printf("\n");
-    }
-    printf("  counts min %llu max %llu (uniform %.0f), values never hit %llu\n", (unsigned long long)lo,
-           (unsigned long long)hi, E, (unsigned long long)zero);
-    printf("  mean %.6f (uniform 6-bit: %.6f), std %.6f (uniform: %.6f), entropy %.4f bits (uniform 6), "
-           "chi-square %.0f on 63 degrees of freedom\n",
-           mean, 31.5 / 64.0, sqrt(var), sqrt((64.0 * 64.0 - 1.0) / 12.0) / 64.0, ent, chi);
-    NP_CHECK(tot == 16777216u, "histogram total %llu", (unsigned long long)tot);
-    /* Pinned: the distribution is a property of the shared hash; a change here is a change of every texture. */
-    NP_CHECK(hist[0] != hist[1] || hist[1] != hist[2], "unexpectedly uniform");
-    return 0;
-}
-
-static int cfg_validation(void)
-{
-    np_fdiff_cfg c = np_fdiff_cfg_default();
-    NP_CHECK(np_fdiff_cfg_check(&c) == NULL, "default invalid: %s", np_fdiff_cfg_check(&c));
-    NP_CHECK(np_fdiff_width(&c) == 1 + 10 + 12 + 44, "default width %u", np_fdiff_width(&c));
-    c.idx_int = 12;
-    NP_CHECK(np_fdiff_cfg_check(&c) != NULL, "idx_int 12 accepted");
-    c = np_fdiff_cfg_default();
-    c.guard = 105;
-    NP_CHECK(np_fdiff_cfg_check(&c) != NULL, "width > 127 accepted");
-    c = np_fdiff_cfg_default();
-    c.setup_mults = 0;
-    NP_CHECK(np_fdiff_cfg_check(&c) != NULL, "0 multipliers accepted");
-    np_texel_cfg t = np_texel_cfg_default();
-    NP_CHECK(np_texel_cfg_check(&t) == NULL, "texel default invalid");
-    t.weight_frac = 33;
-    NP_CHECK(np_texel_cfg_check(&t) != NULL, "WT 33 accepted");
-    np_tex_regs r = ramp_regs();
-    NP_CHECK(np_tex_regs_check(&r) == NULL, "ramp regs invalid");
-    r.cmap_n = 6;
-    r.cmap_repeat = 1;
-    NP_CHECK(np_tex_regs_check(&r) != NULL, "repeat map of 6 entries accepted");
-    r = ramp_regs();
-    r.oct[0].m[0][0] = 1 << 23;
-    NP_CHECK(np_tex_regs_check(&r) != NULL, "matrix entry 128 accepted");
-    np_span sp = mk_span(0, 65000, 600, (double[3]){ 0, 0, 0 }, (double[3]){ 0, 0, 0 });
-    NP_CHECK(np_span_check(&sp) != NULL, "span past pixel 65535 accepted");
-    sp = mk_span(0, 0, 200, (double[3]){ 30000, 0, 0 }, (double[3]){ 200, 0, 0 });
-    NP_CHECK(np_span_check(&sp) != NULL, "span leaving s48 accepted");
-    return 0;
-}
-
-/* --- Datapath declarations against the models (np_texel_datapath, np_fdiff_datapath) --- */
-
-/*
- * A declared signal width must hold every traced value and be at most
- * WIDTH_MARGIN bits wider than the widest (the same rule as
- * classic.datapath_widths). The registers are drawn over their full formats
- * (amplitudes up to -2^31, quadric coefficients and transforms full width,
- * 256-entry and clamped colour tables with 0..255 swings), so that the
- * wrapping accumulators and the windows fill their widths.
- */
-enum { WIDTH_MARGIN = 1, DP_MAX = 128 };
-
-typedef struct dp_check {
-    np_op ops[DP_MAX];
-    size_t nops;
-    np_trace t[DP_MAX];
-    size_t nt;
-} dp_check;
-
-static void dp_begin(dp_check *c, size_t nops)
-{
-    c->nops = nops;
-    c->nt = 0;
-    memset(c->t, 0, sizeof c->t);
-    for (size_t i = 0; i < nops && i < DP_MAX; i++)
-        if (c->ops[i].signal && c->ops[i].out)
-            c->t[c->nt++].signal = c->ops[i].signal;
-}
-
-static int dp_end(const dp_check *c, const char *what, int print)
-{
-    NP_CHECK(c->nops <= DP_MAX, "%s: declaration too long", what);
-    for (size_t i = 0, ti = 0; i < c->nops; i++) {
-        const np_op *op = &c->ops[i];
-        if (!(op->signal && op->out))
-            continue;
-        const np_trace *tr = &c->t[ti++];
-        unsigned need = np_trace_need(tr, op->out_signed);
-        NP_CHECK(tr->samples > 0, "%s: signal %s never traced", what, tr->signal);
-        NP_CHECK(need <= op->out, "%s: %s declared %u bits, needs %u", what, tr->signal, op->out, need);
-        NP_CHECK(op->out - need <= WIDTH_MARGIN, "%s: %s declared %u bits, needs only %u", what, tr->signal, op->out,
-                 need);
-        if (print)
-            printf("  %-5s stage %-2s declared %3u%s, traced needs %3u (%llu samples)\n", tr->signal, op->stage,
-                   op->out, op->out_signed ? "s" : "u", need, (unsigned long long)tr->samples);
-    }
-    return 0;
-}
-
-/* Registers over their full formats: variant 0 a 256-entry repeating table, 1 a clamped one of 2..255 entries. */
-static np_tex_regs wide_regs(np_rng *g, unsigned n_oct, int variant)
-{
-    np_tex_regs r;
-    memset(&r, 0, sizeof r);
-    for (int i = 0; i < 10; i++)
-        r.k[i] = np_sext(np_rng_next(g), NP_TEX_K_BITS);
-    r.n_oct = n_oct;
-    for (unsigned o = 0; o < n_oct; o++) {
-        for (int a = 0; a < 3; a++) {
-            for (int b = 0; b < 3; b++)
-                r.oct[o].m[a][b] = (int32_t)np_sext(np_rng_next(g), NP_TEX_M_BITS);
-            r.oct[o].o[a] = np_sext(np_rng_next(g), NP_TEX_O_BITS);
-        }
-        r.oct[o].amp = o == 0 ? INT32_MIN : (int32_t)np_rng_next(g);
-    }
-    r.cmap_repeat = variant == 0;
-    r.cmap_n = variant == 0 ? 256 : 2u + (unsigned)np_rng_below(g, 254);
-    for (unsigned k = 0; k < r.cmap_n; k++)
-        for (int ch = 0; ch < 3; ch++)
-            r.cmap[k][ch] = (uint8_t)(k % 7u == 0 ? (k & 8u ? 255u : 0u) : np_rng_below(g, 256));
-    return r;
-}
-
-static int texel_datapath_widths(void)
-{
-    static const struct { unsigned I, fw, G, wt; } cfgs[] = {
-        { 10, 12, 20, 16 }, { 10, 12, 20, 8 }, { 4, 8, 4, 24 }, { 1, 24, 40, 32 }, { 11, 1, 0, 1 },
-    };
-    np_rng g;
-    np_rng_seed(&g, 41);
-    static dp_check c;
-    for (unsigned ci = 0; ci < sizeof cfgs / sizeof cfgs[0]; ci++) {
-        np_texel_cfg cfg = np_texel_cfg_default();
-        cfg.idx_int = cfgs[ci].I;
-        cfg.w_frac = cfgs[ci].fw;
-        cfg.guard = cfgs[ci].G;
-        cfg.weight_frac = cfgs[ci].wt;
-        NP_CHECK(np_texel_cfg_check(&cfg) == NULL, "cfg %u: %s", ci, np_texel_cfg_check(&cfg));
-        for (int variant = 0; variant < 2; variant++) {
-            np_tex_regs r = wide_regs(&g, variant ? 3u : 8u, variant);
-            dp_begin(&c, np_texel_datapath(&cfg, &r, c.ops, DP_MAX));
-            np_texel_ctx ctx = { &cfg, &r };
-            for (unsigned n = 0; n < 20000; n++) {
-                np_texel_sig s;
-                memset(&s, 0, sizeof s);
-                for (unsigned o = 0; o < r.n_oct; o++)
-                    for (int a = 0; a < 3; a++) /* every 16th pixel: fractions at their extremes */
-                        s.u[o][a] = n % 16u == 0 ? ((np_rng_next(&g) & 0xff00000000ull) | (n & 32u ? 0xffffffffu : 0u))
-                                                 : np_rng_next(&g) & NP_MASK(NP_TEX_U_BITS);
-                for (int a = 0; a < 3; a++)
-                    s.s[a] = n % 16u == 1 ? (n & 32u ? -((int64_t)1 << 47) : ((int64_t)1 << 47) - 1)
-                                          : np_sext(np_rng_next(&g), NP_TEX_S_BITS);
-                for (unsigned k = 0; k < NP_TEXEL_STAGES; k++) {
-                    np_texel_stages[k].fn(&ctx, &s);
-                    np_texel_trace(&cfg, &r, k, &s, c.t, c.nt);
-                }
-                /* The windows suffice: the rounding reads nothing above them. */
-                const unsigned F = np_texel_frac(&cfg), W = np_texel_width(&cfg);
-                NP_CHECK(np_tex_to_index(np_wrap_s128(s.qx, np_texel_q_window(&cfg)), NP_TEX_Q_EXACT_FRAC, F, W) == s.q,
-                         "cfg %u: quadric window too narrow", ci);
-                const unsigned nf = NP_TEX_LAT_FRAC + 3u * cfg.weight_frac + NP_TEX_AMP_FRAC;
-                for (unsigned o = 0; o < r.n_oct; o++)
-                    NP_CHECK(np_tex_to_index(np_wrap_s128(np_mul128((np_s128)r.oct[o].amp, s.l3[o]),
-                                                          np_texel_al_window(&cfg)),
-                                             nf, F, W) == s.N[o],
-                             "cfg %u: amplitude product window too narrow", ci);
-            }
-            char what[64];
-            snprintf(what, sizeof what, "texel cfg %u, %s table", ci, variant ? "clamped" : "repeating");
-            if (ci == 0 && variant == 0)
-                printf("texel, default configuration, 8 octaves, 256-entry table:\n");
-            if (dp_end(&c, what, ci == 0 && variant == 0))
-                return 1;
-        }
-    }
-    puts("texel: every declared signal width holds its traced range, within 1 bit (5 configurations x 2 tables)");
-    return 0;
 }
 
 static int fdiff_datapath_widths(void)
 {
-    static const struct { unsigned I, fw, G, K; } cfgs[] = {
-        { 10, 12, 44, 0 }, { 10, 12, 8, 16 }, { 4, 8, 0, 0 }, { 11, 24, 91, 256 }, { 1, 1, 20, 0 },
+    /* I, Fw, G, K: the default, few guard bits with K, narrow, the widest, the narrowest index. */
+    static const char *const specs[] = {
+        "idx_int=10,w_frac=12,guard=44,resetup=0", "idx_int=10,w_frac=12,guard=8,resetup=16",
+        "idx_int=4,w_frac=8,guard=0,resetup=0", "idx_int=11,w_frac=24,guard=91,resetup=256",
+        "idx_int=1,w_frac=1,guard=20,resetup=0",
     };
-    np_rng g;
-    np_rng_seed(&g, 43);
-    static dp_check c;
-    for (unsigned ci = 0; ci < sizeof cfgs / sizeof cfgs[0]; ci++) {
-        np_fdiff_cfg cfg = np_fdiff_cfg_default();
-        cfg.idx_int = cfgs[ci].I;
-        cfg.w_frac = cfgs[ci].fw;
-        cfg.guard = cfgs[ci].G;
-        cfg.resetup = cfgs[ci].K;
-        NP_CHECK(np_fdiff_cfg_check(&cfg) == NULL, "cfg %u: %s", ci, np_fdiff_cfg_check(&cfg));
-        const unsigned F = np_fdiff_frac(&cfg);
-        for (int variant = 0; variant < 2; variant++) {
-            np_tex_regs r = wide_regs(&g, variant ? 3u : 8u, variant);
-            dp_begin(&c, np_fdiff_datapath(&cfg, &r, c.ops, DP_MAX));
-            /* Cell set-ups: random cells and steps, and the extremes (fractions 0 / max, steps -2^39). */
-            for (unsigned n = 0; n < 40000; n++) {
-                uint64_t u[3];
-                int64_t du[3];
-                rand_cell(&g, u, du);
-                if (n % 4u == 0)
-                    for (int a = 0; a < 3; a++) {
-                        u[a] = (u[a] & ~(uint64_t)NP_MASK(NP_TEX_FC)) | (n & 8u ? NP_MASK(NP_TEX_FC) : 0u);
-                        du[a] = n & 16u ? -((int64_t)1 << 39) : ((int64_t)1 << 39) - 1;
-                    }
-                unsigned o = (unsigned)np_rng_below(&g, r.n_oct);
-                np_s128 d[4];
-                np_fdiff_setup_sig sig;
-                np_fdiff_cell_setup_sig(&cfg, &r, o, u, du, d, &sig);
-                np_fdiff_trace_setup(&cfg, &sig, c.t, c.nt);
-                uint8_t lat[8];
-                np_tex_lattice(np_tex_cell(u[0]), np_tex_cell(u[1]), np_tex_cell(u[2]), lat);
-                for (int k = 0; k < 8; k++)
-                    np_tex_trace(c.t, c.nt, "n", lat[k]);
-                for (unsigned j = 0; j < 4; j++)
-                    NP_CHECK(np_tex_to_index(np_wrap_s128(sig.y[j], np_fdiff_y_window(&cfg)), NP_FDIFF_EXACT_FRAC, F,
-                                             np_fdiff_width(&cfg)) == d[j],
-                             "cfg %u: set-up window too narrow", ci);
-            }
-            /* Spans through the core, then the colour stages on each pixel's x. */
-            for (unsigned n = 0; n < 300; n++) {
-                np_span sp;
-                memset(&sp, 0, sizeof sp);
-                sp.n = 1u + (uint32_t)np_rng_below(&g, 200);
-                for (int a = 0; a < 3; a++) {
-                    sp.s[a] = np_sext(np_rng_next(&g), 40);
-                    sp.ds[a] = np_asr(np_sext(np_rng_next(&g), 32), (unsigned)np_rng_below(&g, 24));
-                }
-                if (np_span_check(&sp) != NULL)
-                    continue;
-                np_fdiff_core core;
-                np_fdiff_counts cnt;
-                memset(&cnt, 0, sizeof cnt);
-                np_fdiff_core_init(&core, &cfg, &r);
-                np_fdiff_core_begin(&core, &sp, &cnt);
-                for (uint32_t k = 0; k < sp.n; k++) {
-                    np_fdiff_trace_core(&core, c.t, c.nt);
-                    unsigned seg;
-                    uint32_t w;
-                    int64_t prod[3];
-                    uint8_t rgb[3];
-                    np_tex_colour_split(&r, np_fdiff_core_x(&core), F, cfg.w_frac, &seg, &w);
-                    np_tex_colour_mix(&r, seg, w, cfg.w_frac, prod);
-                    np_tex_colour_round(prod, cfg.w_frac, rgb);
-                    np_tex_trace_colour(&r, seg, w, prod, rgb, cfg.w_frac, c.t, c.nt);
-                    np_fdiff_core_advance(&core, &cnt);
-                }
-            }
-            char what[64];
-            snprintf(what, sizeof what, "fdiff cfg %u, %s table", ci, variant ? "clamped" : "repeating");
-            if (ci == 0 && variant == 0)
-                printf("fdiff, default configuration, 8 octaves, 256-entry table:\n");
-            if (dp_end(&c, what, ci == 0 && variant == 0))
-                return 1;
-        }
-    }
-    puts("fdiff: every declared signal width holds its traced range, within 1 bit (5 configurations x 2 tables)");
-    return 0;
+    return span_dp_widths("fdiff", specs, sizeof specs / sizeof specs[0], 43, fdiff_trace);
 }
 
 static const np_test_case cases[] = {
     { "datapath_widths", fdiff_datapath_widths },
-    { "texel_datapath_widths", texel_datapath_widths },
     { "stiff_span65536", stiff_span65536 },
     { "stiff_deriv_tiny", stiff_deriv_tiny },
     { "stiff_deriv_huge", stiff_deriv_huge },
@@ -1318,12 +828,6 @@ static const np_test_case cases[] = {
     { "drift_identity", drift_identity },
     { "cycle_vs_model", cycle_vs_model },
     { "cycle_count", cycle_count },
-    { "texel_exact_weights", texel_exact_weights },
-    { "texel_cycle_vs_model", texel_cycle_vs_model },
-    { "colour_stage", colour_stage },
-    { "front_end_rounding", front_end_rounding },
-    { "lattice_distribution", lattice_distribution },
-    { "cfg_validation", cfg_validation },
     { NULL, NULL },
 };
 

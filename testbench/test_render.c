@@ -285,7 +285,7 @@ static int render_default(const char *name, np_scene *s, np_render_frame *fr, np
     }
     np_fdiff_cfg fc = np_fdiff_cfg_default();
     np_texel_cfg tc = np_texel_cfg_default();
-    if (np_render_reference(fr) || np_render_fdiff(fr, &fc, 1, fd) || np_render_texel(fr, &tc, 1, tx)) {
+    if (np_render_reference(fr) || np_render_engine(fr, &np_fdiff_engine, &fc, 1, fd) || np_render_engine(fr, &np_texel_engine, &tc, 1, tx)) {
         NP_CHECK(0, "out of memory");
         return -1;
     }
@@ -432,8 +432,8 @@ static int perspective_polygon(void)
     NP_CHECK(np_render_prepare(&s, &fr, err, sizeof err) == 0, "%s", err);
     np_fdiff_cfg fc = np_fdiff_cfg_default();
     np_texel_cfg tc = np_texel_cfg_default();
-    NP_CHECK(np_render_reference(&fr) == 0 && np_render_fdiff(&fr, &fc, 1, &fd) == 0 &&
-                 np_render_texel(&fr, &tc, 1, &tx) == 0,
+    NP_CHECK(np_render_reference(&fr) == 0 && np_render_engine(&fr, &np_fdiff_engine, &fc, 1, &fd) == 0 &&
+                 np_render_engine(&fr, &np_texel_engine, &tc, 1, &tx) == 0,
              "render");
     printf("perspective floor: %llu pixels in %zu spans; fdiff max %.3f LSB, texel max %.3f LSB; cycles %llu / %llu\n",
            (unsigned long long)fr.pixels, fr.n_spans, fd.err.max_lsb, tx.err.max_lsb, (unsigned long long)fd.cycles,

@@ -14,10 +14,9 @@
 #include "np_cli.h"
 #include "np_cmd.h"
 #include "np_image.h"
-#include "np_plot.h"
 #include "np_render.h"
 #include "np_unit.h"
-#include "unit_tex.h"
+#include "render_cli.h"
 
 
 static const char *const CMD = "render";
@@ -30,11 +29,11 @@ static void usage(FILE *f)
           "Render each scene (default: the wood scene built into the program, a copy of\n"
           "vectors/scenes/wood.json; --report: wood and marble; a SCENE may be a file or\n"
           "embedded:wood / embedded:marble)\n"
-          "with the float reference and with both scanline texturing units - fdiff (forward\n"
-          "differences, Kameya & Hart) and texel (per pixel) - from the same span\n"
-          "descriptors, write the images (OpenEXR float + PNG) and error images, and print\n"
-          "the error of each unit against the reference (8-bit colour LSB) with its cycles\n"
-          "per frame and model time.\n"
+          "with the float reference and with every unit that renders it (the registry's span\n"
+          "units whose scene configuration accepts it: fdiff, forward differences after\n"
+          "Kameya & Hart, and texel, per pixel) from the same span descriptors, write the\n"
+          "images (OpenEXR float + PNG) and error images, and print the error of each unit\n"
+          "against the reference (8-bit colour LSB) with its cycles per frame and model time.\n"
           "\n"
           "options:\n"
           "  -o, --out DIR        output directory (default render-out; created)\n"
@@ -50,9 +49,9 @@ static void usage(FILE *f)
           "                       exit 1 on any change\n"
           "  --write-hashes FILE  write the images' hashes to FILE\n"
           "  --ppm                also write PPM files (their sha256sum is the hash)\n"
-          "  --report DIR         error against run time over configurations, scanline\n"
-          "                       plots and images, for docs (DIR: docs/plots)\n"
-          "  --bench              time the float reference and both models side by side\n"
+          "  --report DIR         the same as noisepipe report runtime -o DIR (error against\n"
+          "                       run time over each unit's sweeps, plots and images)\n"
+          "  --bench              time the float reference and every unit's models side by side\n"
           "  --repeat N           runs per timing in --bench and --report (default 5 / 3)\n"
           "\n"
           "exit status: 0 ok, 1 a check failed, 2 bad usage or bad input\n",
@@ -66,9 +65,6 @@ typedef struct opts {
     /* --unit-config: the keys given for np_units[i], joined by commas; the unit's block configured from them. */
     char unit_spec[MAX_UNITS][UNIT_SPEC_MAX];
     np_unit_cfg ucfg[MAX_UNITS];
-    /* The models' configurations inside the blocks of fdiff and texel (the render calls the models). */
-    np_fdiff_cfg fc;
-    np_texel_cfg tc;
     double tolerance;
     int check, cycles, ppm, bench;
     const char *hashes, *write_hashes, *report;
@@ -97,7 +93,7 @@ static int opt_value(int argc, char **argv, int *i, const char *name, const char
     return 1;
 }
 
-static int mkdir_p(const char *dir)
+int np_mkdir_p(const char *dir)
 {
     char buf[4096];
     snprintf(buf, sizeof buf, "%s", dir);
@@ -177,18 +173,9 @@ static int configure_units(opts *o)
             p += strspn(p, ", ");
         }
     }
-    int f = unit_index("fdiff"), t = unit_index("texel");
-    o->fc = *np_ut_fdiff_cfg(&o->ucfg[f]);
-    o->tc = *np_ut_texel_cfg(&o->ucfg[t]);
     return 0;
 }
 
-/* A unit's configuration as the golden image hashes name it: "k=v,k=v", without the keys the scene sets. */
-static void unit_cfg_text(const opts *o, const char *unit, char *buf, size_t len)
-{
-    int i = unit_index(unit);
-    np_unit_cfg_format_opt(np_units[i], &o->ucfg[i], NP_UNIT_FMT_COMMAS | NP_UNIT_FMT_NO_SCENE, buf, len);
-}
 
 /* A seed scene by name: the copy built into the program (vectors/scenes/NAME.json). */
 static const char *seed_scene(const char *name, char *path, size_t n)
@@ -283,112 +270,15 @@ static int parse_opts(int argc, char **argv, opts *o)
     return configure_units(o);
 }
 
-/* --- Golden hashes --- */
-
-typedef struct hash_rec {
-    char scene[64], image[16], hash[65], cfg[256];
-} hash_rec;
-
-typedef struct hash_list {
-    hash_rec *r;
-    size_t n, cap;
-} hash_list;
-
-static int hash_add(hash_list *l, const char *scene, const char *image, const char *hash, const char *cfg)
-{
-    if (l->n == l->cap) {
-        size_t nc = l->cap ? 2 * l->cap : 16;
-        hash_rec *nr = realloc(l->r, nc * sizeof *nr);
-        if (!nr)
-            return -1;
-        l->r = nr;
-        l->cap = nc;
-    }
-    hash_rec *h = &l->r[l->n++];
-    snprintf(h->scene, sizeof h->scene, "%s", scene);
-    snprintf(h->image, sizeof h->image, "%s", image);
-    snprintf(h->hash, sizeof h->hash, "%s", hash);
-    snprintf(h->cfg, sizeof h->cfg, "%s", cfg);
-    return 0;
-}
-
-/* Lines "scene image sha256 configuration"; '#' comments. 0, or -1 with a message. */
-static int hash_read(const char *path, hash_list *l)
-{
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        np_err(CMD, "%s: cannot open: %s", path, strerror(errno));
-        return -1;
-    }
-    char line[1024];
-    unsigned no = 0;
-    while (fgets(line, sizeof line, f)) {
-        no++;
-        char *p = line;
-        while (*p == ' ' || *p == '\t')
-            p++;
-        if (*p == '#' || *p == '\n' || *p == '\0')
-            continue;
-        char sc[64], im[16], h[65], cfg[256];
-        if (sscanf(p, "%63s %15s %64s %255s", sc, im, h, cfg) != 4 || strlen(h) != 64) {
-            np_err(CMD, "%s:%u: expected 'scene image sha256 configuration'", path, no);
-            fclose(f);
-            return -1;
-        }
-        if (hash_add(l, sc, im, h, cfg)) {
-            fclose(f);
-            return -1;
-        }
-    }
-    fclose(f);
-    return 0;
-}
-
-static int hash_write(const char *path, const hash_list *l)
-{
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        np_err(CMD, "%s: cannot create: %s", path, strerror(errno));
-        return -1;
-    }
-    fputs("# noisepipe golden images: SHA-256 of each image as a binary PPM (np_image_hash;\n"
-          "# `noisepipe render --ppm` writes the PPM files, `sha256sum` of them gives these).\n"
-          "# Written by `noisepipe render --write-hashes`; checked by `noisepipe render --hashes`\n"
-          "# and by the test render.golden_hashes. A change to any bit of an image shows here.\n"
-          "# scene image sha256 configuration\n",
-          f);
-    for (size_t i = 0; i < l->n; i++)
-        fprintf(f, "%s %s %s %s\n", l->r[i].scene, l->r[i].image, l->r[i].hash, l->r[i].cfg);
-    return fclose(f) == 0 ? 0 : -1;
-}
-
-/* Compare got with the golden list; prints each difference. Returns the number of failures. */
-static unsigned hash_check(const hash_list *golden, const hash_list *got, const char *path)
-{
-    unsigned bad = 0;
-    for (size_t i = 0; i < got->n; i++) {
-        const hash_rec *g = &got->r[i], *w = NULL;
-        for (size_t k = 0; k < golden->n; k++)
-            if (strcmp(golden->r[k].scene, g->scene) == 0 && strcmp(golden->r[k].image, g->image) == 0)
-                w = &golden->r[k];
-        if (!w) {
-            printf("hash: %s %s: no golden hash in %s\n", g->scene, g->image, path);
-            bad++;
-        } else if (strcmp(w->cfg, g->cfg) != 0) {
-            printf("hash: %s %s: configuration %s differs from the golden one %s\n", g->scene, g->image, g->cfg,
-                   w->cfg);
-            bad++;
-        } else if (strcmp(w->hash, g->hash) != 0) {
-            printf("hash: %s %s: CHANGED: %s, golden %s\n", g->scene, g->image, g->hash, w->hash);
-            bad++;
-        } else {
-            printf("hash: %s %s: matches %s\n", g->scene, g->image, path);
-        }
-    }
-    return bad;
-}
-
 /* --- One scene --- */
+
+/* The configuration --unit-config gives unit u (over the scene's). */
+static const char *unit_spec(const void *ctx, const np_unit *u)
+{
+    const opts *o = ctx;
+    int i = unit_index(u->name);
+    return i < 0 ? NULL : o->unit_spec[i];
+}
 
 static void print_run(const char *unit, const char *cfg, const np_render_run *r)
 {
@@ -414,50 +304,36 @@ static void print_run(const char *unit, const char *cfg, const np_render_run *r)
                (unsigned long long)r->interval_setups, r->model_seconds);
 }
 
-static int write_outputs(const opts *o, const np_render_frame *fr, const np_render_run *fd, const np_render_run *tx,
-                         char *err, size_t errlen)
+/* The images of one unit: base_UNIT.{exr,png}, base_UNIT_err.{exr,png}, with --ppm base_UNIT.ppm. */
+static int write_unit_images(const opts *o, const np_render_frame *fr, const char *unit, const uint8_t *rgb,
+                             char *err, size_t errlen)
 {
     const np_scene *sc = fr->sc;
     char base[4096];
-    snprintf(base, sizeof base, "%s/%s_ref", o->out, sc->name);
-    if (np_render_write_ref(base, fr, err, errlen))
+    snprintf(base, sizeof base, "%s/%s_%s", o->out, sc->name, unit);
+    if (np_render_write_rgb8(base, sc->width, sc->height, rgb, err, errlen))
         return -1;
-    const struct { const char *n; const np_render_run *r; } u[2] = { { "fdiff", fd }, { "texel", tx } };
-    for (int i = 0; i < 2; i++) {
-        snprintf(base, sizeof base, "%s/%s_%s", o->out, sc->name, u[i].n);
-        if (np_render_write_rgb8(base, sc->width, sc->height, u[i].r->rgb, err, errlen))
-            return -1;
-        snprintf(base, sizeof base, "%s/%s_%s_err", o->out, sc->name, u[i].n);
-        if (np_render_write_error(base, fr, u[i].r->rgb, err, errlen))
-            return -1;
-        if (o->ppm) {
-            snprintf(base, sizeof base, "%s/%s_%s.ppm", o->out, sc->name, u[i].n);
-            if (np_image_write_ppm(base, sc->width, sc->height, u[i].r->rgb, err, errlen))
-                return -1;
-        }
-    }
+    snprintf(base, sizeof base, "%s/%s_%s_err", o->out, sc->name, unit);
+    if (np_render_write_error(base, fr, rgb, err, errlen))
+        return -1;
     if (o->ppm) {
-        uint8_t *rgb = malloc((size_t)sc->width * sc->height * 3);
-        if (!rgb)
-            return -1;
-        np_render_ref_rgb8(fr, rgb);
-        snprintf(base, sizeof base, "%s/%s_ref.ppm", o->out, sc->name);
-        int rc = np_image_write_ppm(base, sc->width, sc->height, rgb, err, errlen);
-        free(rgb);
-        if (rc)
+        snprintf(base, sizeof base, "%s/%s_%s.ppm", o->out, sc->name, unit);
+        if (np_image_write_ppm(base, sc->width, sc->height, rgb, err, errlen))
             return -1;
     }
-    printf("  images: %s/%s_{ref,fdiff,texel,fdiff_err,texel_err}.{exr,png}\n", o->out, sc->name);
     return 0;
 }
 
-/* Render one scene; appends its hashes. Returns NP_EXIT_*. */
+/* Render one scene with every unit that renders it; appends its hashes. Returns NP_EXIT_*. */
 static int render_scene(const opts *o, const char *path, hash_list *hashes)
 {
     np_scene sc;
     np_render_frame fr;
-    np_render_run fd, tx;
-    char err[1024], fcfg[256], tcfg[256], hex[65];
+    np_render_unit_cfg us[NP_RENDER_MAX_UNITS];
+    np_render_run runs[NP_RENDER_MAX_UNITS];
+    char err[1024], hex[65];
+    uint8_t *ref8 = NULL;
+    int nu = 0;
     if (np_scene_load(path, &sc, err, sizeof err)) {
         np_err(CMD, "%s", err);
         return NP_EXIT_USAGE;
@@ -468,511 +344,82 @@ static int render_scene(const opts *o, const char *path, hash_list *hashes)
         return NP_EXIT_USAGE;
     }
     int rc = NP_EXIT_OK;
-    memset(&fd, 0, sizeof fd);
-    memset(&tx, 0, sizeof tx);
-    if (np_render_reference(&fr) || np_render_fdiff(&fr, &o->fc, o->cycles, &fd) ||
-        np_render_texel(&fr, &o->tc, o->cycles, &tx)) {
+    memset(runs, 0, sizeof runs);
+    if ((nu = np_render_units(&sc, unit_spec, o, us, err, sizeof err)) < 0) {
+        np_err(CMD, "%s", err);
+        nu = 0;
+        rc = NP_EXIT_USAGE;
+        goto out;
+    }
+    if (np_render_reference(&fr)) {
         np_err(CMD, "out of memory");
         rc = NP_EXIT_USAGE;
         goto out;
     }
-    unit_cfg_text(o, "fdiff", fcfg, sizeof fcfg);
-    unit_cfg_text(o, "texel", tcfg, sizeof tcfg);
+    for (int i = 0; i < nu; i++)
+        if (np_render_unit(&fr, us[i].u, &us[i].cfg, o->cycles, &runs[i])) {
+            np_err(CMD, "out of memory");
+            rc = NP_EXIT_USAGE;
+            goto out;
+        }
     printf("scene %s (%s): %ux%u, %llu pixels in %zu spans (longest %u), %u octave%s; reference %.4f s\n",
            sc.name, path, sc.width, sc.height, (unsigned long long)fr.pixels, fr.n_spans, fr.longest,
            sc.tex.n_oct, sc.tex.n_oct == 1 ? "" : "s", fr.ref_seconds);
-    print_run("fdiff", fcfg, &fd);
-    print_run("texel", tcfg, &tx);
-    if (fd.cycle_mismatch || tx.cycle_mismatch) {
-        np_err(CMD, "%s: the cycle-accurate model differs from the bit-exact model", sc.name);
-        rc = NP_EXIT_FAIL;
-    }
+    for (int i = 0; i < nu; i++)
+        print_run(us[i].u->name, us[i].text, &runs[i]);
+    for (int i = 0; i < nu; i++)
+        if (runs[i].cycle_mismatch) {
+            np_err(CMD, "%s: %s: the cycle-accurate model differs from the bit-exact model", sc.name, us[i].u->name);
+            rc = NP_EXIT_FAIL;
+        }
     if (o->check)
-        for (int i = 0; i < 2; i++) {
-            const np_render_run *r = i ? &tx : &fd;
-            if (r->err.max_lsb > o->tolerance) {
-                printf("  FAIL: %s max error %.3f LSB exceeds the tolerance %.3f LSB\n", i ? "texel" : "fdiff",
-                       r->err.max_lsb, o->tolerance);
+        for (int i = 0; i < nu; i++)
+            if (runs[i].err.max_lsb > o->tolerance) {
+                printf("  FAIL: %s max error %.3f LSB exceeds the tolerance %.3f LSB\n", us[i].u->name,
+                       runs[i].err.max_lsb, o->tolerance);
                 rc = NP_EXIT_FAIL;
             }
-        }
-    if (mkdir_p(o->out) != 0) {
+    if (np_mkdir_p(o->out) != 0) {
         np_err(CMD, "%s: cannot create: %s", o->out, strerror(errno));
         rc = NP_EXIT_USAGE;
         goto out;
     }
-    if (write_outputs(o, &fr, &fd, &tx, err, sizeof err)) {
-        np_err(CMD, "%s", err);
-        rc = NP_EXIT_USAGE;
-        goto out;
+    char base[4096], names[512] = "ref", errs[512] = "";
+    snprintf(base, sizeof base, "%s/%s_ref", o->out, sc.name);
+    int bad = np_render_write_ref(base, &fr, err, sizeof err);
+    for (int i = 0; i < nu && !bad; i++) {
+        bad = write_unit_images(o, &fr, us[i].u->name, runs[i].rgb, err, sizeof err);
+        snprintf(names + strlen(names), sizeof names - strlen(names), ",%s", us[i].u->name);
+        snprintf(errs + strlen(errs), sizeof errs - strlen(errs), ",%s_err", us[i].u->name);
     }
-    uint8_t *ref8 = malloc((size_t)sc.width * sc.height * 3);
-    if (!ref8) {
+    ref8 = malloc((size_t)sc.width * sc.height * 3);
+    if (bad || !ref8) {
+        np_err(CMD, "%s", bad ? err : "out of memory");
         rc = NP_EXIT_USAGE;
         goto out;
     }
     np_render_ref_rgb8(&fr, ref8);
+    if (o->ppm) {
+        snprintf(base, sizeof base, "%s/%s_ref.ppm", o->out, sc.name);
+        if (np_image_write_ppm(base, sc.width, sc.height, ref8, err, sizeof err)) {
+            np_err(CMD, "%s", err);
+            rc = NP_EXIT_USAGE;
+            goto out;
+        }
+    }
+    printf("  images: %s/%s_{%s%s}.{exr,png}\n", o->out, sc.name, names, errs);
     np_image_hash(sc.width, sc.height, ref8, hex);
-    hash_add(hashes, sc.name, "ref", hex, "-");
-    free(ref8);
-    np_image_hash(sc.width, sc.height, fd.rgb, hex);
-    hash_add(hashes, sc.name, "fdiff", hex, fcfg);
-    np_image_hash(sc.width, sc.height, tx.rgb, hex);
-    hash_add(hashes, sc.name, "texel", hex, tcfg);
+    np_render_hash_add(hashes, sc.name, "ref", hex, "-");
+    for (int i = 0; i < nu; i++) {
+        np_image_hash(sc.width, sc.height, runs[i].rgb, hex);
+        np_render_hash_add(hashes, sc.name, us[i].u->name, hex, us[i].text);
+    }
 out:
-    np_render_run_free(&fd);
-    np_render_run_free(&tx);
+    free(ref8);
+    for (int i = 0; i < nu; i++)
+        np_render_run_free(&runs[i]);
     np_render_frame_free(&fr);
     np_scene_free(&sc);
-    return rc;
-}
-
-/* --- Benchmark --- */
-
-static double best_of(unsigned n, int (*fn)(void *), void *ctx)
-{
-    double best = HUGE_VAL;
-    for (unsigned i = 0; i < n; i++) {
-        double t0 = np_now();
-        if (fn(ctx))
-            return NAN;
-        best = fmin(best, np_now() - t0);
-    }
-    return best;
-}
-
-typedef struct bench_ctx {
-    np_render_frame *fr;
-    const opts *o;
-} bench_ctx;
-
-static int b_ref(void *c) { return np_render_reference(((bench_ctx *)c)->fr); }
-
-static int b_fdiff(void *c)
-{
-    bench_ctx *b = c;
-    np_render_run r;
-    int rc = np_render_fdiff(b->fr, &b->o->fc, 0, &r);
-    np_render_run_free(&r);
-    return rc;
-}
-
-static int b_texel(void *c)
-{
-    bench_ctx *b = c;
-    np_render_run r;
-    int rc = np_render_texel(b->fr, &b->o->tc, 0, &r);
-    np_render_run_free(&r);
-    return rc;
-}
-
-static int bench_scene(const opts *o, const char *path)
-{
-    np_scene sc;
-    np_render_frame fr;
-    char err[1024];
-    unsigned rep = o->repeat ? o->repeat : 5;
-    if (np_scene_load(path, &sc, err, sizeof err)) {
-        np_err(CMD, "%s", err);
-        return NP_EXIT_USAGE;
-    }
-    if (np_render_prepare(&sc, &fr, err, sizeof err)) {
-        np_err(CMD, "%s", err);
-        np_scene_free(&sc);
-        return NP_EXIT_USAGE;
-    }
-    bench_ctx b = { &fr, o };
-    double tr = best_of(rep, b_ref, &b), tf = best_of(rep, b_fdiff, &b), tt = best_of(rep, b_texel, &b);
-    np_render_run fd, tx;
-    if (np_render_fdiff(&fr, &o->fc, 1, &fd) || np_render_texel(&fr, &o->tc, 1, &tx)) {
-        np_err(CMD, "out of memory");
-        np_render_frame_free(&fr);
-        np_scene_free(&sc);
-        return NP_EXIT_USAGE;
-    }
-    printf("bench %s: %ux%u, %llu pixels, %zu spans, %u octave%s (best of %u runs)\n", sc.name, sc.width, sc.height,
-           (unsigned long long)fr.pixels, fr.n_spans, sc.tex.n_oct, sc.tex.n_oct == 1 ? "" : "s", rep);
-    printf("  %-34s %12s %12s %10s\n", "", "fdiff", "texel", "texel/fdiff");
-    printf("  %-34s %12.5f %12.5f %10.2f\n", "bit-exact model, s per frame", tf, tt, tt / tf);
-    printf("  %-34s %12.1f %12.1f\n", "  ns per pixel", tf * 1e9 / (double)fr.pixels, tt * 1e9 / (double)fr.pixels);
-    printf("  %-34s %12llu %12llu %10.2f\n", "hardware cycles per frame", (unsigned long long)fd.cycles,
-           (unsigned long long)tx.cycles, (double)tx.cycles / (double)fd.cycles);
-    printf("  %-34s %12.3f %12.3f\n", "  cycles per pixel", (double)fd.cycles / (double)fr.pixels,
-           (double)tx.cycles / (double)fr.pixels);
-    printf("  %-34s %12llu %12llu\n", "  set-up stall cycles", (unsigned long long)fd.setup_stalls,
-           (unsigned long long)tx.setup_stalls);
-    printf("  %-34s %12.5f %12.5f\n", "cycle-accurate model, s per frame", fd.cycle_seconds, tx.cycle_seconds);
-    printf("  %-34s %12.3f %12.3f\n", "max error vs float reference, LSB", fd.err.max_lsb, tx.err.max_lsb);
-    printf("  float reference (double) renderer: %.5f s per frame\n", tr);
-    printf("  model speed-up of forward differencing over per-pixel evaluation: %.0f%% less time "
-           "(the seed reports about 10%% in software)\n",
-           100.0 * (1.0 - tf / tt));
-    np_render_run_free(&fd);
-    np_render_run_free(&tx);
-    np_render_frame_free(&fr);
-    np_scene_free(&sc);
-    return NP_EXIT_OK;
-}
-
-/* --- Report: error against run time over configurations --- */
-
-typedef struct row {
-    char scene[64];
-    const char *unit;
-    unsigned guard, resetup, wt, mults;
-    np_render_err e;
-    uint64_t cycles, setups;
-    double seconds;
-} row;
-
-/*
- * One row of the error-against-run-time table: the unit's configuration
- * (fc for fdiff, tc for texel) and what its run measured.
- */
-static void put_row(row *w, const char *scene, const np_fdiff_cfg *fc, const np_texel_cfg *tc,
-                    const np_render_run *r, uint64_t cycles, double seconds)
-{
-    snprintf(w->scene, sizeof w->scene, "%s", scene);
-    w->unit = fc ? "fdiff" : "texel";
-    w->guard = fc ? fc->guard : tc->guard;
-    w->resetup = fc ? fc->resetup : 0u;
-    w->wt = fc ? 0u : tc->weight_frac;
-    w->mults = fc ? fc->setup_mults : tc->setup_mults;
-    w->e = r->err;
-    w->cycles = cycles;
-    w->setups = r->span_setups + r->cell_setups + r->interval_setups;
-    w->seconds = seconds;
-}
-
-static const unsigned rep_guard[] = { 0, 2, 4, 6, 8, 10, 12, 16, 20, 24, 32, 44 };
-static const unsigned rep_k[] = { 0, 8, 32 };
-static const unsigned rep_wt[] = { 2, 4, 6, 8, 10, 12, 16, 32 };
-static const unsigned rep_p[] = { 1, 4, 16 }; /* set-up multipliers, besides the default */
-enum {
-    N_P = sizeof rep_p / sizeof rep_p[0],
-    N_G = sizeof rep_guard / sizeof rep_guard[0],
-    N_K = sizeof rep_k / sizeof rep_k[0],
-    N_WT = sizeof rep_wt / sizeof rep_wt[0]
-};
-
-static FILE *open_out(const char *dir, const char *name, char *path, size_t n)
-{
-    snprintf(path, n, "%s/%s", dir, name);
-    FILE *f = fopen(path, "w");
-    if (!f)
-        np_err(CMD, "%s: cannot create: %s", path, strerror(errno));
-    return f;
-}
-
-static double floor_log(double v) { return v < 0.01 ? 0.01 : v; }
-
-static int plot_errors(const char *dir, const char *scene, const row *rows, size_t n, int by_seconds)
-{
-    static const char *const colours[] = { "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd" };
-    double xs[N_K + 2][N_G + N_WT], ys[N_K + 2][N_G + N_WT];
-    char labels[N_K + 2][64];
-    np_plot_series s[N_K + 2];
-    size_t ns = 0;
-    for (unsigned k = 0; k < N_K + 2; k++) {
-        size_t m = 0;
-        for (size_t i = 0; i < n; i++) {
-            const row *r = &rows[i];
-            if (strcmp(r->scene, scene) != 0)
-                continue;
-            int fd = strcmp(r->unit, "fdiff") == 0, p2 = r->mults == 2;
-            int mine = k < N_K ? fd && p2 && r->resetup == rep_k[k] : k == N_K ? !fd : fd && !p2;
-            if (!mine)
-                continue;
-            xs[k][m] = by_seconds ? r->seconds * 1e3 : (double)r->cycles;
-            ys[k][m] = floor_log(r->e.max_lsb);
-            m++;
-        }
-        if (k < N_K)
-            snprintf(labels[k], sizeof labels[k], "fdiff K=%u, guard %u..%u", rep_k[k], rep_guard[0], rep_guard[N_G - 1]);
-        else if (k == N_K)
-            snprintf(labels[k], sizeof labels[k], "texel, weight bits %u..%u", rep_wt[0], rep_wt[N_WT - 1]);
-        else
-            snprintf(labels[k], sizeof labels[k], "fdiff K=0, set-up multipliers %u..%u", rep_p[0], rep_p[N_P - 1]);
-        s[ns] = (np_plot_series){ labels[k], colours[k], xs[k], ys[k], m, 0, 1 };
-        ns++;
-    }
-    char title[160], name[128], path[4096];
-    snprintf(title, sizeof title, "%s: max error against %s", scene, by_seconds ? "model time" : "cycles per frame");
-    np_plot p = { title, by_seconds ? "bit-exact model time per frame (ms)" : "cycles per frame",
-                  "max error vs float reference (8-bit LSB)", 0, 0, 0.01, 1000.0, 1, NAN, 1.0, NULL,
-                  "1 LSB" };
-    snprintf(name, sizeof name, "%s_error_vs_%s.svg", scene, by_seconds ? "seconds" : "cycles");
-    FILE *f = open_out(dir, name, path, sizeof path);
-    if (!f)
-        return -1;
-    np_plot_svg(f, &p, s, ns);
-    return fclose(f) == 0 ? 0 : -1;
-}
-
-/* A comb of vertical lines at xs (drawn as one polyline along the frame's top and bottom edges). */
-static size_t comb(const double *xs, size_t n, double y0, double y1, double *cx, double *cy)
-{
-    size_t m = 0;
-    for (size_t i = 0; i < n; i++) {
-        int up = (int)(i % 2u) == 0;
-        cx[m] = xs[i], cy[m++] = up ? y0 : y1;
-        cx[m] = xs[i], cy[m++] = up ? y1 : y0;
-    }
-    return m;
-}
-
-static int plot_scan(const char *dir, const np_scene *sc, const np_render_frame *fr, unsigned guard)
-{
-    np_fdiff_cfg c = np_fdiff_cfg_default();
-    c.guard = guard;
-    np_render_scan s;
-    if (np_render_scanline(fr, &c, sc->probe_row, &s) || s.n == 0) {
-        np_render_scan_free(&s);
-        return -1;
-    }
-    int rc = 0;
-    for (int which = 0; which < (sc->tex.n_oct > 1 ? 2 : 1) && rc == 0; which++) {
-        const double *edges = which ? s.edge_last : s.edge_any;
-        size_t ne = which ? s.n_edge_last : s.n_edge_any;
-        /*
-         * Scale the data to O(1): np_plot_svg's ticks assume ranges far above 1e-9,
-         * and the drift spans 1e-3 (no guard bits) to 1e-17 (the default).
-         */
-        double amax = 0;
-        for (size_t i = 0; i < s.n; i++)
-            amax = fmax(amax, fabs(which ? s.last[i] : s.sum[i]));
-        int ex = amax > 0 ? (int)floor(log10(amax)) : 0;
-        double scale = pow(10.0, -ex);
-        double *y = malloc(s.n * sizeof *y);
-        if (!y) {
-            rc = -1;
-            break;
-        }
-        for (size_t i = 0; i < s.n; i++)
-            y[i] = (which ? s.last[i] : s.sum[i]) * scale;
-        double lo = -1.0, hi = 1.0;
-        for (size_t i = 0; i < s.n; i++) {
-            lo = fmin(lo, y[i]);
-            hi = fmax(hi, y[i]);
-        }
-        lo -= 0.08 * (hi - lo);
-        hi += 0.08 * (hi - lo);
-        double *cx = malloc(2 * (ne + 1) * sizeof *cx), *cy = malloc(2 * (ne + 1) * sizeof *cy);
-        if (!cx || !cy) {
-            free(cx);
-            free(cy);
-            free(y);
-            rc = -1;
-            break;
-        }
-        size_t m = comb(edges, ne, lo, hi, cx, cy);
-        char lab[96], title[200], name[128], path[4096], ylab[128];
-        snprintf(lab, sizeof lab, "FD - per pixel (guard %u, F = %u)", guard, np_fdiff_frac(&c));
-        np_plot_series ser[2] = {
-            { "cell edges (set-up)", "#bbbbbb", cx, cy, m, 1, 0 },
-            { lab, "#d62728", s.x, y, s.n, 1, 0 },
-        };
-        if (which)
-            snprintf(title, sizeof title, "%s, scanline %u: noise difference, octave %u only (seed fig. 11)", sc->name,
-                     sc->probe_row, sc->tex.n_oct);
-        else
-            snprintf(title, sizeof title, "%s, scanline %u: noise difference %s(seed fig. 10)", sc->name, sc->probe_row,
-                     sc->tex.n_oct > 1 ? "of the octave sum " : "");
-        snprintf(ylab, sizeof ylab, "%s (x 1e%d)", which ? "difference of n (noise range 0..1)" : "difference of sum a_i n_i (units of f)", ex);
-        np_plot p = { title, "pixel x", ylab, s.x[0] - 1.0, s.x[s.n - 1] + 1.0, lo, hi, 0, NAN, NAN, NULL, NULL };
-        snprintf(name, sizeof name, "%s_scanline%s_g%u.svg", sc->name, which ? "_last" : "", guard);
-        FILE *f = open_out(dir, name, path, sizeof path);
-        if (!f)
-            rc = -1;
-        else {
-            np_plot_svg(f, &p, ser, 2);
-            rc = fclose(f) == 0 ? 0 : -1;
-        }
-        free(cx);
-        free(cy);
-        free(y);
-    }
-    np_render_scan_free(&s);
-    return rc;
-}
-
-static double time_model(const np_render_frame *fr, const np_fdiff_cfg *fc, const np_texel_cfg *tc, unsigned rep,
-                         np_render_run *keep)
-{
-    double best = HUGE_VAL;
-    for (unsigned i = 0; i < rep; i++) {
-        np_render_run r;
-        if (fc ? np_render_fdiff(fr, fc, 0, &r) : np_render_texel(fr, tc, 0, &r))
-            return NAN;
-        best = fmin(best, r.model_seconds);
-        if (i == 0)
-            *keep = r;
-        else
-            np_render_run_free(&r);
-    }
-    return best;
-}
-
-static int report(const opts *o)
-{
-    const char *dir = o->report;
-    unsigned rep = o->repeat ? o->repeat : 3;
-    size_t cap = (size_t)o->n_scenes * (N_G * N_K + N_WT + N_P), n = 0;
-    row *rows = calloc(cap, sizeof *rows);
-    if (!rows || mkdir_p(dir) != 0) {
-        free(rows);
-        np_err(CMD, "%s: cannot create", dir);
-        return NP_EXIT_USAGE;
-    }
-    int rc = NP_EXIT_OK;
-    for (unsigned si = 0; si < o->n_scenes && rc == NP_EXIT_OK; si++) {
-        np_scene sc;
-        np_render_frame fr;
-        char err[1024], base[4096];
-        if (np_scene_load(o->scenes[si], &sc, err, sizeof err)) {
-            np_err(CMD, "%s", err);
-            rc = NP_EXIT_USAGE;
-            break;
-        }
-        if (np_render_prepare(&sc, &fr, err, sizeof err) || np_render_reference(&fr)) {
-            np_err(CMD, "%s", err);
-            np_scene_free(&sc);
-            rc = NP_EXIT_USAGE;
-            break;
-        }
-        fprintf(stderr, "report: %s ...\n", sc.name);
-        /* Images of the default configurations. */
-        np_render_run fd, tx;
-        if (np_render_fdiff(&fr, &o->fc, 0, &fd) || np_render_texel(&fr, &o->tc, 0, &tx)) {
-            rc = NP_EXIT_USAGE;
-        } else {
-            uint8_t *ref8 = malloc((size_t)sc.width * sc.height * 3);
-            if (ref8) {
-                np_render_ref_rgb8(&fr, ref8);
-                snprintf(base, sizeof base, "%s/%s_ref.png", dir, sc.name);
-                np_image_write_png(base, sc.width, sc.height, ref8, err, sizeof err);
-                free(ref8);
-            }
-            const struct { const char *n; np_render_run *r; } u[2] = { { "fdiff", &fd }, { "texel", &tx } };
-            for (int i = 0; i < 2; i++) {
-                snprintf(base, sizeof base, "%s/%s_%s.png", dir, sc.name, u[i].n);
-                np_image_write_png(base, sc.width, sc.height, u[i].r->rgb, err, sizeof err);
-                snprintf(base, sizeof base, "%s/%s_%s_err", dir, sc.name, u[i].n);
-                np_render_write_error(base, &fr, u[i].r->rgb, err, sizeof err);
-                snprintf(base, sizeof base, "%s/%s_%s_err.exr", dir, sc.name, u[i].n);
-                remove(base); /* docs keep the PNG heat map only */
-            }
-            np_render_run_free(&fd);
-            np_render_run_free(&tx);
-            /* What too few guard bits look like: the error heat map at G = 4. */
-            np_fdiff_cfg few = o->fc;
-            few.guard = 4;
-            if (np_render_fdiff(&fr, &few, 0, &fd) == 0) {
-                snprintf(base, sizeof base, "%s/%s_fdiff_g4_err", dir, sc.name);
-                np_render_write_error(base, &fr, fd.rgb, err, sizeof err);
-                snprintf(base, sizeof base, "%s/%s_fdiff_g4_err.exr", dir, sc.name);
-                remove(base);
-                np_render_run_free(&fd);
-            }
-        }
-        /* Forward differences: guard bits x re-set-up interval. */
-        for (unsigned k = 0; k < N_K && rc == NP_EXIT_OK; k++) {
-            np_fdiff_cfg c = o->fc;
-            c.resetup = rep_k[k];
-            np_render_run cyc;
-            if (np_render_fdiff(&fr, &c, 1, &cyc)) {
-                rc = NP_EXIT_USAGE;
-                break;
-            }
-            for (unsigned g = 0; g < N_G; g++) {
-                c.guard = rep_guard[g];
-                if (np_fdiff_cfg_check(&c))
-                    continue;
-                np_render_run r;
-                double t = time_model(&fr, &c, NULL, rep, &r);
-                put_row(&rows[n++], sc.name, &c, NULL, &r, cyc.cycles, t);
-                np_render_run_free(&r);
-            }
-            np_render_run_free(&cyc);
-        }
-        /* Forward differences: the set-up engine's multipliers (cycles only; the bits do not change). */
-        for (unsigned k = 0; k < N_P && rc == NP_EXIT_OK; k++) {
-            np_fdiff_cfg c = o->fc;
-            c.setup_mults = rep_p[k];
-            np_render_run r;
-            if (np_render_fdiff(&fr, &c, 1, &r)) {
-                rc = NP_EXIT_USAGE;
-                break;
-            }
-            row *w = &rows[n++];
-            put_row(w, sc.name, &c, NULL, &r, r.cycles, 0.0);
-            np_render_run_free(&r);
-            w->seconds = time_model(&fr, &c, NULL, rep, &r);
-            np_render_run_free(&r);
-        }
-        /* Per pixel: weight bits. */
-        for (unsigned k = 0; k < N_WT && rc == NP_EXIT_OK; k++) {
-            np_texel_cfg c = o->tc;
-            c.weight_frac = rep_wt[k];
-            np_render_run r;
-            if (np_render_texel(&fr, &c, 1, &r)) {
-                rc = NP_EXIT_USAGE;
-                break;
-            }
-            row *w = &rows[n++];
-            put_row(w, sc.name, NULL, &c, &r, r.cycles, 0.0);
-            np_render_run_free(&r);
-            w->seconds = time_model(&fr, NULL, &c, rep, &r);
-            np_render_run_free(&r);
-        }
-        if (rc == NP_EXIT_OK &&
-            (plot_errors(dir, sc.name, rows, n, 0) || plot_errors(dir, sc.name, rows, n, 1) ||
-             plot_scan(dir, &sc, &fr, 0) || plot_scan(dir, &sc, &fr, o->fc.guard)))
-            rc = NP_EXIT_USAGE;
-        np_render_frame_free(&fr);
-        np_scene_free(&sc);
-    }
-    if (rc == NP_EXIT_OK) {
-        char path[4096];
-        FILE *md = open_out(dir, "error_runtime.md", path, sizeof path);
-        FILE *csv = md ? open_out(dir, "error_runtime.csv", path, sizeof path) : NULL;
-        if (!md || !csv) {
-            if (md)
-                fclose(md);
-            rc = NP_EXIT_USAGE;
-        } else {
-            fputs("<!-- generated by `noisepipe render --report docs/plots` -->\n"
-                  "| scene | unit | guard G | K | weight bits | set-up mults P | max LSB | RMS LSB | PSNR dB | "
-                  ">1 LSB samples | cycles/frame | set-ups | model ms |\n"
-                  "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n",
-                  md);
-            fputs("scene,unit,guard,resetup,weight_frac,setup_mults,max_lsb,rms_lsb,psnr_db,over_1lsb,cycles,setups,model_s\n",
-                  csv);
-            for (size_t i = 0; i < n; i++) {
-                const row *r = &rows[i];
-                char wt[16] = "-", k[16] = "-";
-                if (strcmp(r->unit, "texel") == 0)
-                    snprintf(wt, sizeof wt, "%u", r->wt);
-                else
-                    snprintf(k, sizeof k, "%u", r->resetup);
-                fprintf(md, "| %s | %s | %u | %s | %s | %u | %.3f | %.4f | %.2f | %llu | %llu | %llu | %.2f |\n", r->scene,
-                        r->unit, r->guard, k, wt, r->mults, r->e.max_lsb, r->e.rms_lsb, r->e.psnr_db,
-                        (unsigned long long)r->e.over_one, (unsigned long long)r->cycles,
-                        (unsigned long long)r->setups, r->seconds * 1e3);
-                fprintf(csv, "%s,%s,%u,%s,%s,%u,%.6f,%.6f,%.4f,%llu,%llu,%llu,%.6f\n", r->scene, r->unit, r->guard,
-                        strcmp(r->unit, "texel") == 0 ? "" : k, strcmp(r->unit, "texel") == 0 ? wt : "", r->mults,
-                        r->e.max_lsb, r->e.rms_lsb, r->e.psnr_db, (unsigned long long)r->e.over_one,
-                        (unsigned long long)r->cycles, (unsigned long long)r->setups, r->seconds);
-            }
-            if ((fclose(md) | fclose(csv)) != 0)
-                rc = NP_EXIT_USAGE;
-            else
-                printf("report: %zu configurations; %s/error_runtime.{md,csv}, *_error_vs_{cycles,seconds}.svg, "
-                       "*_scanline*.svg, images\n",
-                       n, dir);
-        }
-    }
-    free(rows);
     return rc;
 }
 
@@ -982,12 +429,12 @@ int np_cmd_render(int argc, char **argv)
     int r = parse_opts(argc, argv, &o);
     if (r != 0)
         return r > 0 ? NP_EXIT_OK : NP_EXIT_USAGE;
-    if (o.report)
-        return report(&o);
+    if (o.report) /* the alias of `noisepipe report runtime` */
+        return np_report_runtime(o.report, o.scenes, o.n_scenes, o.repeat ? o.repeat : 3, unit_spec, &o);
     if (o.bench) {
         int rc = NP_EXIT_OK;
         for (unsigned i = 0; i < o.n_scenes && rc == NP_EXIT_OK; i++)
-            rc = bench_scene(&o, o.scenes[i]);
+            rc = np_render_bench(o.scenes[i], o.repeat ? o.repeat : 5, unit_spec, &o);
         return rc;
     }
     hash_list got = { 0 }, golden = { 0 };
@@ -1002,15 +449,15 @@ int np_cmd_render(int argc, char **argv)
             rc = s;
     }
     if (rc != NP_EXIT_USAGE && o.write_hashes) {
-        if (hash_write(o.write_hashes, &got))
+        if (np_render_hash_write(o.write_hashes, &got))
             rc = NP_EXIT_USAGE;
         else
             printf("hashes written to %s\n", o.write_hashes);
     }
     if (rc != NP_EXIT_USAGE && o.hashes) {
-        if (hash_read(o.hashes, &golden))
+        if (np_render_hash_read(o.hashes, &golden))
             rc = NP_EXIT_USAGE;
-        else if (hash_check(&golden, &got, o.hashes) > 0)
+        else if (np_render_hash_check(&golden, &got, o.hashes) > 0)
             rc = NP_EXIT_FAIL;
     }
     free(got.r);

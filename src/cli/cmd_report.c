@@ -10,6 +10,7 @@
 #include "np_cmd.h"
 #include "np_pareto.h"
 #include "np_render.h"
+#include "render_cli.h"
 #include "np_report.h"
 #include "np_scene.h"
 #include "np_stream.h"
@@ -18,7 +19,8 @@ static const char usage_text[] =
     "usage: noisepipe report gates  [--unit U] [--config K=V,...] [-o DIR]\n"
     "       noisepipe report gates  --scene SCENE.json [-o DIR]\n"
     "       noisepipe report pareto [--unit U] [--samples N] [--seed S] [-o DIR]\n"
-    "       noisepipe report all    -o DIR        (what docs/ holds: gates + every pareto sweep)\n"
+    "       noisepipe report runtime [--scene SCENE.json] [--repeat N] -o DIR\n"
+    "       noisepipe report all    -o DIR        (what docs/ holds: gates + every pareto sweep + runtime in DIR/plots)\n"
     "\n"
     "gates: per unit and per stage, the operators, register bits, gate estimate (NAND2\n"
     "  equivalents, docs/cost-model.md), latency in clocks (from the cycle-accurate model),\n"
@@ -31,7 +33,11 @@ static const char usage_text[] =
     "  listed as left out. With -o, DIR/scene-NAME-gates.md and .json.\n"
     "pareto: the design-space sweep of a unit's internal widths: measured max error and\n"
     "  correctly-rounded share against gates and latency; DIR/pareto-UNIT.{md,json,svg}.\n"
-    "  --samples random inputs (default 100000) besides the boundary table; --seed (default 1).\n";
+    "  --samples random inputs (default 100000) besides the boundary table; --seed (default 1).\n"
+    "runtime: error against run time: every unit that renders the scene (default: the seed scenes\n"
+    "  wood and marble), over each of the unit's sweeps (guard bits, re-set-up interval, set-up\n"
+    "  multipliers, weight bits): max error against the float reference, cycles per frame, model\n"
+    "  time (best of --repeat N runs, default 3); DIR/error_runtime.{md,csv}, plots and images.\n";
 
 /* Open DIR/name.tmp for writing; np_commit() renames it into place. */
 static FILE *open_tmp(const char *dir, const char *name, char *tmp, char *final, size_t len)
@@ -401,7 +407,7 @@ int np_cmd_report(int argc, char **argv)
     }
     const char *what = argv[1], *dir = NULL, *spec = NULL, *scene = NULL;
     const np_unit *unit = NULL;
-    uint64_t samples = 100000, seed = 1;
+    uint64_t samples = 100000, seed = 1, repeat = 3;
     for (int i = 2; i < argc; i++) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -430,6 +436,11 @@ int np_cmd_report(int argc, char **argv)
                 np_err("report", "--samples %s: expected 0..1000000000", v);
                 return NP_EXIT_USAGE;
             }
+        } else if (strcmp(a, "--repeat") == 0) {
+            if (np_parse_u64(v, 1, 1000, &repeat) != 0) {
+                np_err("report", "--repeat %s: expected an integer in 1..1000", v);
+                return NP_EXIT_USAGE;
+            }
         } else if (strcmp(a, "--seed") == 0) {
             if (np_parse_u64(v, 0, UINT64_MAX, &seed) != 0) {
                 np_err("report", "--seed %s: expected an unsigned integer", v);
@@ -445,15 +456,22 @@ int np_cmd_report(int argc, char **argv)
         np_err("report", "--config needs --unit");
         return NP_EXIT_USAGE;
     }
-    if (dir) {
+    if (dir && strcmp(what, "runtime") != 0) { /* runtime creates its directory, as docs/plots */
         struct stat st;
         if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
             np_err("report", "-o %s: not a directory", dir);
             return NP_EXIT_USAGE;
         }
     }
+    if (strcmp(what, "runtime") == 0) {
+        if (!dir || unit || spec) {
+            np_err("report", "runtime takes -o DIR and no --unit/--config (the scene configures the units)");
+            return NP_EXIT_USAGE;
+        }
+        return np_report_runtime(dir, &scene, scene ? 1u : 0u, (unsigned)repeat, NULL, NULL);
+    }
     if (scene && (strcmp(what, "gates") != 0 || unit || spec)) {
-        np_err("report", "--scene goes with gates, without --unit/--config (the scene configures the units)");
+        np_err("report", "--scene goes with gates or runtime, without --unit/--config (the scene configures the units)");
         return NP_EXIT_USAGE;
     }
     if (strcmp(what, "gates") == 0)
@@ -466,8 +484,14 @@ int np_cmd_report(int argc, char **argv)
             return NP_EXIT_USAGE;
         }
         int rc = write_gates(dir, NULL, NULL);
-        return rc ? rc : write_pareto(dir, NULL, samples, seed);
+        rc = rc ? rc : write_pareto(dir, NULL, samples, seed);
+        if (rc == NP_EXIT_OK) {
+            char plots[4096];
+            snprintf(plots, sizeof plots, "%s/plots", dir);
+            rc = np_report_runtime(plots, NULL, 0, (unsigned)repeat, NULL, NULL);
+        }
+        return rc;
     }
-    np_err("report", "unknown report '%s' (gates, pareto, all)", what);
+    np_err("report", "unknown report '%s' (gates, pareto, runtime, all)", what);
     return NP_EXIT_USAGE;
 }

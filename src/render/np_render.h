@@ -25,7 +25,9 @@
 
 #include "np_fdiff.h"
 #include "np_scene.h"
+#include "np_span.h"
 #include "np_texel.h"
+#include "np_unit.h"
 
 typedef struct np_rspan {
     np_span hw;           /* what the units read */
@@ -69,9 +71,39 @@ void np_render_frame_free(np_render_frame *fr);
 /* The float reference image (fills fr->ref, fr->ref_seconds). 0, or -1 when out of memory. */
 int np_render_reference(np_render_frame *fr);
 
-/* The units' images: bit-exact model, then (if cycles) the cycle-accurate model. 0, or -1 (no memory). */
-int np_render_fdiff(const np_render_frame *fr, const np_fdiff_cfg *cfg, int cycles, np_render_run *run);
-int np_render_texel(const np_render_frame *fr, const np_texel_cfg *cfg, int cycles, np_render_run *run);
+/*
+ * A span unit's image of the frame: its engine's bit-exact model
+ * (np_span_run), then (if cycles) its cycle-accurate model (np_span_sim),
+ * from the frame's span descriptors and registers; every span engine alike.
+ * 0, or -1 (no memory, or u has no span engine).
+ */
+int np_render_engine(const np_render_frame *fr, const np_span_engine *e, const void *ecfg, int cycles,
+                     np_render_run *run);
+/* The same for registry unit u with configuration block cfg (np_unit.span). */
+int np_render_unit(const np_render_frame *fr, const np_unit *u, const void *cfg, int cycles, np_render_run *run);
+
+/* A unit that renders a scene, configured for it. */
+typedef struct np_render_unit_cfg {
+    const np_unit *u;
+    np_unit_cfg cfg;   /* what the unit renders with */
+    np_unit_cfg scene; /* as the scene configured it (cfg_scene) */
+    char spec[512];    /* the keys given over the defaults ("key=value,...") */
+    char text[256];    /* cfg without the scene's keys, "key=value,key=value" (golden hash lists) */
+} np_render_unit_cfg;
+
+enum { NP_RENDER_MAX_UNITS = 8 };
+
+/*
+ * The units that render scene sc: every registry unit with a span engine
+ * (np_unit.span) whose cfg_scene accepts sc, in registry order, configured
+ * by spec(ctx, u) ("key=value,...", NULL for none) over the defaults and
+ * by cfg_scene for the keys the scene sets (NP_UNIT_KEY_SCENE: the
+ * texture). Writes up to NP_RENDER_MAX_UNITS into us; the count, or -1 with err.
+ */
+int np_render_units(const np_scene *sc, const char *(*spec)(const void *ctx, const np_unit *u), const void *ctx,
+                    np_render_unit_cfg *us, char *err, size_t errlen);
+/* Configure c again from its spec and more ("key=value,..."; more's keys win over the spec's). 0, or -1. */
+int np_render_unit_reconfigure(np_render_unit_cfg *c, const char *more, char *err, size_t errlen);
 void np_render_run_free(np_render_run *run);
 
 /* Error of an 8-bit image against the reference, over the covered pixels. */

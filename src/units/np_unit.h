@@ -26,6 +26,44 @@ extern "C" {
 
 struct np_scene;
 struct np_unit_timing;
+struct np_span_engine;
+
+/*
+ * A span unit's engine (rtl_model/np_span.h) as the registry shows it: the
+ * renderer and the reports run any unit that has one on a frame's span
+ * descriptors, with the unit's configuration.
+ */
+/*
+ * One series of the error-against-run-time report (`noisepipe report
+ * runtime`): the unit rendered with key = each of values, over fixed, over
+ * the scene's configuration.
+ */
+typedef struct np_unit_sweep {
+    const char *label;       /* the plots' legend, before the values' range, e.g. "fdiff K=0, guard" */
+    const char *fixed;       /* "key=value,..." (NULL: none) */
+    const char *key;         /* the swept key */
+    const unsigned *values;
+    unsigned n_values;
+    int cycles_fixed;        /* the key does not change the cycles: they are counted once, at fixed */
+    unsigned plot;           /* the series' place in the plots' legends (and its colour) */
+} np_unit_sweep;
+
+typedef struct np_unit_span {
+    const struct np_span_engine *engine;
+    size_t engine_cfg_offset; /* where the engine's configuration is inside the unit's block */
+    size_t texture_offset;    /* where the texture number is (unsigned; src/units/unit_span.h) */
+    /* The runtime report: the unit's sweeps, in the order of the report's rows. */
+    const np_unit_sweep *sweeps;
+    unsigned n_sweeps;
+    /* Optional: one more error image for the report, NAME_UNIT_<extra_name>_err.png at extra_cfg. */
+    const char *extra_name, *extra_cfg;
+} np_unit_span;
+
+/* The engine's configuration inside a unit's configuration block cfg. */
+static inline const void *np_unit_span_cfg(const np_unit_span *s, const void *cfg)
+{
+    return (const char *)cfg + s->engine_cfg_offset;
+}
 
 enum { NP_UNIT_MAX_FIELDS = 8, NP_UNIT_CFG_MAX = 256 };
 
@@ -169,6 +207,11 @@ typedef struct np_unit {
      * is set; 0: it does not; -1 with a message in err.
      */
     int (*cfg_scene)(void *cfg, const struct np_scene *sc, char *err, size_t errlen);
+    /*
+     * Optional (NULL: not a span unit): the span engine. A unit with one and
+     * a cfg_scene that accepts a scene is rendered by `noisepipe render`.
+     */
+    const np_unit_span *span;
 } np_unit;
 
 /* A set-up the unit stalls for (np_unit_timing). */

@@ -2,7 +2,7 @@
 /*
  * The scene parser on arbitrary text, and every accepted scene of at most
  * 64 x 64 pixels through rendering: scan conversion, the float reference and
- * the texture units' bit-exact renders.
+ * every registry unit that renders it (bit-exact and cycle models, which must agree).
  */
 #include <string.h>
 
@@ -31,16 +31,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         np_render_frame fr;
         if (np_render_prepare(&sc, &fr, err, sizeof err) == 0) {
             if (np_render_reference(&fr) == 0) {
-                np_fdiff_cfg fc = np_fdiff_cfg_default();
-                np_texel_cfg tc = np_texel_cfg_default();
-                np_render_run run;
-                if (np_render_fdiff(&fr, &fc, 1, &run) == 0) {
-                    np_fuzz_assert(run.cycle_mismatch == 0);
-                    np_render_run_free(&run);
-                }
-                if (np_render_texel(&fr, &tc, 1, &run) == 0) {
-                    np_fuzz_assert(run.cycle_mismatch == 0);
-                    np_render_run_free(&run);
+                /* Every registry unit that renders the scene, as `noisepipe render` picks them. */
+                np_render_unit_cfg us[NP_RENDER_MAX_UNITS];
+                int n = np_render_units(&sc, NULL, NULL, us, err, sizeof err);
+                for (int i = 0; i < n; i++) {
+                    np_render_run run;
+                    if (np_render_unit(&fr, us[i].u, &us[i].cfg, 1, &run) == 0) {
+                        np_fuzz_assert(run.cycle_mismatch == 0);
+                        np_render_run_free(&run);
+                    }
                 }
             }
             np_render_frame_free(&fr);

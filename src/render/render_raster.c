@@ -1,0 +1,290 @@
+/* SPDX-License-Identifier: MIT */
+/* Camera, scan conversion into span descriptors, and the float reference image (np_render.h). */
+#include "np_render.h"
+
+#include <math.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "np_cli.h"
+#include "np_texreg.h"
+
+/* --- Camera and scan conversion --- */
+
+typedef struct view {
+    double eye[3], f[3], r[3], u[3];
+    double w, h;
+    const np_scene_camera *cam;
+} view;
+
+static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+static void cross3(const double a[3], const double b[3], double o[3])
+{
+    o[0] = a[1] * b[2] - a[2] * b[1];
+    o[1] = a[2] * b[0] - a[0] * b[2];
+    o[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static void norm3(double v[3])
+{
+    double l = sqrt(dot3(v, v));
+    for (int a = 0; a < 3; a++)
+        v[a] /= l;
+}
+
+static void view_init(const np_scene *sc, view *v)
+{
+    const np_scene_camera *c = &sc->cam;
+    v->cam = c;
+    for (int a = 0; a < 3; a++) {
+        v->eye[a] = c->eye[a];
+        v->f[a] = c->target[a] - c->eye[a];
+    }
+    norm3(v->f);
+    cross3(v->f, c->up, v->r);
+    norm3(v->r);
+    cross3(v->r, v->f, v->u);
+    v->w = (double)sc->width;
+    v->h = (double)sc->height;
+}
+
+/* Screen position (x right, y down, pixel centres at +1/2) of P; -1 when P is not in front of the eye. */
+static int project(const view *v, const double P[3], double *sx, double *sy)
+{
+    double d[3] = { P[0] - v->eye[0], P[1] - v->eye[1], P[2] - v->eye[2] };
+    double xc = dot3(d, v->r), yc = dot3(d, v->u), zc = dot3(d, v->f);
+    if (v->cam->perspective) {
+        if (!(zc > 1e-9))
+            return -1;
+        double k = v->cam->focal * v->h / 2.0 / zc;
+        *sx = v->w / 2.0 + xc * k;
+        *sy = v->h / 2.0 - yc * k;
+    } else {
+        double k = v->h / v->cam->height;
+        *sx = v->w / 2.0 + xc * k;
+        *sy = v->h / 2.0 - yc * k;
+    }
+    return 0;
+}
+
+/* Does the polygon face the camera? (Newell normal; counter-clockwise seen from the front.) */
+static int facing(const view *v, const np_scene_poly *p)
+{
+    double n[3] = { 0, 0, 0 };
+    for (unsigned i = 0; i < p->n; i++) {
+        const double *a = p->p[i], *b = p->p[(i + 1) % p->n];
+        n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+        n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+        n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+    if (v->cam->perspective) {
+        double d[3] = { p->p[0][0] - v->eye[0], p->p[0][1] - v->eye[1], p->p[0][2] - v->eye[2] };
+        return dot3(n, d) < 0;
+    }
+    return dot3(n, v->f) < 0;
+}
+
+typedef struct proj_poly {
+    unsigned n;
+    double x[NP_SCENE_MAX_VERTS], y[NP_SCENE_MAX_VERTS];
+    const np_scene_poly *p;
+    double ymin, ymax;
+} proj_poly;
+
+static int push_span(np_render_frame *fr, size_t *cap, const np_rspan *s)
+{
+    if (fr->n_spans == *cap) {
+        size_t nc = *cap ? *cap * 2 : 1024;
+        np_rspan *ns = realloc(fr->spans, nc * sizeof *ns);
+        if (!ns)
+            return -1;
+        fr->spans = ns;
+        *cap = nc;
+    }
+    fr->spans[fr->n_spans++] = *s;
+    return 0;
+}
+
+/* The span of polygon pp on row j (centre yc); 1 when it has pixels, 0 when none, -1 on a range error. */
+static int row_span(const np_scene *sc, const proj_poly *pp, unsigned j, np_rspan *out, char *err, size_t errlen)
+{
+    double yc = (double)j + 0.5;
+    double xs[2], ts[2][3];
+    unsigned hits = 0;
+    for (unsigned i = 0; i < pp->n && hits < 3; i++) {
+        unsigned k = (i + 1) % pp->n;
+        double y0 = pp->y[i], y1 = pp->y[k];
+        /* Half-open in y: an edge covers [min y, max y), so a shared vertex counts once. */
+        if (!((y0 <= yc && yc < y1) || (y1 <= yc && yc < y0)))
+            continue;
+        double t = (yc - y0) / (y1 - y0);
+        if (hits < 2) {
+            xs[hits] = pp->x[i] + t * (pp->x[k] - pp->x[i]);
+            for (int a = 0; a < 3; a++)
+                ts[hits][a] = pp->p->t[i][a] + t * (pp->p->t[k][a] - pp->p->t[i][a]);
+        }
+        hits++;
+    }
+    if (hits != 2)
+        return 0; /* not on this row (or a degenerate polygon) */
+    int l = xs[0] <= xs[1] ? 0 : 1, rr = 1 - l;
+    double xl = xs[l], xr = xs[rr];
+    if (!(xr > xl))
+        return 0;
+    /* Pixels i with xl <= i + 1/2 < xr, clipped to the image. */
+    double fi0 = ceil(xl - 0.5), fi1 = ceil(xr - 0.5);
+    if (fi0 < 0)
+        fi0 = 0;
+    if (fi1 > (double)sc->width)
+        fi1 = (double)sc->width;
+    if (!(fi1 > fi0))
+        return 0;
+    memset(out, 0, sizeof *out);
+    out->hw.y = (uint16_t)j;
+    out->hw.x0 = (uint16_t)fi0;
+    out->hw.n = (uint32_t)(fi1 - fi0);
+    for (int a = 0; a < 3; a++) {
+        out->ds[a] = (ts[rr][a] - ts[l][a]) / (xr - xl);
+        out->s0[a] = ts[l][a] + (fi0 + 0.5 - xl) * out->ds[a];
+        if (np_texreg_quantize(out->s0[a], NP_TEX_FC, NP_TEX_S_BITS, &out->hw.s[a]) ||
+            np_texreg_quantize(out->ds[a], NP_TEX_FC, NP_TEX_DS_BITS, &out->hw.ds[a])) {
+            snprintf(err, errlen, "%s: row %u: texture coordinate %g or its step %g per pixel is outside the "
+                     "units' range (s48 Q15.32, s41 Q8.32)", sc->path, j, out->s0[a], out->ds[a]);
+            return -1;
+        }
+    }
+    const char *why = np_span_check(&out->hw);
+    if (why) {
+        snprintf(err, errlen, "%s: row %u: %s", sc->path, j, why);
+        return -1;
+    }
+    return 1;
+}
+
+int np_render_prepare(const np_scene *sc, np_render_frame *fr, char *err, size_t errlen)
+{
+    memset(fr, 0, sizeof *fr);
+    fr->sc = sc;
+    char why[256];
+    if (np_texreg_compile(&sc->tex, &fr->regs, why, sizeof why)) {
+        snprintf(err, errlen, "%s: texture: %s", sc->path, why);
+        return -1;
+    }
+    view v;
+    view_init(sc, &v);
+    proj_poly *pp = calloc(sc->n_poly ? sc->n_poly : 1, sizeof *pp);
+    if (!pp) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    unsigned np = 0;
+    for (unsigned i = 0; i < sc->n_poly; i++) {
+        const np_scene_poly *p = &sc->poly[i];
+        if (p->cull && !facing(&v, p))
+            continue;
+        proj_poly *q = &pp[np];
+        q->n = p->n;
+        q->p = p;
+        q->ymin = HUGE_VAL;
+        q->ymax = -HUGE_VAL;
+        int bad = 0;
+        for (unsigned k = 0; k < p->n; k++) {
+            bad |= project(&v, p->p[k], &q->x[k], &q->y[k]);
+            q->ymin = fmin(q->ymin, q->y[k]);
+            q->ymax = fmax(q->ymax, q->y[k]);
+        }
+        if (bad) {
+            free(pp);
+            snprintf(err, errlen, "%s: polygon %u is not wholly in front of the camera (no near clipping)",
+                     sc->path, i);
+            return -1;
+        }
+        np++;
+    }
+    size_t cap = 0;
+    for (unsigned j = 0; j < sc->height; j++) {
+        double yc = (double)j + 0.5;
+        for (unsigned i = 0; i < np; i++) {
+            if (yc < pp[i].ymin || yc >= pp[i].ymax)
+                continue;
+            np_rspan s;
+            int rc = row_span(sc, &pp[i], j, &s, err, errlen);
+            if (rc < 0 || (rc > 0 && push_span(fr, &cap, &s))) {
+                if (rc > 0)
+                    snprintf(err, errlen, "out of memory");
+                free(pp);
+                np_render_frame_free(fr);
+                return -1;
+            }
+            if (rc > 0) {
+                fr->pixels += s.hw.n;
+                if (s.hw.n > fr->longest)
+                    fr->longest = s.hw.n;
+            }
+        }
+    }
+    free(pp);
+    if (fr->pixels == 0 && !sc->allow_empty) {
+        /* Nothing to measure: "0 of 0 samples, PSNR inf" would pass any check. */
+        np_render_frame_free(fr);
+        snprintf(err, errlen,
+                 "the scene covers no pixel: every polygon faces away from the camera, is behind it or "
+                 "is off the image (is camera.eye inside the geometry?); set \"allow_empty\": true to "
+                 "render an empty image");
+        return -1;
+    }
+    size_t npx = (size_t)sc->width * sc->height;
+    fr->mask = calloc(npx, 1);
+    if (!fr->mask) {
+        np_render_frame_free(fr);
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    for (size_t i = 0; i < fr->n_spans; i++) {
+        const np_span *s = &fr->spans[i].hw;
+        memset(fr->mask + (size_t)s->y * sc->width + s->x0, 1, s->n);
+    }
+    return 0;
+}
+
+void np_render_frame_free(np_render_frame *fr)
+{
+    free(fr->spans);
+    free(fr->ref);
+    free(fr->mask);
+    fr->spans = NULL;
+    fr->ref = NULL;
+    fr->mask = NULL;
+}
+
+/* --- Renders --- */
+
+int np_render_reference(np_render_frame *fr)
+{
+    const np_scene *sc = fr->sc;
+    size_t npx = (size_t)sc->width * sc->height;
+    free(fr->ref);
+    fr->ref = malloc(npx * 3 * sizeof *fr->ref);
+    if (!fr->ref)
+        return -1;
+    for (size_t i = 0; i < npx; i++)
+        for (int ch = 0; ch < 3; ch++)
+            fr->ref[3 * i + (size_t)ch] = sc->background[ch];
+    double t0 = np_now();
+    for (size_t i = 0; i < fr->n_spans; i++) {
+        const np_rspan *s = &fr->spans[i];
+        double *row = fr->ref + ((size_t)s->hw.y * sc->width + s->hw.x0) * 3;
+        for (uint32_t k = 0; k < s->hw.n; k++) {
+            /* Equation 14: s0 + k ds. */
+            double st[3] = { s->s0[0] + (double)k * s->ds[0], s->s0[1] + (double)k * s->ds[1],
+                             s->s0[2] + (double)k * s->ds[2] };
+            np_ref_colour(&sc->tex.cmap, np_ref_texture_f(&sc->tex, st, NULL), row + 3 * (size_t)k);
+        }
+    }
+    fr->ref_seconds = np_now() - t0;
+    return 0;
+}
+

@@ -1,0 +1,89 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * span_test.h - what the span units' test programs share (test_fdiff.c,
+ * test_texel.c, test_texture.c): register and span fixtures, the datapath
+ * width check, and one driver that runs spans through an engine's
+ * cycle-accurate model (np_span_sim) like an RTL testbench and compares
+ * every pixel with its bit-exact model.
+ */
+#ifndef SPAN_TEST_H
+#define SPAN_TEST_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "np_datapath.h"
+#include "np_rng.h"
+#include "np_span.h"
+#include "np_texture.h"
+#include "np_unit.h"
+
+/*
+ * The "grey ramp" registers: one octave, identity transform, a' = 1
+ * (x = n), a clamped two-entry map black..white (colour = 255 n).
+ */
+np_tex_regs span_ramp_regs(void);
+/* A descriptor from dyadic values (exact in Q15.32). */
+np_span span_mk(uint16_t y, uint16_t x0, uint32_t n, const double s[3], const double ds[3]);
+/* n_oct octaves with random near-diagonal transforms over the ramp, an 8-entry repeating map. */
+np_tex_regs span_multi_regs(np_rng *g, unsigned n_oct);
+/* A random span: empty, one pixel or up to 299, coordinates up to +-32, steps up to 1/2. */
+np_span span_rand(np_rng *g);
+/* Registers over their full formats: variant 0 a 256-entry repeating table, 1 a clamped one of 2..255 entries. */
+np_tex_regs span_wide_regs(np_rng *g, unsigned n_oct, int variant);
+
+/*
+ * A declared signal width must hold every traced value and be at most
+ * SPAN_WIDTH_MARGIN bits wider than the widest (the rule of
+ * classic.datapath_widths).
+ */
+enum { SPAN_WIDTH_MARGIN = 1, SPAN_DP_MAX = 128 };
+typedef struct span_dp_check {
+    np_op ops[SPAN_DP_MAX];
+    size_t nops;
+    np_trace t[SPAN_DP_MAX];
+    size_t nt;
+} span_dp_check;
+void span_dp_begin(span_dp_check *c, size_t nops);
+/* 0, or 1 after NP_CHECK failures; print: one line per signal. */
+int span_dp_end(const span_dp_check *c, const char *what, int print);
+
+/* Drive the unit's signals for cfg (configuration ci) and r through c's traces, with g. */
+typedef void (*span_dp_trace_fn)(const void *cfg, unsigned ci, const np_tex_regs *r, np_rng *g, span_dp_check *c);
+/*
+ * The datapath-width check of registry unit `unit`: for each of the n_cfg
+ * configurations (specs: "key=value,..." over the defaults; the engine's
+ * configuration inside the unit's block is handed on) and two register sets
+ * (span_wide_regs: 8 octaves and a 256-entry repeating table; 3 octaves and a
+ * clamped one), the engine's declaration against what trace saw (np_rng seeded with
+ * seed). Prints the first configuration's signals. 0, or 1 on a failed check.
+ */
+int span_dp_widths(const char *unit, const char *const *specs, unsigned n_cfg, uint64_t seed,
+                   span_dp_trace_fn trace);
+
+/*
+ * Traffic at the ports, one call per cycle: in_valid (only asked when a
+ * descriptor is waiting) and out_ready, from g and a state the driver keeps.
+ */
+typedef void (*span_traffic_fn)(np_rng *g, int *state, int waiting, int *in_valid, int *out_ready);
+/* Gaps of 1 in 4 between descriptors; output-stall phases (none, 1 in 2, 7 in 8) changing 1 in 64 cycles. */
+void span_traffic_phases(np_rng *g, int *state, int waiting, int *in_valid, int *out_ready);
+/* Gaps and output stalls, 1 in 3 cycles each. */
+void span_traffic_thirds(np_rng *g, int *state, int waiting, int *in_valid, int *out_ready);
+
+typedef struct span_drive_result {
+    size_t got, bad;    /* pixels out; those differing from want (or past its end) */
+    np_span_stats stats;
+} span_drive_result;
+
+/*
+ * Run sp[0..ns) through engine e's cycle-accurate model with traffic (NULL:
+ * none, every cycle valid and ready) until idle or max_cycles; every pixel
+ * out is compared with want[0..nw) in order (want NULL: not compared).
+ * 0, or -1 when the model cannot be built.
+ */
+int span_drive(const np_span_engine *e, const void *cfg, const np_tex_regs *r, const np_span *sp, size_t ns,
+               const np_tex_pixel *want, size_t nw, np_rng *g, span_traffic_fn traffic, uint64_t max_cycles,
+               span_drive_result *res);
+
+#endif /* SPAN_TEST_H */

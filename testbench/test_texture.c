@@ -1,0 +1,178 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * What the span units share (rtl_model/np_texture.h, np_span.h): the colour
+ * stage against the float colour map, the span front end's rounding, the
+ * distribution of the lattice values derived from np_hash6, and the
+ * validation of configurations, registers and descriptors.
+ * (CTest names: fdiff.colour_stage, ... as before the split.)
+ */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "np_fdiff.h"
+#include "np_ref.h"
+#include "np_rng.h"
+#include "np_test.h"
+#include "np_texel.h"
+#include "span_test.h"
+
+static int colour_stage(void)
+{
+    /* The colour stage against the float colour map at the same index: error <= 1/2 + slope 2^-(Fw+1). */
+    np_rng g;
+    np_rng_seed(&g, 41);
+    double worst = 0;
+    for (int mode = 0; mode < 2; mode++) {
+        np_tex_regs r = span_multi_regs(&g, 1);
+        np_ref_colormap c;
+        memset(&c, 0, sizeof c);
+        r.cmap_repeat = mode == 0;
+        c.repeat = r.cmap_repeat;
+        c.n = r.cmap_n;
+        c.f0 = 0;
+        c.f1 = 1;
+        for (unsigned k = 0; k < c.n; k++)
+            for (int ch = 0; ch < 3; ch++)
+                c.c[k][ch] = r.cmap[k][ch];
+        double S = c.repeat ? (double)c.n : (double)(c.n - 1u);
+        unsigned F = 40, fw = 12, W = 1 + 10 + F;
+        double bound = 0.5 + np_tex_colour_slope(&r) * ldexp(1.0, -(int)fw - 1);
+        for (unsigned it = 0; it < 200000; it++) {
+            np_s128 x = np_wrap_s128(np_asr128((np_s128)(int64_t)np_rng_next(&g), (unsigned)np_rng_below(&g, 12) + 2u), W);
+            uint8_t rgb[3];
+            double ref[3];
+            np_tex_colour(&r, x, F, fw, rgb);
+            np_ref_colour(&c, ldexp((double)x, -(int)F) / S, ref);
+            for (int ch = 0; ch < 3; ch++) {
+                double e = fabs((double)rgb[ch] - ref[ch]);
+                worst = fmax(worst, e / bound);
+            }
+        }
+    }
+    printf("colour stage: worst error / bound (1/2 + slope 2^-(Fw+1)) = %.4f over 400,000 indices\n", worst);
+    NP_CHECK(worst <= 1.0, "colour stage exceeds its bound: %.4f", worst);
+    return 0;
+}
+
+static int front_end_rounding(void)
+{
+    /* u0 and du against the exact M s + o and M ds (integers at 48 fraction bits): |error| <= 2^-33 mod 256. */
+    np_rng g;
+    np_rng_seed(&g, 42);
+    np_s128 worst = 0;
+    const unsigned sh = NP_TEX_M_FRAC, wu = NP_TEX_U_BITS + NP_TEX_M_FRAC;
+    for (unsigned it = 0; it < 100000; it++) {
+        np_tex_regs r = span_multi_regs(&g, 1);
+        np_span sp = span_rand(&g);
+        np_tex_oct_span os;
+        np_tex_octave_span(&r, 0, sp.s, sp.ds, &os);
+        for (int a = 0; a < 3; a++) {
+            np_s128 u = (np_s128)r.oct[0].o[a] * ((np_s128)1 << sh), du = 0;
+            for (int b = 0; b < 3; b++) {
+                u += (np_s128)r.oct[0].m[a][b] * sp.s[b];
+                du += (np_s128)r.oct[0].m[a][b] * sp.ds[b];
+            }
+            np_s128 eu = np_wrap_s128((np_s128)os.u[a] * ((np_s128)1 << sh) - u, wu);
+            np_s128 ed = np_wrap_s128((np_s128)os.du[a] * ((np_s128)1 << sh) - du, wu);
+            eu = eu < 0 ? -eu : eu;
+            ed = ed < 0 ? -ed : ed;
+            worst = eu > worst ? eu : worst;
+            worst = ed > worst ? ed : worst;
+        }
+    }
+    printf("front end: worst |u0 - exact|, |du - exact| = %.4f x 2^-33 (bound 1), modulo 256, exact integer check\n",
+           ldexp((double)worst, -(int)sh + 1));
+    NP_CHECK(worst <= ((np_s128)1 << (sh - 1u)), "front-end rounding beyond 2^-33");
+    return 0;
+}
+
+static int lattice_distribution(void)
+{
+    /*
+     * The lattice values n = np_hash6 / 64 over the whole tile (2^24 points):
+     * the histogram, its moments against a uniform 6-bit value, chi-square.
+     */
+    static uint64_t hist[64];
+    memset(hist, 0, sizeof hist);
+    for (unsigned i = 0; i < 256; i++)
+        for (unsigned j = 0; j < 256; j++)
+            for (unsigned k = 0; k < 256; k++)
+                hist[np_hash6((uint8_t)i, (uint8_t)j, (uint8_t)k)]++;
+    const double N = 16777216.0, E = N / 64.0;
+    double mean = 0, m2 = 0, chi = 0, ent = 0;
+    uint64_t lo = UINT64_MAX, hi = 0, tot = 0, zero = 0;
+    for (unsigned h = 0; h < 64; h++) {
+        double p = (double)hist[h] / N, v = h / 64.0;
+        mean += p * v;
+        m2 += p * v * v;
+        chi += ((double)hist[h] - E) * ((double)hist[h] - E) / E;
+        if (hist[h])
+            ent -= p * log2(p);
+        lo = hist[h] < lo ? hist[h] : lo;
+        hi = hist[h] > hi ? hist[h] : hi;
+        tot += hist[h];
+        zero += hist[h] == 0;
+    }
+    double var = m2 - mean * mean;
+    printf("lattice values n = np_hash6 / 64 over 2^24 lattice points:\n");
+    for (unsigned h = 0; h < 64; h += 8) {
+        printf("  ");
+        for (unsigned k = h; k < h + 8; k++)
+            printf("%2u:%7llu ", k, (unsigned long long)hist[k]);
+        printf("\n");
+    }
+    printf("  counts min %llu max %llu (uniform %.0f), values never hit %llu\n", (unsigned long long)lo,
+           (unsigned long long)hi, E, (unsigned long long)zero);
+    printf("  mean %.6f (uniform 6-bit: %.6f), std %.6f (uniform: %.6f), entropy %.4f bits (uniform 6), "
+           "chi-square %.0f on 63 degrees of freedom\n",
+           mean, 31.5 / 64.0, sqrt(var), sqrt((64.0 * 64.0 - 1.0) / 12.0) / 64.0, ent, chi);
+    NP_CHECK(tot == 16777216u, "histogram total %llu", (unsigned long long)tot);
+    /* Pinned: the distribution is a property of the shared hash; a change here is a change of every texture. */
+    NP_CHECK(hist[0] != hist[1] || hist[1] != hist[2], "unexpectedly uniform");
+    return 0;
+}
+
+static int cfg_validation(void)
+{
+    np_fdiff_cfg c = np_fdiff_cfg_default();
+    NP_CHECK(np_fdiff_cfg_check(&c) == NULL, "default invalid: %s", np_fdiff_cfg_check(&c));
+    NP_CHECK(np_fdiff_width(&c) == 1 + 10 + 12 + 44, "default width %u", np_fdiff_width(&c));
+    c.idx_int = 12;
+    NP_CHECK(np_fdiff_cfg_check(&c) != NULL, "idx_int 12 accepted");
+    c = np_fdiff_cfg_default();
+    c.guard = 105;
+    NP_CHECK(np_fdiff_cfg_check(&c) != NULL, "width > 127 accepted");
+    c = np_fdiff_cfg_default();
+    c.setup_mults = 0;
+    NP_CHECK(np_fdiff_cfg_check(&c) != NULL, "0 multipliers accepted");
+    np_texel_cfg t = np_texel_cfg_default();
+    NP_CHECK(np_texel_cfg_check(&t) == NULL, "texel default invalid");
+    t.weight_frac = 33;
+    NP_CHECK(np_texel_cfg_check(&t) != NULL, "WT 33 accepted");
+    np_tex_regs r = span_ramp_regs();
+    NP_CHECK(np_tex_regs_check(&r) == NULL, "ramp regs invalid");
+    r.cmap_n = 6;
+    r.cmap_repeat = 1;
+    NP_CHECK(np_tex_regs_check(&r) != NULL, "repeat map of 6 entries accepted");
+    r = span_ramp_regs();
+    r.oct[0].m[0][0] = 1 << 23;
+    NP_CHECK(np_tex_regs_check(&r) != NULL, "matrix entry 128 accepted");
+    np_span sp = span_mk(0, 65000, 600, (double[3]){ 0, 0, 0 }, (double[3]){ 0, 0, 0 });
+    NP_CHECK(np_span_check(&sp) != NULL, "span past pixel 65535 accepted");
+    sp = span_mk(0, 0, 200, (double[3]){ 30000, 0, 0 }, (double[3]){ 200, 0, 0 });
+    NP_CHECK(np_span_check(&sp) != NULL, "span leaving s48 accepted");
+    return 0;
+}
+
+static const np_test_case cases[] = {
+    { "colour_stage", colour_stage },
+    { "front_end_rounding", front_end_rounding },
+    { "lattice_distribution", lattice_distribution },
+    { "cfg_validation", cfg_validation },
+    { NULL, NULL },
+};
+
+NP_TEST_MAIN(cases)
