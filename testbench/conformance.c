@@ -10,6 +10,7 @@
 #include "np_kat.h"
 #include "np_test.h"
 #include "np_vec.h"
+#include "np_widths.h"
 
 enum { MAX_CONFIGS = 8, MAX_OPS = 256, WIDTH_RANDOM = 100000 };
 
@@ -172,9 +173,9 @@ static void widths_config(const np_unit *u, const char *spec, int print)
     w.cfg = &h.cfg;
     w.n_ops = u->datapath(&h.cfg, w.ops, MAX_OPS);
     NP_CHECK(w.n_ops <= MAX_OPS, "%s: declaration of %zu ops", u->name, w.n_ops);
-    for (size_t i = 0; i < w.n_ops && i < MAX_OPS; i++)
-        if (w.ops[i].signal && w.ops[i].out)
-            w.t[w.n_t++].signal = w.ops[i].signal;
+    if (w.n_ops > MAX_OPS)
+        return;
+    w.n_t = np_widths_traces(w.ops, w.n_ops, w.t);
     if (u->pipe_init(&w.pipe, &h.cfg) != 0 || !(w.sig = malloc(w.pipe.sig_size))) {
         NP_CHECK(0, "%s: pipe init", u->name);
         return;
@@ -190,24 +191,9 @@ static void widths_config(const np_unit *u, const char *spec, int print)
     } else {
         NP_CHECK(0, "%s: %s", u->name, err);
     }
-    unsigned bad = 0;
-    for (size_t i = 0, ti = 0; i < w.n_ops && i < MAX_OPS; i++) {
-        const np_op *op = &w.ops[i];
-        if (!(op->signal && op->out))
-            continue;
-        const np_trace *tr = &w.t[ti++];
-        unsigned need = np_trace_need(tr, op->out_signed);
-        int ok = tr->samples > 0 && need <= op->out && op->out - need <= NP_CONF_WIDTH_MARGIN;
-        bad += !ok;
-        NP_CHECK(tr->samples > 0, "%s [%s]: signal %s never traced", u->name, h.cfg_text, tr->signal);
-        NP_CHECK(need <= op->out, "%s [%s]: %s declared %u bits, needs %u ([%" PRId64 ", %" PRId64 "])", u->name,
-                 h.cfg_text, tr->signal, op->out, need, tr->lo, tr->hi);
-        NP_CHECK(op->out <= need + NP_CONF_WIDTH_MARGIN, "%s [%s]: %s declared %u bits, needs only %u", u->name,
-                 h.cfg_text, tr->signal, op->out, need);
-        if (print)
-            printf("  %-8s declared %2u%s, traced [%" PRId64 ", %" PRId64 "] needs %2u\n", tr->signal, op->out,
-                   op->out_signed ? "s" : "u", tr->lo, tr->hi, need);
-    }
+    char what[320];
+    snprintf(what, sizeof what, "%s [%s]", u->name, h.cfg_text);
+    unsigned bad = np_widths_judge(w.ops, w.n_ops, w.t, NP_CONF_WIDTH_MARGIN, what, print);
     printf("%s [%s]: %zu traced signals over %" PRIu64 " inputs: %s\n", u->name, h.cfg_text, w.n_t, n,
            bad ? "FAILED" : "every declared width holds, margin <= 1");
     free(w.sig);

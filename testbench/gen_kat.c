@@ -25,14 +25,8 @@ int main(int argc, char **argv)
             args[n++] = argv[i];
     }
     char dir[4096] = ".", err[512], tmp[4200];
-    if (out) {
-        snprintf(dir, sizeof dir, "%s", out);
-        char *slash = strrchr(dir, '/');
-        if (slash)
-            *slash = '\0';
-        else
-            snprintf(dir, sizeof dir, ".");
-    }
+    if (out)
+        np_kat_dir_of(out, dir, sizeof dir);
     np_kat_spec s;
     if (n == 0 || np_kat_parse(n, args, dir, &s, err, sizeof err) != 0) {
         fprintf(stderr, "gen_kat: %s\nusage: gen_kat UNIT [--config SPEC]... [--inputs FILE] [-n ROWS] [-o OUT]\n",

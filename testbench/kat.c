@@ -241,6 +241,15 @@ done:
     return rc;
 }
 
+void np_kat_dir_of(const char *path, char *dir, size_t len)
+{
+    const char *slash = strrchr(path, '/');
+    if (slash)
+        snprintf(dir, len, "%.*s", (int)(slash - path), path);
+    else
+        snprintf(dir, len, ".");
+}
+
 /* The whole file in memory (NUL-terminated), or NULL. */
 static char *slurp(FILE *f, size_t *len)
 {
@@ -289,12 +298,8 @@ int np_kat_check(const char *path, char *err, size_t errlen)
     for (char *save = NULL, *t = strtok_r(cmd, " ", &save); t && argc < 32; t = strtok_r(NULL, " ", &save))
         argv[argc++] = t;
     char dir[4096];
-    snprintf(dir, sizeof dir, "%s", path);
-    char *slash = strrchr(dir, '/');
-    if (slash)
-        *slash = '\0';
-    else
-        snprintf(dir, sizeof dir, ".");
+    np_kat_dir_of(path, dir, sizeof dir);
+    const char *base = strrchr(path, '/') ? strrchr(path, '/') + 1 : path;
     np_kat_spec s;
     int rc = -1;
     FILE *tmp = NULL;
@@ -319,7 +324,7 @@ int np_kat_check(const char *path, char *err, size_t errlen)
         for (size_t i = 0; i < n_old && i < n_now && old[i] == now[i]; i++)
             line += old[i] == '\n';
         snprintf(err, errlen, "%s differs from its regeneration from line %u on (refresh: cd %s && gen_kat %.*s -o %s)",
-                 path, line, dir, (int)(tick - args), args, slash ? slash + 1 : path);
+                 path, line, dir, (int)(tick - args), args, base);
         rc = 1;
     }
 done:

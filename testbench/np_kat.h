@@ -37,6 +37,9 @@ typedef struct np_kat_spec {
  */
 int np_kat_parse(int argc, char **argv, const char *dir, np_kat_spec *s, char *err, size_t errlen);
 
+/* The directory part of path ("." when it has none). */
+void np_kat_dir_of(const char *path, char *dir, size_t len);
+
 /* Write the table of s to out. 0, or -1 with err. */
 int np_kat_write(const np_kat_spec *s, FILE *out, char *err, size_t errlen);
 

@@ -7,85 +7,43 @@
 #include <string.h>
 
 #include "simplex_test.h"
+#include "np_pipe_drive.h"
 #include "np_report.h"
+#include "np_widths.h"
 
 /* ------------------------------------------------------------------------ */
 
+/* The output bundle carries the inputs and the bit-exact model's four values. */
+static int simplex_check(const void *cfg, const void *in, const void *out, uint64_t n)
+{
+    const np_simplex_sig *i = in, *o = out;
+    np_simplex_out want;
+    np_simplex_eval(cfg, i->x, i->y, i->z, &want);
+    int ok = o->f == want.f && o->df[0] == want.df[0] && o->df[1] == want.df[1] && o->df[2] == want.df[2] &&
+             o->x == i->x && o->y == i->y && o->z == i->z;
+    NP_CHECK(ok, "transaction %llu: got %d %d %d %d want %d %d %d %d", (unsigned long long)n, o->f, o->df[0],
+             o->df[1], o->df[2], want.f, want.df[0], want.df[1], want.df[2]);
+    return ok;
+}
+
 /*
  * Drive the pipe with n inputs, an input bubble with probability pb/16 and
- * an output stall with probability ps/16 each cycle; check every output
- * against the bit-exact model, in order, and that an output whose path never
- * stalled appears exactly `latency` cycles after its input was accepted.
+ * an output stall with probability ps/16 each cycle (np_pipe_drive.h:
+ * outputs against the bit-exact model, in order, the latency exact on every
+ * unstalled transaction).
  */
 static void drive_pipe(const np_simplex_cfg *cfg, uint64_t n, unsigned pb, unsigned ps, uint64_t seed)
 {
-    enum { QN = 64 };
     np_pipe p;
     NP_CHECK(np_simplex_pipe_init(&p, cfg) == 0, "pipe init");
-    np_rng r;
-    np_rng_seed(&r, seed);
-    static struct { np_simplex_sig in; uint64_t cycle, stalls; } q[QN];
-    uint64_t sent = 0, got = 0, cycle = 0, stalls = 0, exact = 0, bad = 0;
-    np_simplex_sig in;
-    memset(&in, 0, sizeof in);
-    np_pipe_port port;
-    memset(&port, 0, sizeof port);
-    int have = 0;
     unsigned lat = np_pipe_latency(&p);
     NP_CHECK(lat == np_simplex_stage_count(cfg), "latency %u", lat);
-    while (got < n) {
-        if (!have && sent < n) {
-            memset(&in, 0, sizeof in);
-            in.x = rnd16(&r);
-            in.y = rnd16(&r);
-            in.z = rnd16(&r);
-            have = 1;
-        }
-        uint64_t coin = np_rng_next(&r);
-        port.in_valid = have && (coin & 15u) >= pb;
-        port.in_sig = &in;
-        port.out_ready = ((coin >> 4) & 15u) >= ps;
-        np_pipe_eval(&p, &port);
-        if (port.out_valid && !port.out_ready)
-            stalls++;
-        if (port.out_valid && port.out_ready) {
-            const np_simplex_sig *o = port.out_sig;
-            unsigned slot = (unsigned)(got % QN);
-            np_simplex_out want;
-            np_simplex_eval(cfg, q[slot].in.x, q[slot].in.y, q[slot].in.z, &want);
-            if (o->f != want.f || o->df[0] != want.df[0] || o->df[1] != want.df[1] || o->df[2] != want.df[2] ||
-                o->x != q[slot].in.x || o->y != q[slot].in.y || o->z != q[slot].in.z) {
-                bad++;
-                NP_CHECK(0, "transaction %llu: got %d %d %d %d want %d %d %d %d", (unsigned long long)got, o->f,
-                         o->df[0], o->df[1], o->df[2], want.f, want.df[0], want.df[1], want.df[2]);
-            }
-            if (q[slot].stalls == stalls) {
-                NP_CHECK(cycle - q[slot].cycle == lat, "transaction %llu latency %llu, want %u",
-                         (unsigned long long)got, (unsigned long long)(cycle - q[slot].cycle), lat);
-                exact++;
-            } else {
-                NP_CHECK(cycle - q[slot].cycle >= lat, "transaction faster than the latency");
-            }
-            got++;
-        }
-        if (port.in_valid && port.in_ready) {
-            unsigned slot = (unsigned)(sent % QN);
-            NP_CHECK(sent - got < QN, "more than %d in flight", QN);
-            q[slot].in = in;
-            q[slot].cycle = cycle;
-            q[slot].stalls = stalls;
-            sent++;
-            have = 0;
-        }
-        np_pipe_clock(&p, &port);
-        cycle++;
-        NP_CHECK(np_pipe_occupancy(&p) <= lat, "occupancy");
-    }
+    np_pipe_dut d = { &p, &np_unit_simplex3, 3, 16, simplex_check, cfg };
+    np_pipe_drive_result res = np_pipe_drive_random(&d, n, pb, ps, seed);
     printf("deriv=%u: %llu transactions in %llu cycles (bubbles %u/16, stalls %u/16): %llu mismatches, "
            "%llu unstalled ones all at latency %u\n",
-           cfg->deriv, (unsigned long long)got, (unsigned long long)cycle, pb, ps, (unsigned long long)bad,
-           (unsigned long long)exact, lat);
-    NP_CHECK(p.stats.accepted == n && p.stats.delivered == n, "stats count");
+           cfg->deriv, (unsigned long long)res.transactions, (unsigned long long)res.cycles, pb, ps,
+           (unsigned long long)res.mismatches, (unsigned long long)res.exact, lat);
     np_pipe_free(&p);
 }
 
@@ -154,21 +112,15 @@ static int trace_widths(const np_simplex_cfg *cfg, unsigned nrand, uint64_t seed
         return 1;
     const np_stage_desc *tab = np_simplex_stage_table(cfg);
     unsigned nst = np_simplex_stage_count(cfg);
-    np_trace t[DP_MAX_OPS];
-    size_t nt = 0;
     for (size_t i = 0; i < nops; i++) {
         unsigned k = 0;
         while (k < nst && strcmp(tab[k].name, ops[i].stage) != 0)
             k++;
         NP_CHECK(k < nst, "op in unknown stage %s", ops[i].stage);
         NP_CHECK(ops[i].level < 8, "%s: level %u (the report sums 8 levels)", ops[i].stage, ops[i].level);
-        if (ops[i].signal && ops[i].out) {
-            t[nt].signal = ops[i].signal;
-            t[nt].samples = 0;
-            t[nt].lo = t[nt].hi = 0;
-            nt++;
-        }
     }
+    np_trace t[DP_MAX_OPS];
+    size_t nt = np_widths_traces(ops, nops, t);
     uint64_t (*b)[NP_UNIT_MAX_FIELDS] = NULL;
     size_t nb = np_unit_simplex3.boundary(NULL, NULL, 0);
     b = malloc(nb * sizeof *b);
@@ -198,24 +150,9 @@ static int trace_widths(const np_simplex_cfg *cfg, unsigned nrand, uint64_t seed
         }
     }
     free(b);
-    if (print)
-        printf("  %-6s %9s %-36s %5s\n", "signal", "declared", "traced range", "needs");
-    for (size_t i = 0, ti = 0; i < nops; i++) {
-        if (!(ops[i].signal && ops[i].out))
-            continue;
-        np_trace *tr = &t[ti++];
-        unsigned need = np_bits_for_range(tr->lo, tr->hi, ops[i].out_signed);
-        NP_CHECK(tr->samples > 0, "signal %s never traced", tr->signal);
-        NP_CHECK(need <= ops[i].out, "t_frac=%u p_frac=%u: %s declared %u bits, needs %u ([%lld, %lld])", cfg->t_frac,
-                 cfg->p_frac, tr->signal, ops[i].out, need, (long long)tr->lo, (long long)tr->hi);
-        NP_CHECK(ops[i].out <= need + NP_WIDTH_MARGIN, "t_frac=%u p_frac=%u: %s declared %u bits, needs only %u",
-                 cfg->t_frac, cfg->p_frac, tr->signal, ops[i].out, need);
-        if (print) {
-            char range[64];
-            snprintf(range, sizeof range, "[%lld, %lld]", (long long)tr->lo, (long long)tr->hi);
-            printf("  %-6s %8u%s %-36s %5u\n", tr->signal, ops[i].out, ops[i].out_signed ? "s" : "u", range, need);
-        }
-    }
+    char what[64];
+    snprintf(what, sizeof what, "t_frac=%u p_frac=%u", cfg->t_frac, cfg->p_frac);
+    np_widths_judge(ops, nops, t, NP_WIDTH_MARGIN, what, print);
     return np_test_failures - before;
 }
 
