@@ -245,6 +245,49 @@ static int cfg_roundtrip(const np_unit *u, const np_conf_env *e)
         free(in);
         printf("%s: '%s' -> '%s' -> '%s'\n", u->name, cfgs[c], a.cfg_text, b.cfg_text);
     }
+    /*
+     * Every key of the table: its ends and its default, where the unit's
+     * consistency check allows them, survive the round trip; one past the
+     * top is refused naming the key (an enumeration takes words instead);
+     * a key given twice is refused naming it.
+     */
+    unsigned keys = 0, values = 0;
+    for (const np_unit_key *k = u->keys; k && k->name; k++, keys++) {
+        unsigned v3[3] = { k->lo, k->hi, k->def };
+        for (unsigned i = 0; i < 3 && !k->word; i++) {
+            char spec[96], text[64];
+            np_vec_header a, b;
+            snprintf(spec, sizeof spec, "%s=%u", k->name, v3[i]);
+            np_unit_cfg cfg;
+            char why[256];
+            if (np_unit_configure(u, &cfg, spec, why, sizeof why) != 0)
+                continue; /* inconsistent with the other keys' defaults */
+            if (header(&a, u, spec) != 0 || header(&b, u, a.cfg_text) != 0)
+                continue;
+            np_unit_key_text(k, &a.cfg, text, sizeof text);
+            NP_CHECK(strcmp(a.cfg_text, b.cfg_text) == 0 && np_unit_key_get(k, &a.cfg) == v3[i],
+                     "%s: %s gives '%s' (%s=%s), which configures to '%s'", u->name, spec, a.cfg_text, k->name, text,
+                     b.cfg_text);
+            values++;
+        }
+        char spec[256], why[256] = "";
+        np_unit_cfg cfg;
+        if (!k->word && k->hi < 4000000000u) {
+            snprintf(spec, sizeof spec, "%s=%u", k->name, k->hi + 1u);
+            NP_CHECK(np_unit_configure(u, &cfg, spec, why, sizeof why) != 0 && strstr(why, k->name),
+                     "%s: %s accepted or the refusal does not name the key: '%s'", u->name, spec, why);
+        }
+        np_vec_header d;
+        if (header(&d, u, "") == 0) {
+            char val[64];
+            np_unit_key_text(k, &d.cfg, val, sizeof val);
+            snprintf(spec, sizeof spec, "%s=%s,%s=%s", k->name, val, k->name, val);
+            NP_CHECK(np_unit_configure(u, &cfg, spec, why, sizeof why) != 0 && strstr(why, k->name),
+                     "%s: %s accepted or the refusal does not name the key: '%s'", u->name, spec, why);
+        }
+    }
+    printf("%s: %u keys; %u end and default values round-trip; past the top and twice refused by name\n", u->name,
+           keys, values);
     /* An unknown key is refused with its name. */
     np_unit_cfg cfg;
     char err[256] = "";

@@ -16,6 +16,7 @@
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -36,31 +37,11 @@ typedef struct toy_sig {
     uint16_t f;
 } toy_sig;
 
-static void toy_cfg_default(void *cfg) { ((toy_cfg *)cfg)->out_bits = 9; }
-
-static int toy_cfg_set(void *cfg, const char *key, const char *value, char *err, size_t errlen)
-{
-    if (strcmp(key, "out_bits") != 0) {
-        snprintf(err, errlen, "unknown configuration key '%s' for unit toy2 (keys: out_bits)", key);
-        return -1;
-    }
-    if (np_unit_parse_uint(value, 8, 9, &((toy_cfg *)cfg)->out_bits) != 0) {
-        snprintf(err, errlen, "out_bits=%s: out of range 8..9", value);
-        return -1;
-    }
-    return 0;
-}
-
-static void toy_cfg_format(const void *cfg, char *buf, size_t len)
-{
-    snprintf(buf, len, "out_bits=%u", ((const toy_cfg *)cfg)->out_bits);
-}
-
-static const char *toy_cfg_check(const void *cfg)
-{
-    unsigned o = ((const toy_cfg *)cfg)->out_bits;
-    return o == 8 || o == 9 ? NULL : "out_bits must be 8 or 9";
-}
+/* The one key, declared as data: configure, format, `noisepipe units` and the checks read it. */
+static const np_unit_key toy_keys[] = {
+    NP_UNIT_KEY("out_bits", toy_cfg, out_bits, 8, 9, 9, "width of f: 9 holds every sum, 8 wraps it mod 256"),
+    NP_UNIT_KEY_END,
+};
 
 static void toy_fields(const void *cfg, np_unit_fields *f)
 {
@@ -169,10 +150,7 @@ static const char *const toy_configs[] = { "out_bits=8", NULL };
 static const np_unit toy_unit = {
     .name = "toy2",
     .summary = "toy: f = (a ^ b) + b in two stages (the example of docs/adding-a-unit.md)",
-    .cfg_default = toy_cfg_default,
-    .cfg_set = toy_cfg_set,
-    .cfg_format = toy_cfg_format,
-    .cfg_check = toy_cfg_check,
+    .keys = toy_keys,
     .fields = toy_fields,
     .eval = toy_eval,
     .ref = toy_ref,
