@@ -12,7 +12,8 @@
 #include "np_vec.h"
 #include "np_widths.h"
 
-enum { MAX_CONFIGS = 8, MAX_OPS = 256, WIDTH_RANDOM = 100000 };
+/* Random cases added to the generator's for the width trace: the default, each other configuration. */
+enum { MAX_CONFIGS = 8, MAX_OPS = 256, WIDTH_RANDOM = 100000, WIDTH_RANDOM_OTHER = 40000 };
 
 /* The default ("") then the unit's conformance configurations; returns how many. */
 static unsigned configs_of(const np_unit *u, const char *out[MAX_CONFIGS])
@@ -184,7 +185,7 @@ static void widths_config(const np_unit *u, const char *spec, int print)
     np_vec_rec rec;
     char err[NP_VEC_ERRLEN];
     uint64_t n = 0;
-    if (np_vecgen_init(&g, &h, 1, 7, WIDTH_RANDOM, err, sizeof err) == 0) {
+    if (np_vecgen_init(&g, &h, 1, 7, print ? WIDTH_RANDOM : WIDTH_RANDOM_OTHER, err, sizeof err) == 0) {
         for (; np_vecgen_next(&g, &rec); n++)
             widths_input(&w, &h, rec.w[NP_VEC_IN]);
         np_vecgen_free(&g);
