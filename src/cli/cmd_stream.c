@@ -29,8 +29,8 @@ static const char usage_text[] =
     "  --config K=V,...    its configuration (with --random; default: the unit's)\n"
     "  --device VID:PID    the board, hex ids (e.g. 1209:0001)\n"
     "  --interface N       USB interface (default 0)\n"
-    "  --ep-out A          bulk OUT endpoint (default: the interface's first)\n"
-    "  --ep-in B           bulk IN endpoint (default: the interface's first)\n"
+    "  --ep-out 0xA        bulk OUT endpoint address (default: the interface's first)\n"
+    "  --ep-in 0xB         bulk IN endpoint address (default: the interface's first)\n"
     "  --in-flight N       USB transfers in flight each way (default 8)\n"
     "  --emulate           no USB: the board emulator (cycle-accurate models) in process\n"
     "  --inject F:INDEX[:BIT]  with --emulate: make the emulated board fail at vector\n"
@@ -81,7 +81,17 @@ static int num(const char *name, const char *v, uint64_t lo, uint64_t hi, uint64
 {
     if (np_parse_u64(v, lo, hi, out) == 0)
         return 0;
-    np_err("stream", "%s %s: expected a number in %llu..%llu", name, v, (unsigned long long)lo,
+    np_err("stream", "%s %s: expected a decimal number in %llu..%llu", name, v, (unsigned long long)lo,
+           (unsigned long long)hi);
+    return -1;
+}
+
+/* An endpoint address: documented (and printed by lsusb) as 0x hex; decimal also taken. */
+static int ep_num(const char *name, const char *v, uint64_t lo, uint64_t hi, uint64_t *out)
+{
+    if (np_parse_u64_or_0x(v, lo, hi, out) == 0)
+        return 0;
+    np_err("stream", "%s %s: expected an endpoint address 0x%02llx..0x%02llx", name, v, (unsigned long long)lo,
            (unsigned long long)hi);
     return -1;
 }
@@ -148,11 +158,11 @@ static int parse_args(int argc, char **argv, stream_args *a)
                 return -1;
             a->interface = (int)x;
         } else if ((r = opt(argc, argv, &i, "--ep-out", &v)) != 0) {
-            if (r < 0 || num("--ep-out", v, 0x01, 0x0f, &x) != 0)
+            if (r < 0 || ep_num("--ep-out", v, 0x01, 0x0f, &x) != 0)
                 return -1;
             a->ep_out = (int)x;
         } else if ((r = opt(argc, argv, &i, "--ep-in", &v)) != 0) {
-            if (r < 0 || num("--ep-in", v, 0x81, 0x8f, &x) != 0)
+            if (r < 0 || ep_num("--ep-in", v, 0x81, 0x8f, &x) != 0)
                 return -1;
             a->ep_in = (int)x;
         } else if ((r = opt(argc, argv, &i, "--timeout", &v)) != 0) {

@@ -184,7 +184,7 @@ int np_cmd_sweep(int argc, char **argv)
         return NP_EXIT_USAGE;
     }
     uint64_t z;
-    if (np_parse_u64(z_text, 0, 0xffff, &z) != 0) {
+    if (np_parse_u64_or_0x(z_text, 0, 0xffff, &z) != 0) {
         np_err("sweep", "--z %s: expected a u16 word, 0..65535 or 0x0000..0xffff", z_text);
         return NP_EXIT_USAGE;
     }

@@ -5,6 +5,7 @@
 
 #include "np_cli.h"
 #include "np_cmd.h"
+#include "np_outfile.h"
 
 static int cmd_help(int argc, char **argv);
 
@@ -33,7 +34,9 @@ static const np_cmd *find(const char *name)
 
 static void usage(FILE *f)
 {
-    fputs("usage: noisepipe <command> [options]   (noisepipe <command> --help for its options)\n\n"
+    fputs("usage: noisepipe <command> [options]   (noisepipe <command> --help for its options)\n"
+          "every command also takes --progress (progress on stderr even when it is not a terminal)\n"
+          "and --quiet (no progress)\n\n"
           "commands:\n",
           f);
     for (unsigned i = 0; i < N_COMMANDS; i++)
@@ -69,5 +72,28 @@ int main(int argc, char **argv)
         usage(stderr);
         return NP_EXIT_USAGE;
     }
-    return c->fn(argc - 1, argv + 1);
+    np_interrupt_install();
+    /*
+     * --progress / --quiet are every command's: taken out here, wherever they
+     * stand (stream keeps its --quiet too: there it also drops per-vector lines).
+     */
+    int n = 1, keep_quiet = strcmp(c->name, "stream") == 0;
+    for (int i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--progress") == 0) {
+            np_progress_set_mode(NP_PROGRESS_ALWAYS);
+        } else if (strcmp(argv[i], "--quiet") == 0) {
+            np_progress_set_mode(NP_PROGRESS_NEVER);
+            if (keep_quiet)
+                argv[n++] = argv[i];
+        } else {
+            argv[n++] = argv[i];
+        }
+    }
+    argv[n] = NULL;
+    argc = n;
+    int rc = c->fn(argc - 1, argv + 1);
+    /* Output lost on the way out (`verify > /dev/full`) is an error, never exit 0. */
+    if (np_stdout_check(argv[1]) != 0)
+        rc = NP_EXIT_USAGE;
+    return rc;
 }

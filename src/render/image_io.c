@@ -1,10 +1,12 @@
 /* SPDX-License-Identifier: MIT */
 /* Image files (np_image.h): OpenEXR through OpenEXRCore, PNG through libpng. */
 #include "np_image.h"
+#include "np_outfile.h"
 
 #include <errno.h>
 #include <openexr.h>
 #include <png.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -17,18 +19,95 @@ static int exr_fail(char *err, size_t errlen, const char *path, const char *what
     return -1;
 }
 
+/*
+ * The EXR is assembled in memory (the library writes the chunk offset table
+ * last, at an earlier offset, so it needs random access) and then written in
+ * one pass through np_outfile: atomic for a regular file, streamed to a FIFO
+ * or device, through a symbolic link to its target.
+ */
+typedef struct exr_mem exr_mem;
+static int exr_encode_mem(const char *path, exr_mem *mem, unsigned w, unsigned h, unsigned nch,
+                          const char *const *names, const float *planes, char *err, size_t errlen);
+
+struct exr_mem {
+    uint8_t *buf;
+    size_t len, cap;
+    int oom;
+};
+
+static int64_t exr_mem_write(exr_const_context_t ctxt, void *userdata, const void *buffer, uint64_t sz,
+                             uint64_t offset, exr_stream_error_func_ptr_t error_cb)
+{
+    exr_mem *m = userdata;
+    if (offset > SIZE_MAX - sz) {
+        m->oom = 1;
+        return error_cb(ctxt, EXR_ERR_OUT_OF_MEMORY, "image too large"), -1;
+    }
+    size_t end = (size_t)(offset + sz);
+    if (end > m->cap) {
+        size_t cap = m->cap ? m->cap : (size_t)1 << 16;
+        while (cap < end)
+            cap *= 2;
+        uint8_t *nb = realloc(m->buf, cap);
+        if (!nb) {
+            m->oom = 1;
+            return error_cb(ctxt, EXR_ERR_OUT_OF_MEMORY, "out of memory"), -1;
+        }
+        memset(nb + m->cap, 0, cap - m->cap);
+        m->buf = nb;
+        m->cap = cap;
+    }
+    memcpy(m->buf + offset, buffer, (size_t)sz);
+    if (end > m->len)
+        m->len = end;
+    return (int64_t)sz;
+}
+
+/* The library's own messages would precede ours on stderr; exr_fail says it once, naming the file. */
+static void exr_quiet(exr_const_context_t ctxt, exr_result_t code, const char *msg)
+{
+    (void)ctxt;
+    (void)code;
+    (void)msg;
+}
+
 int np_image_write_exr(const char *path, unsigned w, unsigned h, unsigned nch,
                        const char *const *names, const float *planes, char *err, size_t errlen)
 {
+    exr_mem mem = { NULL, 0, 0, 0 };
+    int ret = exr_encode_mem(path, &mem, w, h, nch, names, planes, err, errlen);
+    if (ret == 0) {
+        np_outfile o;
+        if (np_outfile_open(&o, path, "wb") != 0) {
+            snprintf(err, errlen, "%s", o.err);
+            ret = -1;
+        } else {
+            fwrite(mem.buf, 1, mem.len, o.f);
+            if (np_outfile_close(&o, 1) != 0) {
+                snprintf(err, errlen, "%s", o.err);
+                ret = -1;
+            }
+        }
+    }
+    free(mem.buf);
+    return ret;
+}
+
+static int exr_encode_mem(const char *path, exr_mem *mem, unsigned w, unsigned h, unsigned nch,
+                          const char *const *names, const float *planes, char *err, size_t errlen)
+{
     exr_context_t ctx = NULL;
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    init.user_data = mem;
+    init.write_fn = exr_mem_write;
+    init.error_handler_fn = exr_quiet;
     exr_result_t rc;
     int part = 0;
     if (nch < 1 || nch > NP_IMAGE_MAX_CHANNELS || w < 1 || h < 1) {
         snprintf(err, errlen, "%s: bad image shape", path);
         return -1;
     }
-    rc = exr_start_write(&ctx, path, EXR_INTERMEDIATE_TEMP_FILE, &init);
+    rc = exr_start_write(&ctx, path, EXR_WRITE_FILE_DIRECTLY, &init);
     if (rc != EXR_ERR_SUCCESS)
         return exr_fail(err, errlen, path, "cannot start writing", rc);
     rc = exr_add_part(ctx, "image", EXR_STORAGE_SCANLINE, &part);
@@ -190,15 +269,13 @@ static void png_warn_fn(png_structp png, png_const_charp msg)
     (void)msg;
 }
 
-/* Write to path via a temporary name; rename into place on success. */
+/* Write to path through np_outfile (atomic for a regular file, streamed to a FIFO or device). */
 int np_image_write_png(const char *path, unsigned w, unsigned h, const uint8_t *rgb, char *err,
                        size_t errlen)
 {
-    char tmp[4200];
-    snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    FILE *f = fopen(tmp, "wb");
-    if (!f) {
-        snprintf(err, errlen, "%s: cannot create: %s", tmp, strerror(errno));
+    np_outfile o;
+    if (np_outfile_open(&o, path, "wb") != 0) {
+        snprintf(err, errlen, "%s", o.err);
         return -1;
     }
     png_err_ctx ec = { err, errlen, path };
@@ -206,18 +283,16 @@ int np_image_write_png(const char *path, unsigned w, unsigned h, const uint8_t *
     png_infop info = png ? png_create_info_struct(png) : NULL;
     if (!png || !info) {
         png_destroy_write_struct(&png, NULL);
-        fclose(f);
-        remove(tmp);
+        np_outfile_close(&o, 0);
         snprintf(err, errlen, "%s: out of memory", path);
         return -1;
     }
     if (setjmp(png_jmpbuf(png))) {
         png_destroy_write_struct(&png, &info);
-        fclose(f);
-        remove(tmp);
+        np_outfile_close(&o, 0);
         return -1;
     }
-    png_init_io(png, f);
+    png_init_io(png, o.f);
     png_set_IHDR(png, info, w, h, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                  PNG_FILTER_TYPE_DEFAULT);
     png_write_info(png, info);
@@ -225,14 +300,8 @@ int np_image_write_png(const char *path, unsigned w, unsigned h, const uint8_t *
         png_write_row(png, rgb + (size_t)y * w * 3u);
     png_write_end(png, info);
     png_destroy_write_struct(&png, &info);
-    if (fclose(f) != 0) {
-        remove(tmp);
-        snprintf(err, errlen, "%s: write error", path);
-        return -1;
-    }
-    if (rename(tmp, path) != 0) {
-        remove(tmp);
-        snprintf(err, errlen, "%s: cannot rename into place: %s", path, strerror(errno));
+    if (np_outfile_close(&o, 1) != 0) {
+        snprintf(err, errlen, "%s", o.err);
         return -1;
     }
     return 0;
@@ -241,15 +310,15 @@ int np_image_write_png(const char *path, unsigned w, unsigned h, const uint8_t *
 int np_image_write_ppm(const char *path, unsigned w, unsigned h, const uint8_t *rgb, char *err,
                        size_t errlen)
 {
-    FILE *f = fopen(path, "wb");
-    if (!f) {
-        snprintf(err, errlen, "%s: cannot create: %s", path, strerror(errno));
+    np_outfile o;
+    if (np_outfile_open(&o, path, "wb") != 0) {
+        snprintf(err, errlen, "%s", o.err);
         return -1;
     }
-    fprintf(f, "P6\n%u %u\n255\n", w, h);
-    fwrite(rgb, 1, (size_t)w * h * 3u, f);
-    if (fclose(f) != 0) {
-        snprintf(err, errlen, "%s: write error", path);
+    fprintf(o.f, "P6\n%u %u\n255\n", w, h);
+    fwrite(rgb, 1, (size_t)w * h * 3u, o.f);
+    if (np_outfile_close(&o, 1) != 0) {
+        snprintf(err, errlen, "%s", o.err);
         return -1;
     }
     return 0;

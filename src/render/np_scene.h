@@ -39,6 +39,7 @@ typedef struct np_scene {
     np_scene_poly *poly;
     np_ref_texture tex;
     unsigned probe_row;                  /* scanline of the noise-difference plot */
+    int allow_empty;                     /* "allow_empty": true: an image that covers no pixel is not an error */
 } np_scene;
 
 /*

@@ -228,6 +228,15 @@ int np_render_prepare(const np_scene *sc, np_render_frame *fr, char *err, size_t
         }
     }
     free(pp);
+    if (fr->pixels == 0 && !sc->allow_empty) {
+        /* Nothing to measure: "0 of 0 samples, PSNR inf" would pass any check. */
+        np_render_frame_free(fr);
+        snprintf(err, errlen,
+                 "the scene covers no pixel: every polygon faces away from the camera, is behind it or "
+                 "is off the image (is camera.eye inside the geometry?); set \"allow_empty\": true to "
+                 "render an empty image");
+        return -1;
+    }
     size_t npx = (size_t)sc->width * sc->height;
     fr->mask = calloc(npx, 1);
     if (!fr->mask) {

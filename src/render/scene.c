@@ -204,6 +204,8 @@ static int parse_camera(ctx *c, const cJSON *root, np_scene *s)
     return 0;
 }
 
+static int check_polygon(ctx *c, const np_scene_poly *p, const char *field);
+
 static np_scene_poly *add_poly(ctx *c, np_scene *s, const char *field)
 {
     if (s->n_poly >= NP_SCENE_MAX_POLYS) {
@@ -302,7 +304,64 @@ static int parse_geometry(ctx *c, const cJSON *root, np_scene *s)
                     return fail(c, path_key(f, sizeof f, where, "cull"), "expected true or false");
                 p->cull = cJSON_IsTrue(cull);
             }
+            if (check_polygon(c, p, path_key(f, sizeof f, where, "vertices")))
+                return -1;
         }
+    }
+    return 0;
+}
+
+/*
+ * A polygon must be what the scan converter assumes (docs/render.md): planar,
+ * convex, with area, and no two consecutive vertices at the same point.
+ * Tolerances are relative to the polygon's size L (its bounding-box
+ * diagonal): a point closer than 1e-12 L is the same point, a vertex farther
+ * than 1e-9 L from the plane is off it, a turn against the winding larger
+ * than 1e-12 L^2 (cross product of the two edges) is a reflex corner.
+ */
+static int check_polygon(ctx *c, const np_scene_poly *p, const char *field)
+{
+    double mn[3], mx[3], cen[3] = { 0, 0, 0 };
+    for (unsigned a = 0; a < 3; a++)
+        mn[a] = mx[a] = p->p[0][a];
+    for (unsigned v = 0; v < p->n; v++)
+        for (unsigned a = 0; a < 3; a++) {
+            mn[a] = fmin(mn[a], p->p[v][a]);
+            mx[a] = fmax(mx[a], p->p[v][a]);
+            cen[a] += p->p[v][a] / (double)p->n;
+        }
+    double L = sqrt((mx[0] - mn[0]) * (mx[0] - mn[0]) + (mx[1] - mn[1]) * (mx[1] - mn[1]) +
+                    (mx[2] - mn[2]) * (mx[2] - mn[2]));
+    for (unsigned v = 0; v < p->n; v++) {
+        const double *a = p->p[v], *b = p->p[(v + 1) % p->n];
+        double d = sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) + (b[2] - a[2]) * (b[2] - a[2]));
+        if (!(d > 1e-12 * L))
+            return fail(c, field, "vertices %u and %u are the same point", v, (v + 1) % p->n);
+    }
+    /* Newell's normal: its length is twice the area. */
+    double nrm[3] = { 0, 0, 0 };
+    for (unsigned v = 0; v < p->n; v++) {
+        const double *a = p->p[v], *b = p->p[(v + 1) % p->n];
+        nrm[0] += (a[1] - b[1]) * (a[2] + b[2]);
+        nrm[1] += (a[2] - b[2]) * (a[0] + b[0]);
+        nrm[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+    double nl = sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+    if (!(nl > 1e-12 * L * L))
+        return fail(c, field, "the polygon has no area (its vertices are collinear)");
+    for (unsigned v = 0; v < p->n; v++) {
+        double off = ((p->p[v][0] - cen[0]) * nrm[0] + (p->p[v][1] - cen[1]) * nrm[1] +
+                      (p->p[v][2] - cen[2]) * nrm[2]) / nl;
+        if (fabs(off) > 1e-9 * L)
+            return fail(c, field, "vertex %u is %.3g off the plane of the polygon: polygons must be planar", v, off);
+    }
+    for (unsigned v = 0; v < p->n; v++) {
+        const double *a = p->p[(v + p->n - 1) % p->n], *b = p->p[v], *d = p->p[(v + 1) % p->n];
+        double e0[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] }, e1[3] = { d[0] - b[0], d[1] - b[1], d[2] - b[2] };
+        double cr[3] = { e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2], e0[0] * e1[1] - e0[1] * e1[0] };
+        double turn = (cr[0] * nrm[0] + cr[1] * nrm[1] + cr[2] * nrm[2]) / nl;
+        if (turn < -1e-12 * L * L)
+            return fail(c, field, "the polygon is not convex at vertex %u: polygons must be convex", v);
     }
     return 0;
 }
@@ -409,7 +468,7 @@ static int parse_texture(ctx *c, const cJSON *root, np_scene *s)
 int np_scene_parse(const char *json, const char *name, np_scene *s, char *err, size_t errlen)
 {
     static const char *const keys[] = { "noisepipe_scene", "name", "description", "image", "camera",
-                                        "geometry", "texture", "probe_row", NULL };
+                                        "geometry", "texture", "probe_row", "allow_empty", NULL };
     ctx c = { name, err, errlen, 0 };
     memset(s, 0, sizeof *s);
     snprintf(s->path, sizeof s->path, "%s", name);
@@ -418,10 +477,26 @@ int np_scene_parse(const char *json, const char *name, np_scene *s, char *err, s
     if (!root) {
         /* Line and column of the point where parsing stopped. */
         unsigned line = 1, col = 1;
-        for (const char *p = json; end && p < end && *p; p++, col++)
+        long depth = 0, deepest = 0;
+        int in_str = 0;
+        for (const char *p = json; end && p < end && *p; p++, col++) {
             if (*p == '\n')
                 line++, col = 0;
-        snprintf(err, errlen, "%s:%u:%u: not valid JSON", name, line, col);
+            /* Nesting depth outside strings: cJSON stops at CJSON_NESTING_LIMIT. */
+            if (in_str)
+                in_str = !(*p == '"' && p[-1] != '\\');
+            else if (*p == '"')
+                in_str = 1;
+            else if (*p == '[' || *p == '{')
+                deepest = ++depth > deepest ? depth : deepest;
+            else if (*p == ']' || *p == '}')
+                depth--;
+        }
+        if (deepest >= CJSON_NESTING_LIMIT)
+            snprintf(err, errlen, "%s:%u:%u: JSON nested deeper than %d levels (a scene needs at most 5)", name,
+                     line, col, CJSON_NESTING_LIMIT);
+        else
+            snprintf(err, errlen, "%s:%u:%u: not valid JSON", name, line, col);
         return -1;
     }
     unsigned version = 0;
@@ -455,6 +530,10 @@ int np_scene_parse(const char *json, const char *name, np_scene *s, char *err, s
     s->probe_row = s->height / 2u;
     if (get(root, "probe_row"))
         read_uint(&c, get(root, "probe_row"), "probe_row", 0, s->height - 1u, &s->probe_row);
+    const cJSON *ae = get(root, "allow_empty");
+    if (ae && !cJSON_IsBool(ae))
+        fail(&c, "allow_empty", "expected true or false");
+    s->allow_empty = ae && cJSON_IsTrue(ae);
 out:
     cJSON_Delete(root);
     if (c.failed) {

@@ -48,7 +48,7 @@ static void fit(const np_plot *p, const np_plot_series *s, size_t ns, frame *fr)
     fr->ylog = p->ylog;
     if (fr->x0 < fr->x1 && fr->y0 < fr->y1)
         return;
-    double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+    double x0 = HUGE_VAL, x1 = -HUGE_VAL, y0 = HUGE_VAL, y1 = -HUGE_VAL;
     for (size_t k = 0; k < ns; k++)
         for (size_t i = 0; i < s[k].n; i++) {
             x0 = fmin(x0, s[k].x[i]);

@@ -193,7 +193,7 @@ static int by_gates(const void *a, const void *b)
 
 static double min_gates(const np_dse_result *r)
 {
-    double g = INFINITY;
+    double g = HUGE_VAL;
     for (size_t i = 0; i < r->n; i++)
         g = fmin(g, r->pts[i].gates);
     return g;

@@ -36,7 +36,7 @@ int np_vec_opt_u64(const char *cmd, const char *name, const char *val, uint64_t 
 {
     if (np_parse_u64(val, lo, hi, out) == 0)
         return 0;
-    np_err(cmd, "%s '%s': expected a whole number in %llu..%llu", name, val,
+    np_err(cmd, "%s '%s': expected a decimal number in %llu..%llu", name, val,
            (unsigned long long)lo, (unsigned long long)hi);
     return -1;
 }

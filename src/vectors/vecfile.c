@@ -645,9 +645,7 @@ int np_vec_results_read(np_vec_results *rr, np_vec_rec *rec)
             continue;
         if (*s == '@') {
             uint64_t a;
-            char hex[24];
-            snprintf(hex, sizeof hex, "0x%s", s + 1);
-            if (np_parse_u64(hex, 0, UINT64_MAX, &a) != 0 || a != rr->n)
+            if (np_parse_u64_hex(s + 1, 16, 0, UINT64_MAX, &a) != 0 || a != rr->n)
                 return lerr(&rr->L, "address '%s': only the next transaction's address (@%llx) is allowed",
                             s, (unsigned long long)rr->n);
             continue;

@@ -1,0 +1,27 @@
+# SPDX-License-Identifier: MIT
+# Output files, write errors and interruption (src/cli/np_outfile.h, docs/bad-input.md).
+np_test_program(test_cli test_cli.c)
+np_add_cases(test_cli cli
+  outfile_regular_atomic outfile_fifo outfile_chardev outfile_symlink outfile_refuse
+  interrupt_sigint interrupt_sigterm numbers)
+
+# End to end through the command: lost standard output is exit 2, never 0.
+add_test(NAME cli.stdout_write_error
+  COMMAND sh -c "test -w /dev/full || exit 77; \"$0\" units > /dev/full; s=$?; test $s -eq 2 || { echo \"exit $s, want 2\"; exit 1; }"
+          $<TARGET_FILE:noisepipe>)
+set_tests_properties(cli.stdout_write_error PROPERTIES SKIP_RETURN_CODE 77)
+
+# Numbers are decimal unless documented as hex: "010" is ten, "0x10" is refused,
+# "# count 0x5" in a vector file is refused naming the field (issue 11, item 2).
+add_test(NAME cli.numbers_decimal
+  COMMAND sh -c "\"$0\" vectors --unit classic3 --seed 010 -n 3 | grep -qx '# seed 10' || { echo 'seed 010 is not ten'; exit 1; }
+                 \"$0\" vectors --unit classic3 --seed 0x10 -n 3 > /dev/null 2>&1; s=$?; test $s -eq 2 || { echo \"--seed 0x10: exit $s, want 2\"; exit 1; }
+                 \"$0\" vectors --unit classic3 -n 3 | sed 's/^# count .*/# count 0x5/' > \"$1\" &&
+                 \"$0\" verify \"$1\" > /dev/null 2> \"$1.err\"; s=$?; cat \"$1.err\"; test $s -eq 2 && grep -q count \"$1.err\""
+          $<TARGET_FILE:noisepipe> ${CMAKE_CURRENT_BINARY_DIR}/cli_count_hex.vec)
+
+# Progress: --progress forces it into a log (stderr not a terminal), --quiet stops it.
+add_test(NAME cli.progress_forced
+  COMMAND sh -c "\"$0\" sweep --unit classic3 --z 0 --x-cells 0:1 --progress 2>&1 >/dev/null | grep -q '^sweep: 100.0%' || { echo 'no progress line'; exit 1; }
+                 test -z \"$(\"$0\" sweep --unit classic3 --z 0 --x-cells 0:1 --quiet 2>&1 >/dev/null)\" || { echo '--quiet printed progress'; exit 1; }"
+          $<TARGET_FILE:noisepipe>)
