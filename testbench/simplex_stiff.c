@@ -126,6 +126,19 @@ int simplex_faces_uvw(void) { return face_case(FACE_UVW, "faces_uvw (X = Y = Z)"
 
 /* ------------------------------------------------------------------------ */
 
+/* The offsets D of the four corners of the simplex that local configuration (U, V, W) lies in. */
+static void corner_offsets(int32_t u, int32_t v, int32_t w, int32_t d[4][3])
+{
+    uint8_t hi, lo;
+    np_simplex_rank(u, v, w, &hi, &lo);
+    const int32_t off[3] = { u, v, w };
+    for (unsigned k = 0; k < 4; k++) {
+        unsigned mask = np_simplex_corner_mask(hi, lo, k);
+        for (unsigned a = 0; a < 3; a++)
+            d[k][a] = np_simplex_corner_d(off[a], mask >> a & 1u, k);
+    }
+}
+
 typedef struct tz_ctx {
     int32_t tmin_pos, tmax_neg;   /* smallest T > 0 and largest T <= 0 (T before the clamp) */
     int32_t at_pos[4], at_neg[4]; /* U, V, W, corner */
@@ -135,15 +148,10 @@ typedef struct tz_ctx {
 static void tz_visit(void *ctxv, int32_t u, int32_t v, int32_t w)
 {
     tz_ctx *c = ctxv;
-    uint8_t hi, lo;
-    np_simplex_rank(u, v, w, &hi, &lo);
-    const int32_t off[3] = { u, v, w };
+    int32_t cd[4][3];
+    corner_offsets(u, v, w, cd);
     for (unsigned k = 0; k < 4; k++) {
-        unsigned mask = np_simplex_corner_mask(hi, lo, k);
-        int32_t d[3];
-        for (unsigned a = 0; a < 3; a++)
-            d[a] = np_simplex_corner_d(off[a], mask >> a & 1u, k);
-        int32_t td = NP_SIMPLEX_T_VERTEX - NP_SIMPLEX_R2_SCALE * (int32_t)np_simplex_r2(d);
+        int32_t td = NP_SIMPLEX_T_VERTEX - NP_SIMPLEX_R2_SCALE * (int32_t)np_simplex_r2(cd[k]);
         if (td == 0)
             c->hist_zero++;
         if (td > 0 && td < c->tmin_pos) {
@@ -284,15 +292,13 @@ typedef struct mag_ctx {
 static void mag_visit(void *ctxv, int32_t u, int32_t v, int32_t w)
 {
     mag_ctx *c = ctxv;
-    uint8_t hi, lo;
-    np_simplex_rank(u, v, w, &hi, &lo);
-    const int32_t off[3] = { u, v, w };
+    int32_t cd[4][3];
+    corner_offsets(u, v, w, cd);
     double sf = 0.0, sd[3] = { 0.0, 0.0, 0.0 };
     for (unsigned k = 0; k < 4; k++) {
-        unsigned mask = np_simplex_corner_mask(hi, lo, k);
         double d[3];
         for (unsigned a = 0; a < 3; a++)
-            d[a] = np_simplex_corner_d(off[a], mask >> a & 1u, k) / 1536.0;
+            d[a] = cd[k][a] / 1536.0;
         double t = .6 - d[0] * d[0] - d[1] * d[1] - d[2] * d[2];
         if (t <= 0)
             continue;
