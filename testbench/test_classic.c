@@ -6,9 +6,14 @@
 #include <string.h>
 
 #include "np_classic.h"
+#include "np_pipe_drive.h"
 #include "np_ref.h"
 #include "np_rng.h"
 #include "np_test.h"
+#include "np_widths.h"
+#include "np_unit.h"
+
+extern const np_unit np_unit_classic3;
 
 static uint16_t rnd16(np_rng *r) { return (uint16_t)(np_rng_next(r) >> 48); }
 
@@ -104,83 +109,36 @@ static int in_cell_matches_eval(void)
     return 0;
 }
 
+/* The output bundle carries the inputs and the bit-exact model's value. */
+static int classic_check(const void *cfg, const void *in, const void *out, uint64_t n)
+{
+    const np_classic_sig *i = in, *o = out;
+    int32_t want = np_classic_eval(cfg, i->x, i->y, i->z);
+    int ok = o->out == want && o->x == i->x && o->y == i->y && o->z == i->z;
+    NP_CHECK(ok, "transaction %llu: got %d want %d", (unsigned long long)n, o->out, want);
+    return ok;
+}
+
 /*
- * Drive the pipe with n inputs from a seeded generator, with an input bubble
- * with probability pb/16 and an output stall with probability ps/16 each
- * cycle; check every output against the bit-exact model, in order, and that
- * an output whose path never stalled appears exactly `latency` cycles after
- * its input was accepted.
+ * Drive the pipe with n inputs from a seeded generator, an input bubble with
+ * probability pb/16 and an output stall with probability ps/16 each cycle
+ * (np_pipe_drive.h: outputs against the bit-exact model, in order, the
+ * latency exact on every unstalled transaction).
  */
 static int drive_pipe(const np_classic_cfg *cfg, uint64_t n, unsigned pb, unsigned ps, uint64_t seed,
                       uint64_t *cycles_out)
 {
-    enum { QN = 64 };
     np_pipe p;
     if (np_classic_pipe_init(&p, cfg) != 0)
         return 1;
-    np_rng r;
-    np_rng_seed(&r, seed);
-    struct { np_classic_sig in; uint64_t cycle; uint64_t stalls; } q[QN];
-    uint64_t sent = 0, got = 0, cycle = 0, stalls = 0, exact = 0, bad = 0;
-    np_classic_sig in;
-    memset(&in, 0, sizeof in);
-    np_pipe_port port;
-    memset(&port, 0, sizeof port);
-    int have = 0;
-    unsigned lat = np_pipe_latency(&p);
-    while (got < n) {
-        if (!have && sent < n) {
-            in.x = rnd16(&r);
-            in.y = rnd16(&r);
-            in.z = rnd16(&r);
-            have = 1;
-        }
-        uint64_t coin = np_rng_next(&r);
-        port.in_valid = have && (coin & 15u) >= pb;
-        port.in_sig = &in;
-        port.out_ready = ((coin >> 4) & 15u) >= ps;
-        np_pipe_eval(&p, &port);
-        if (port.out_valid && !port.out_ready)
-            stalls++;
-        if (port.out_valid && port.out_ready) {
-            const np_classic_sig *o = port.out_sig;
-            unsigned slot = (unsigned)(got % QN);
-            int32_t want = np_classic_eval(cfg, q[slot].in.x, q[slot].in.y, q[slot].in.z);
-            if (o->out != want || o->x != q[slot].in.x || o->y != q[slot].in.y || o->z != q[slot].in.z) {
-                bad++;
-                NP_CHECK(0, "transaction %llu: got %d want %d", (unsigned long long)got, o->out, want);
-            }
-            /* No stall while in flight: exactly the latency. */
-            if (q[slot].stalls == stalls) {
-                NP_CHECK(cycle - q[slot].cycle == lat, "transaction %llu latency %llu, want %u",
-                         (unsigned long long)got, (unsigned long long)(cycle - q[slot].cycle), lat);
-                exact++;
-            } else {
-                /* A stall elsewhere may be absorbed by a bubble ahead: never faster, though. */
-                NP_CHECK(cycle - q[slot].cycle >= lat, "transaction faster than the latency");
-            }
-            got++;
-        }
-        if (port.in_valid && port.in_ready) {
-            unsigned slot = (unsigned)(sent % QN);
-            NP_CHECK(sent - got < QN, "more than %d in flight", QN);
-            q[slot].in = in;
-            q[slot].cycle = cycle;
-            q[slot].stalls = stalls;
-            sent++;
-            have = 0;
-        }
-        np_pipe_clock(&p, &port);
-        cycle++;
-        NP_CHECK(np_pipe_occupancy(&p) <= lat, "occupancy");
-    }
+    np_pipe_dut d = { &p, &np_unit_classic3, 3, 16, classic_check, cfg };
+    np_pipe_drive_result res = np_pipe_drive_random(&d, n, pb, ps, seed);
     printf("%llu transactions in %llu cycles (bubbles %u/16, stalls %u/16): %llu mismatches, "
            "%llu unstalled ones all at latency %u\n",
-           (unsigned long long)got, (unsigned long long)cycle, pb, ps, (unsigned long long)bad,
-           (unsigned long long)exact, lat);
-    NP_CHECK(p.stats.accepted == n && p.stats.delivered == n, "stats count");
+           (unsigned long long)res.transactions, (unsigned long long)res.cycles, pb, ps,
+           (unsigned long long)res.mismatches, (unsigned long long)res.exact, np_pipe_latency(&p));
     if (cycles_out)
-        *cycles_out = cycle;
+        *cycles_out = res.cycles;
     np_pipe_free(&p);
     return 0;
 }
@@ -366,14 +324,7 @@ static int datapath_widths(void)
         size_t nops = np_classic_datapath(cfg, ops, 64);
         NP_CHECK(nops <= 64, "declaration too long");
         np_trace t[64];
-        size_t nt = 0;
-        for (size_t i = 0; i < nops; i++)
-            if (ops[i].signal && ops[i].out) {
-                t[nt].signal = ops[i].signal;
-                t[nt].samples = 0;
-                t[nt].lo = t[nt].hi = 0;
-                nt++;
-            }
+        size_t nt = np_widths_traces(ops, nops, t);
         for (unsigned n = 0; n < 400000; n++) {
             np_classic_sig s;
             memset(&s, 0, sizeof s);
@@ -393,20 +344,9 @@ static int datapath_widths(void)
                 np_classic_trace(cfg, k, &s, t, nt);
             }
         }
-        for (size_t i = 0, ti = 0; i < nops; i++) {
-            if (!(ops[i].signal && ops[i].out))
-                continue;
-            np_trace *tr = &t[ti++];
-            unsigned need = np_bits_for_range(tr->lo, tr->hi, ops[i].out_signed);
-            NP_CHECK(tr->samples > 0, "signal %s never traced", tr->signal);
-            NP_CHECK(need <= ops[i].out, "cfg %u: %s declared %u bits, needs %u ([%lld, %lld])", c,
-                     tr->signal, ops[i].out, need, (long long)tr->lo, (long long)tr->hi);
-            NP_CHECK(ops[i].out - need <= NP_WIDTH_MARGIN, "cfg %u: %s declared %u bits, needs only %u", c,
-                     tr->signal, ops[i].out, need);
-            if (c == 0)
-                printf("  %-6s declared %2u%s, traced [%lld, %lld] needs %2u\n", tr->signal, ops[i].out,
-                       ops[i].out_signed ? "s" : "u", (long long)tr->lo, (long long)tr->hi, need);
-        }
+        char what[64];
+        snprintf(what, sizeof what, "cfg %u", c);
+        np_widths_judge(ops, nops, t, NP_WIDTH_MARGIN, what, c == 0);
     }
     puts("every declared signal width holds its traced range, within a margin of 1 bit (5 configurations)");
     return 0;

@@ -4,7 +4,9 @@
  *
  * Every tool (vectors, verify, device, sweep, bench, reports) works on a unit
  * through this one interface, so a new unit plugs into all of them by filling
- * in one np_unit and adding it to np_units[] (units.c).
+ * in one np_unit and adding it to np_units[] (units.c), or, for a unit that
+ * lives outside the library (a test's), by np_unit_register() at run time.
+ * docs/adding-a-unit.md lists the files a new unit brings.
  *
  * Words: every input and output field travels as a uint64_t holding the
  * field's hardware bits, masked to its width (a signed field is its two's
@@ -212,6 +214,21 @@ typedef struct np_unit {
      * a cfg_scene that accepts a scene is rendered by `noisepipe render`.
      */
     const np_unit_span *span;
+    /*
+     * Optional (NULL: the declared widths are checked by the unit's own
+     * test): widen each trace in t[0..n) whose signal stage k of the pipe
+     * (pipe_init's stage k) produces, from the signal bundle sig just after
+     * that stage ran. The conformance test (testbench/conformance.c) runs
+     * the stages over the generator's cases and checks every declared
+     * width (datapath) against what it traced.
+     */
+    void (*trace)(const void *cfg, unsigned k, const void *sig, np_trace *t, size_t n);
+    /*
+     * Optional (NULL: the default only): further configurations, as
+     * "key=value,..." specs, NULL-terminated, on which the conformance test
+     * runs its checks besides the default (narrow, wide, parts left out).
+     */
+    const char *const *conformance_configs;
 } np_unit;
 
 /* A set-up the unit stalls for (np_unit_timing). */
@@ -237,7 +254,25 @@ typedef struct np_unit_timing {
     np_unit_setup setup[NP_UNIT_MAX_SETUPS];
 } np_unit_timing;
 
-extern const np_unit *const np_units[]; /* NULL-terminated */
+/* The built-in units, NULL-terminated. Tools that list units use np_unit_at(), which also sees registered ones. */
+extern const np_unit *const np_units[];
+
+/*
+ * Runtime registration: add unit u (which must outlive every use; its name
+ * must be new) behind the built-in units, so that np_unit_find, np_unit_at
+ * and every tool built on them (vectors, verify, device, conformance, gate
+ * report) see it. For a test or an embedding program that brings its own
+ * unit; at most NP_UNIT_MAX_REGISTERED. 0, or -1 when the name is taken,
+ * the unit lacks a required entry or the table is full.
+ *
+ * Not synchronised: register every unit before any thread that reads the
+ * registry starts (the sweep's workers only read it).
+ */
+enum { NP_UNIT_MAX_REGISTERED = 16 };
+int np_unit_register(const np_unit *u);
+/* Every unit, built-in first then registered, by index from 0; NULL past the last. */
+const np_unit *np_unit_at(size_t i);
+/* The unit called name (built-in or registered), or NULL. */
 const np_unit *np_unit_find(const char *name);
 
 /* Real value of an output word of field f. */

@@ -74,6 +74,15 @@ static size_t datapath(const void *cfg, np_op *ops, size_t max)
 
 static int pipe_init(np_pipe *p, const void *cfg) { return np_classic_pipe_init(p, &((const classic_cfg *)cfg)->c); }
 
+static void trace(const void *cfg, unsigned k, const void *sig, np_trace *t, size_t n)
+{
+    np_classic_trace(&((const classic_cfg *)cfg)->c, k, sig, t, n);
+}
+
+/* Checked by the conformance test besides the default: widest, cheapest s-curve, widest s-curve. */
+static const char *const conformance_configs[] = { "out_bits=16", "s_frac=6,lerp_frac=6",
+                                                   "s_frac=24,lerp_frac=10", NULL };
+
 static void sig_set_in(void *sig, const uint64_t *in)
 {
     np_classic_sig *s = sig;
@@ -310,4 +319,6 @@ const np_unit np_unit_classic3 = {
     .boundary = boundary,
     .datapath = datapath,
     .sweep_rows = sweep_rows,
+    .trace = trace,
+    .conformance_configs = conformance_configs,
 };

@@ -102,6 +102,15 @@ static size_t datapath(const void *cfg, np_op *ops, size_t max)
 
 static int pipe_init(np_pipe *p, const void *cfg) { return np_simplex_pipe_init(p, &((const simplex_cfg *)cfg)->c); }
 
+static void trace(const void *cfg, unsigned k, const void *sig, np_trace *t, size_t n)
+{
+    np_simplex_trace(&((const simplex_cfg *)cfg)->c, k, sig, t, n);
+}
+
+/* Checked by the conformance test besides the default: f only, narrow, every fraction width 8. */
+static const char *const conformance_configs[] = { "deriv=0", "out_bits=8,dout_bits=8",
+                                                   "out_bits=8,dout_bits=8,t_frac=8,p_frac=8,k_frac=8", NULL };
+
 static void sig_set_in(void *sig, const uint64_t *in)
 {
     np_simplex_sig *s = sig;
@@ -202,4 +211,6 @@ const np_unit np_unit_simplex3 = {
     .sig_get_out = sig_get_out,
     .boundary = boundary,
     .datapath = datapath,
+    .trace = trace,
+    .conformance_configs = conformance_configs,
 };

@@ -12,12 +12,44 @@ extern const np_unit np_unit_fdiff, np_unit_texel;
 
 const np_unit *const np_units[] = { &np_unit_classic3, &np_unit_simplex3, &np_unit_fdiff, &np_unit_texel, NULL };
 
+/* Units added by np_unit_register (see np_unit.h: filled before threads start, read-only after). */
+static const np_unit *registered[NP_UNIT_MAX_REGISTERED];
+static size_t n_registered;
+
+static size_t n_builtin(void)
+{
+    size_t n = 0;
+    while (np_units[n])
+        n++;
+    return n;
+}
+
+const np_unit *np_unit_at(size_t i)
+{
+    size_t nb = n_builtin();
+    if (i < nb)
+        return np_units[i];
+    return i - nb < n_registered ? registered[i - nb] : NULL;
+}
+
 const np_unit *np_unit_find(const char *name)
 {
-    for (size_t i = 0; np_units[i]; i++)
-        if (strcmp(np_units[i]->name, name) == 0)
-            return np_units[i];
+    const np_unit *u;
+    for (size_t i = 0; (u = np_unit_at(i)) != NULL; i++)
+        if (strcmp(u->name, name) == 0)
+            return u;
     return NULL;
+}
+
+int np_unit_register(const np_unit *u)
+{
+    /* The entries every tool calls without checking; the rest are optional (np_unit.h). */
+    int complete = u && u->name && u->name[0] && u->keys && u->fields && u->eval && u->ref && u->error_bound_lsb &&
+                   (u->stream || (u->pipe_init && u->sig_set_in && u->sig_get_out)) && u->boundary;
+    if (!complete || np_unit_find(u->name) || n_registered >= NP_UNIT_MAX_REGISTERED)
+        return -1;
+    registered[n_registered++] = u;
+    return 0;
 }
 
 double np_unit_field_value(const np_field *f, uint64_t word)

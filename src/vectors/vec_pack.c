@@ -28,8 +28,9 @@ void np_vec_unit_names(char *buf, size_t len)
 {
     size_t at = 0;
     buf[0] = '\0';
-    for (size_t i = 0; np_units[i] && at < len; i++)
-        at += (size_t)snprintf(buf + at, len - at, "%s%s", i ? ", " : "", np_units[i]->name);
+    const np_unit *u;
+    for (size_t i = 0; (u = np_unit_at(i)) != NULL && at < len; i++)
+        at += (size_t)snprintf(buf + at, len - at, "%s%s", i ? ", " : "", u->name);
 }
 
 unsigned np__vec_hex_digits(unsigned bits) { return (bits + 3u) / 4u; }

@@ -1,0 +1,405 @@
+/* SPDX-License-Identifier: MIT */
+/* The unit-conformance checks (np_conformance.h), over the registry only. */
+#include "np_conformance.h"
+
+#include <dirent.h>
+#include <inttypes.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "np_kat.h"
+#include "np_test.h"
+#include "np_vec.h"
+#include "np_widths.h"
+
+/* Random cases added to the generator's for the width trace: the default, each other configuration. */
+enum { MAX_CONFIGS = 8, MAX_OPS = 256, WIDTH_RANDOM = 100000, WIDTH_RANDOM_OTHER = 40000 };
+
+/* The default ("") then the unit's conformance configurations; returns how many. */
+static unsigned configs_of(const np_unit *u, const char *out[MAX_CONFIGS])
+{
+    unsigned n = 0;
+    out[n++] = "";
+    for (const char *const *c = u->conformance_configs; c && *c && n < MAX_CONFIGS; c++)
+        out[n++] = *c;
+    return n;
+}
+
+static int header(np_vec_header *h, const np_unit *u, const char *spec)
+{
+    char err[NP_VEC_ERRLEN];
+    int rc = np_vec_header_init(h, u, spec, err, sizeof err);
+    NP_CHECK(rc == 0, "%s '%s': %s", u->name, spec, err);
+    return rc;
+}
+
+static void work_path(char *buf, size_t len, const np_conf_env *e, const np_unit *u, const char *what)
+{
+    snprintf(buf, len, "%s/%s-%s", e->work_dir, u->name, what);
+}
+
+/* Byte for byte; 1 when equal. */
+static int same_bytes(const char *a, const char *b)
+{
+    FILE *fa = fopen(a, "rb"), *fb = fopen(b, "rb");
+    int same = fa && fb;
+    while (same) {
+        int ca = getc(fa), cb = getc(fb);
+        same = ca == cb;
+        if (ca == EOF)
+            break;
+    }
+    if (fa)
+        fclose(fa);
+    if (fb)
+        fclose(fb);
+    return same;
+}
+
+/* --- cycle_vs_bitexact --- */
+
+typedef struct cycle_sink {
+    const np_vec_header *h;
+    int is_stream;
+    uint64_t n, bad, exact;
+} cycle_sink;
+
+static int cycle_put(void *ctx, const np_vec_rec *rec, const uint64_t *out, const np_vec_timing *t)
+{
+    cycle_sink *s = ctx;
+    for (unsigned k = 0; k < s->h->fields.n_out; k++)
+        if (out[k] != rec->w[NP_VEC_OUT][k]) {
+            s->bad++;
+            NP_CHECK(0, "%s transaction %" PRIu64 ": %s = %" PRIx64 ", bit-exact model %" PRIx64, s->h->unit->name,
+                     rec->index, s->h->fields.out[k].name, out[k], rec->w[NP_VEC_OUT][k]);
+        }
+    NP_CHECK(rec->index == s->n, "%s: transaction %" PRIu64 " delivered as number %" PRIu64, s->h->unit->name,
+             rec->index, s->n);
+    if (!s->is_stream) {
+        /* A pipe: exactly its latency when no output stall held the transaction, never faster. */
+        NP_CHECK(t->clocks >= t->latency && t->clocks <= t->latency + t->stalls,
+                 "%s transaction %" PRIu64 ": %" PRIu64 " clocks, latency %u, %" PRIu64 " stalls",
+                 s->h->unit->name, rec->index, t->clocks, t->latency, t->stalls);
+        if (t->stalls == 0) {
+            NP_CHECK(t->clocks == t->latency, "%s transaction %" PRIu64 ": %" PRIu64 " clocks unstalled, latency %u",
+                     s->h->unit->name, rec->index, t->clocks, t->latency);
+            s->exact++;
+        }
+    }
+    s->n++;
+    return 0;
+}
+
+static int cycle_vs_bitexact(const np_unit *u, const np_conf_env *e)
+{
+    const char *cfgs[MAX_CONFIGS];
+    unsigned nc = configs_of(u, cfgs);
+    for (unsigned c = 0; c < nc; c++) {
+        np_vec_header h;
+        char err[NP_VEC_ERRLEN], path[4096], what[32];
+        if (header(&h, u, cfgs[c]) != 0)
+            continue;
+        snprintf(what, sizeof what, "cycle%u.vec", c);
+        work_path(path, sizeof path, e, u, what);
+        np_vec_output o = { path, NP_VEC_TEXT };
+        if (np_vec_generate(&h, 1, 1, UINT64_MAX, &o, 1, err, sizeof err) != 0) {
+            NP_CHECK(0, "%s: %s", u->name, err);
+            continue;
+        }
+        for (int traffic = 1; traffic >= 0; traffic--) {
+            np_vec_reader r;
+            if (np_vec_open(&r, path) != 0) {
+                NP_CHECK(0, "%s", r.L.err);
+                break;
+            }
+            cycle_sink s = { &r.h, u->stream != NULL, 0, 0, 0 };
+            np_vec_drive_stats st;
+            int rc = np_vec_drive(&r.h, np_vec_read_source, &r, cycle_put, &s, traffic, 100u + c, &st, err,
+                                  sizeof err);
+            NP_CHECK(rc == NP_DRIVE_DONE, "%s: drive: %d %s %s", u->name, rc, err, r.L.err);
+            NP_CHECK(s.n == r.h.count && st.delivered == r.h.count, "%s: %" PRIu64 " of %" PRIu64 " delivered",
+                     u->name, s.n, r.h.count);
+            if (!u->stream && !traffic)
+                NP_CHECK(st.cycles == r.h.count + st.latency && s.exact == s.n,
+                         "%s: %" PRIu64 " transactions in %" PRIu64 " cycles unstalled, latency %u", u->name,
+                         r.h.count, st.cycles, st.latency);
+            printf("%s [%s]: %" PRIu64 " transactions %s: %" PRIu64 " cycles, %" PRIu64 " bubbles, %" PRIu64
+                   " stall cycles, %" PRIu64 " mismatches%s\n",
+                   u->name, h.cfg_text, s.n, traffic ? "with random bubbles and stalls" : "streamed", st.cycles,
+                   st.bubbles, st.stalls, s.bad, u->stream ? "" : ", every unstalled one at the pipe's latency");
+            np_vec_close(&r);
+        }
+        remove(path);
+    }
+    return 0;
+}
+
+/* --- datapath_widths --- */
+
+typedef struct widths {
+    const np_unit *u;
+    const void *cfg;
+    np_op ops[MAX_OPS];
+    size_t n_ops;
+    np_trace t[MAX_OPS];
+    size_t n_t;
+    np_pipe pipe;
+    unsigned char *sig;
+} widths;
+
+/* Run the pipe's stages on one input, tracing after each; the bundle's outputs must be eval's. */
+static void widths_input(widths *w, const np_vec_header *h, const uint64_t *in)
+{
+    memset(w->sig, 0, w->pipe.sig_size);
+    w->u->sig_set_in(w->sig, in);
+    for (unsigned k = 0; k < w->pipe.depth; k++) {
+        w->pipe.stages[k].fn(w->pipe.cfg, w->sig);
+        w->u->trace(w->cfg, k, w->sig, w->t, w->n_t);
+    }
+    uint64_t got[NP_UNIT_MAX_FIELDS], want[NP_UNIT_MAX_FIELDS];
+    w->u->sig_get_out(w->cfg, w->sig, got);
+    w->u->eval(w->cfg, in, want);
+    for (unsigned k = 0; k < h->fields.n_out; k++)
+        NP_CHECK(got[k] == want[k], "%s: stages and eval differ in %s", w->u->name, h->fields.out[k].name);
+}
+
+static void widths_config(const np_unit *u, const char *spec, int print)
+{
+    static widths w; /* large: kept off the stack */
+    np_vec_header h;
+    if (header(&h, u, spec) != 0)
+        return;
+    memset(&w, 0, sizeof w);
+    w.u = u;
+    w.cfg = &h.cfg;
+    w.n_ops = u->datapath(&h.cfg, w.ops, MAX_OPS);
+    NP_CHECK(w.n_ops <= MAX_OPS, "%s: declaration of %zu ops", u->name, w.n_ops);
+    if (w.n_ops > MAX_OPS)
+        return;
+    w.n_t = np_widths_traces(w.ops, w.n_ops, w.t);
+    if (u->pipe_init(&w.pipe, &h.cfg) != 0 || !(w.sig = malloc(w.pipe.sig_size))) {
+        NP_CHECK(0, "%s: pipe init", u->name);
+        return;
+    }
+    np_vecgen g;
+    np_vec_rec rec;
+    char err[NP_VEC_ERRLEN];
+    uint64_t n = 0;
+    if (np_vecgen_init(&g, &h, 1, 7, print ? WIDTH_RANDOM : WIDTH_RANDOM_OTHER, err, sizeof err) == 0) {
+        for (; np_vecgen_next(&g, &rec); n++)
+            widths_input(&w, &h, rec.w[NP_VEC_IN]);
+        np_vecgen_free(&g);
+    } else {
+        NP_CHECK(0, "%s: %s", u->name, err);
+    }
+    char what[320];
+    snprintf(what, sizeof what, "%s [%s]", u->name, h.cfg_text);
+    unsigned bad = np_widths_judge(w.ops, w.n_ops, w.t, NP_CONF_WIDTH_MARGIN, what, print);
+    printf("%s [%s]: %zu traced signals over %" PRIu64 " inputs: %s\n", u->name, h.cfg_text, w.n_t, n,
+           bad ? "FAILED" : "every declared width holds, margin <= 1");
+    free(w.sig);
+    np_pipe_free(&w.pipe);
+}
+
+static int datapath_widths(const np_unit *u, const np_conf_env *e)
+{
+    (void)e;
+    if (!u->datapath || !u->trace || u->stream) {
+        printf("%s: skipped: %s\n", u->name,
+               !u->datapath ? "no datapath declared (np_unit.datapath)"
+                            : "no trace of the pipe's signals (np_unit.trace); the unit's own test traces them");
+        return NP_TEST_SKIP;
+    }
+    const char *cfgs[MAX_CONFIGS];
+    unsigned nc = configs_of(u, cfgs);
+    for (unsigned c = 0; c < nc; c++)
+        widths_config(u, cfgs[c], c == 0);
+    return 0;
+}
+
+/* --- cfg_roundtrip --- */
+
+static int cfg_roundtrip(const np_unit *u, const np_conf_env *e)
+{
+    (void)e;
+    const char *cfgs[MAX_CONFIGS];
+    unsigned nc = configs_of(u, cfgs);
+    for (unsigned c = 0; c < nc; c++) {
+        np_vec_header a, b;
+        if (header(&a, u, cfgs[c]) != 0 || header(&b, u, a.cfg_text) != 0)
+            continue;
+        NP_CHECK(strcmp(a.cfg_text, b.cfg_text) == 0, "%s: '%s' formats as '%s', which configures to '%s'", u->name,
+                 cfgs[c], a.cfg_text, b.cfg_text);
+        NP_CHECK(memcmp(&a.fields, &b.fields, sizeof a.fields) == 0, "%s '%s': fields differ after the round trip",
+                 u->name, a.cfg_text);
+        /* Same configuration, same bits: the boundary cases through both. */
+        uint64_t (*in)[NP_UNIT_MAX_FIELDS] = calloc(4096, sizeof *in);
+        size_t nb = in ? u->boundary(&a.cfg, in, 4096) : 0;
+        for (size_t i = 0; i < nb && i < 4096; i++) {
+            uint64_t oa[NP_UNIT_MAX_FIELDS], ob[NP_UNIT_MAX_FIELDS], ra[NP_UNIT_MAX_FIELDS], rb[NP_UNIT_MAX_FIELDS];
+            np_vec_compute(&a, in[i], oa, ra);
+            np_vec_compute(&b, in[i], ob, rb);
+            NP_CHECK(memcmp(oa, ob, a.fields.n_out * sizeof oa[0]) == 0 &&
+                         memcmp(ra, rb, a.fields.n_out * sizeof ra[0]) == 0,
+                     "%s '%s': boundary case %zu differs after the round trip", u->name, a.cfg_text, i);
+        }
+        free(in);
+        printf("%s: '%s' -> '%s' -> '%s'\n", u->name, cfgs[c], a.cfg_text, b.cfg_text);
+    }
+    /*
+     * Every key of the table: its ends and its default, where the unit's
+     * consistency check allows them, survive the round trip; one past the
+     * top is refused naming the key (an enumeration takes words instead);
+     * a key given twice is refused naming it.
+     */
+    unsigned keys = 0, values = 0;
+    for (const np_unit_key *k = u->keys; k && k->name; k++, keys++) {
+        unsigned v3[3] = { k->lo, k->hi, k->def };
+        for (unsigned i = 0; i < 3 && !k->word; i++) {
+            char spec[96], text[64];
+            np_vec_header a, b;
+            snprintf(spec, sizeof spec, "%s=%u", k->name, v3[i]);
+            np_unit_cfg cfg;
+            char why[256];
+            if (np_unit_configure(u, &cfg, spec, why, sizeof why) != 0)
+                continue; /* inconsistent with the other keys' defaults */
+            if (header(&a, u, spec) != 0 || header(&b, u, a.cfg_text) != 0)
+                continue;
+            np_unit_key_text(k, &a.cfg, text, sizeof text);
+            NP_CHECK(strcmp(a.cfg_text, b.cfg_text) == 0 && np_unit_key_get(k, &a.cfg) == v3[i],
+                     "%s: %s gives '%s' (%s=%s), which configures to '%s'", u->name, spec, a.cfg_text, k->name, text,
+                     b.cfg_text);
+            values++;
+        }
+        char spec[256], why[256] = "";
+        np_unit_cfg cfg;
+        if (!k->word && k->hi < 4000000000u) {
+            snprintf(spec, sizeof spec, "%s=%u", k->name, k->hi + 1u);
+            NP_CHECK(np_unit_configure(u, &cfg, spec, why, sizeof why) != 0 && strstr(why, k->name),
+                     "%s: %s accepted or the refusal does not name the key: '%s'", u->name, spec, why);
+        }
+        np_vec_header d;
+        if (header(&d, u, "") == 0) {
+            char val[64];
+            np_unit_key_text(k, &d.cfg, val, sizeof val);
+            snprintf(spec, sizeof spec, "%s=%s,%s=%s", k->name, val, k->name, val);
+            NP_CHECK(np_unit_configure(u, &cfg, spec, why, sizeof why) != 0 && strstr(why, k->name),
+                     "%s: %s accepted or the refusal does not name the key: '%s'", u->name, spec, why);
+        }
+    }
+    printf("%s: %u keys; %u end and default values round-trip; past the top and twice refused by name\n", u->name,
+           keys, values);
+    /* An unknown key is refused with its name. */
+    np_unit_cfg cfg;
+    char err[256] = "";
+    NP_CHECK(np_unit_configure(u, &cfg, "no_such_key=1", err, sizeof err) != 0 && strstr(err, "no_such_key"),
+             "%s: unknown key accepted or not named: '%s'", u->name, err);
+    printf("%s: unknown key refused: %s\n", u->name, err);
+    return 0;
+}
+
+/* --- golden_vectors --- */
+
+static void golden_one(const np_unit *u, const np_conf_env *e, const char *dir, const char *name, unsigned level,
+                       uint64_t seed, const char *ext)
+{
+    char set[4400], vec[4400], out[4096], err[NP_VEC_ERRLEN];
+    snprintf(set, sizeof set, "%s/%s", dir, name);
+    /* The configuration is the one the set's text file names. */
+    snprintf(vec, sizeof vec, "%.*s.vec", (int)(strlen(set) - strlen(ext) - 1), set);
+    np_vec_reader r;
+    if (np_vec_open(&r, vec) != 0) {
+        NP_CHECK(0, "%s", r.L.err);
+        return;
+    }
+    np_vec_header h;
+    int ok = header(&h, u, r.h.cfg_text) == 0;
+    np_vec_close(&r);
+    if (!ok)
+        return;
+    work_path(out, sizeof out, e, u, name);
+    np_vec_format fmt = strcmp(ext, "vec") == 0 ? NP_VEC_TEXT : NP_VEC_READMEMH;
+    np_vec_output o = { out, fmt };
+    if (np_vec_generate(&h, level, seed, UINT64_MAX, &o, 1, err, sizeof err) != 0) {
+        NP_CHECK(0, "%s: %s", u->name, err);
+        return;
+    }
+    int same = same_bytes(out, set);
+    NP_CHECK(same, "regenerated %s differs from %s\nrefresh with: noisepipe vectors --unit %s --seed %" PRIu64
+             " --level %u --format %s -o %s", out, set, u->name, seed, level, fmt == NP_VEC_TEXT ? "text" : "readmemh",
+             set);
+    printf("%s: regenerated level %u seed %" PRIu64 " (%" PRIu64 " vectors): %s %s\n", u->name, level, seed, h.count,
+           same ? "identical to" : "DIFFERS from", set);
+    remove(out);
+}
+
+static int golden_vectors(const np_unit *u, const np_conf_env *e)
+{
+    char dir[4096];
+    snprintf(dir, sizeof dir, "%s/%s", e->vec_dir, u->name);
+    DIR *d = opendir(dir);
+    unsigned sets = 0;
+    for (struct dirent *de; d && (de = readdir(d)) != NULL;) {
+        char tail[16];
+        unsigned level;
+        uint64_t seed;
+        size_t nl = strlen(u->name);
+        int used = 0;
+        if (strncmp(de->d_name, u->name, nl) != 0 ||
+            sscanf(de->d_name + nl, "-l%u-seed%" SCNu64 ".%15s%n", &level, &seed, tail, &used) != 3 ||
+            de->d_name[nl + (size_t)used] != '\0' || (strcmp(tail, "vec") != 0 && strcmp(tail, "memh") != 0))
+            continue;
+        golden_one(u, e, dir, de->d_name, level, seed, tail);
+        if (strcmp(tail, "vec") != 0)
+            continue;
+        sets++;
+        /* The checked-in set verifies: the model's outputs through the cycle model, the reference's tolerance. */
+        char path[8192];
+        snprintf(path, sizeof path, "%s/%s", dir, de->d_name);
+        for (int traffic = 1; traffic >= 0; traffic--) {
+            np_verify_opts vo = { "conformance", 10, -1.0, traffic, 1, NULL };
+            FILE *sink = tmpfile();
+            int rc = np_verify(path, &vo, sink ? sink : stdout);
+            if (sink)
+                fclose(sink);
+            NP_CHECK(rc == 0, "%s: noisepipe verify%s %s fails (%d)", u->name, traffic ? "" : " --no-stalls", path, rc);
+        }
+        printf("%s: %s verifies with random stalls and without\n", u->name, de->d_name);
+    }
+    if (d)
+        closedir(d);
+    NP_CHECK(sets > 0, "%s: no golden vector set in %s; check one in: noisepipe vectors --unit %s --seed 1 -o %s/%s-l1-seed1.vec",
+             u->name, dir, u->name, dir, u->name);
+    return 0;
+}
+
+/* --- kat --- */
+
+static int kat(const np_unit *u, const np_conf_env *e)
+{
+    char path[4096], err[1024];
+    snprintf(path, sizeof path, "%s/%s_kat.inc", e->kat_dir, u->name);
+    int rc = np_kat_check(path, err, sizeof err);
+    NP_CHECK(rc == 0, "%s: %s%s", u->name, err,
+             rc < 0 ? "; a unit checks in its table: gen_kat UNIT -o testbench/UNIT_kat.inc" : "");
+    if (rc == 0)
+        printf("%s: %s regenerated byte for byte\n", u->name, path);
+    return 0;
+}
+
+const np_conf_check np_conf_checks[] = {
+    { "cycle_vs_bitexact", cycle_vs_bitexact },
+    { "datapath_widths", datapath_widths },
+    { "cfg_roundtrip", cfg_roundtrip },
+    { "golden_vectors", golden_vectors },
+    { "kat", kat },
+    { NULL, NULL },
+};
+
+const np_conf_check *np_conf_find(const char *name)
+{
+    for (const np_conf_check *c = np_conf_checks; c->name; c++)
+        if (strcmp(c->name, name) == 0)
+            return c;
+    return NULL;
+}
