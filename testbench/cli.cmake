@@ -25,3 +25,19 @@ add_test(NAME cli.progress_forced
   COMMAND sh -c "\"$0\" sweep --unit classic3 --z 0 --x-cells 0:1 --progress 2>&1 >/dev/null | grep -q '^sweep: 100.0%' || { echo 'no progress line'; exit 1; }
                  test -z \"$(\"$0\" sweep --unit classic3 --z 0 --x-cells 0:1 --quiet 2>&1 >/dev/null)\" || { echo '--quiet printed progress'; exit 1; }"
           $<TARGET_FILE:noisepipe>)
+
+# -o through np_outfile end to end (issue 11 item 1): a FIFO is streamed to and
+# stays a FIFO, /dev/full is exit 2, a directory is exit 2 naming it, a
+# symbolic link is written through and stays a link.
+add_test(NAME cli.vectors_output_kinds
+  COMMAND sh -c "d=\"$1\"; rm -rf \"$d\"; mkdir -p \"$d\" && mkfifo \"$d/p\" || exit 1
+                 ( wc -l < \"$d/p\" > \"$d/n\" ) & r=$!
+                 \"$0\" vectors --unit classic3 -n 5 -o \"$d/p\" || { echo 'fifo: exit'; exit 1; }
+                 wait $r; test -p \"$d/p\" || { echo 'the FIFO was replaced'; exit 1; }
+                 test \"$(cat \"$d/n\")\" -gt 100 || { echo 'the reader got too little'; exit 1; }
+                 if test -w /dev/full; then \"$0\" vectors --unit classic3 -n 5 -o /dev/full 2>/dev/null; s=$?; test $s -eq 2 || { echo \"/dev/full: exit $s\"; exit 1; }; test -c /dev/full || exit 1; fi
+                 \"$0\" vectors --unit classic3 -n 5 -o \"$d\" 2> \"$d.err\"; s=$?; test $s -eq 2 && grep -q 'is a directory' \"$d.err\" || { echo \"dir: exit $s\"; exit 1; }
+                 : > \"$d/t\"; ln -s t \"$d/l\"
+                 \"$0\" vectors --unit classic3 -n 5 -o \"$d/l\" && test -L \"$d/l\" && test -s \"$d/t\" || { echo 'symlink'; exit 1; }
+                 ls \"$d\" | grep -q tmp && { echo 'a temporary file was left'; exit 1; }; exit 0"
+          $<TARGET_FILE:noisepipe> ${CMAKE_CURRENT_BINARY_DIR}/cli_outkinds)

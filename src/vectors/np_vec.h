@@ -27,6 +27,7 @@
 
 #include "np_fixed.h"
 #include "np_rng.h"
+#include "np_outfile.h"
 #include "np_unit.h"
 
 #ifdef __cplusplus
@@ -184,17 +185,18 @@ typedef struct np_vec_writer {
     unsigned n_cols;
     unsigned word_bits; /* READMEMH/COE: 1 + every IN and OUT width */
     uint64_t n;         /* transactions written */
-    int atomic;         /* writing tmp, renamed to path on success */
-    char path[4096], tmp[4096 + 32];
+    np_outfile out;     /* the file (np_outfile.h: atomic for a regular file, streamed to a FIFO) */
     char line[NP_VEC_MAX_COLS * 17 + 320]; /* longest line or packed word */
     char err[NP_VEC_ERRLEN];
 } np_vec_writer;
 
 /*
  * Start writing h->count transactions in format fmt to path (NULL or "-" =
- * stdout; a file is written to a temporary name and renamed into place by
- * np_vec_writer_close, so a failed run leaves no partial file behind), and
- * write the header. 0, or -1 with w->err.
+ * stdout) through np_outfile: a regular file is written to a temporary name
+ * and renamed into place by np_vec_writer_close, so a failed or interrupted
+ * run leaves no partial file behind; a FIFO or device is streamed to; a
+ * symbolic link is written through; a directory is refused. Then write the
+ * header. 0, or -1 with w->err.
  */
 int np_vec_writer_open(np_vec_writer *w, const char *path, np_vec_format fmt,
                        const np_vec_header *h);

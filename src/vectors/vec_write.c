@@ -19,7 +19,7 @@
 
 static int werr(np_vec_writer *w, const char *what)
 {
-    snprintf(w->err, sizeof w->err, "%.300s: %.80s: %.100s", w->atomic ? w->path : "<stdout>", what,
+    snprintf(w->err, sizeof w->err, "%.300s: %.80s: %.100s", w->out.is_stdout ? "<stdout>" : w->out.path, what,
              strerror(errno));
     return -1;
 }
@@ -95,27 +95,11 @@ int np_vec_writer_open(np_vec_writer *w, const char *path, np_vec_format fmt,
     w->n_cols = np_vec_columns(h, mask, w->cols);
     unsigned bits[NP_VEC_MAX_COLS + 1];
     w->word_bits = np__vec_sum_bits(bits, word_layout(w, bits));
-    if (!path || strcmp(path, "-") == 0) {
-        w->f = stdout;
-    } else {
-        if (strlen(path) >= sizeof w->path) {
-            snprintf(w->err, sizeof w->err, "%.64s...: path too long", path);
-            return -1;
-        }
-        snprintf(w->path, sizeof w->path, "%s", path);
-        snprintf(w->tmp, sizeof w->tmp, "%s.tmp%ld", path, (long)getpid());
-        w->atomic = 1;
-        int fd = open(w->tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-        if (fd < 0 || !(w->f = fdopen(fd, "w"))) {
-            snprintf(w->err, sizeof w->err, "cannot write %.300s: %.100s", path, strerror(errno));
-            if (fd >= 0) {
-                close(fd);
-                unlink(w->tmp);
-            }
-            return -1;
-        }
-        setvbuf(w->f, NULL, _IOFBF, (size_t)1 << 16);
+    if (np_outfile_open(&w->out, path, "w") != 0) {
+        snprintf(w->err, sizeof w->err, "cannot write %.400s", w->out.err);
+        return -1;
     }
+    w->f = w->out.f;
     write_header(w);
     return 0;
 }
@@ -161,22 +145,14 @@ int np_vec_writer_close(np_vec_writer *w, int commit)
     int rc = 0;
     if (commit && w->n != w->h->count) {
         snprintf(w->err, sizeof w->err, "%.300s: wrote %llu transactions, but the header says %llu",
-                 w->atomic ? w->path : "<stdout>", (unsigned long long)w->n,
+                 w->out.is_stdout ? "<stdout>" : w->out.path, (unsigned long long)w->n,
                  (unsigned long long)w->h->count);
         rc = -1;
     }
-    if (!w->atomic) {
-        if ((fflush(w->f) != 0 || ferror(w->f)) && rc == 0)
-            rc = werr(w, "write error");
-        return rc;
+    if (np_outfile_close(&w->out, commit && rc == 0) != 0 && rc == 0) {
+        snprintf(w->err, sizeof w->err, "%.400s", w->out.err);
+        rc = -1;
     }
-    int bad = ferror(w->f);
-    if ((fclose(w->f) != 0 || bad) && rc == 0)
-        rc = werr(w, "write error");
     w->f = NULL;
-    if (commit && rc == 0 && rename(w->tmp, w->path) != 0)
-        rc = werr(w, "cannot rename the finished file into place");
-    if (!commit || rc != 0)
-        unlink(w->tmp);
     return rc;
 }
