@@ -1,0 +1,144 @@
+# SPDX-License-Identifier: MIT
+# Reference RTL (rtl_model/verilog/) under Icarus Verilog and Verilator;
+# docs/rtl.md says what each test checks. Names:
+#   rtl.<unit>.<sim>.build[.<fault>]       compile the bench (fixture)
+#   rtl.<unit>.gen.<level>.<cfg>           vectors at that configuration (fixture)
+#   rtl.<unit>.<sim>.golden.default        the checked-in golden set
+#   rtl.<unit>.<sim>.<level>.<cfg>         a set generated at <cfg> (l1: ~4k, l2: ~10^6 vectors)
+#   rtl.<unit>.<sim>.<fault>               the bench on a fault-injected RTL copy must fail
+# Verilator tests are labelled "nosan" (the C sanitizers do not reach them,
+# and the sanitizer pass need not pay for their builds); so is the slow Icarus
+# level-2 run. Without iverilog or verilator the tests report themselves skipped.
+find_program(NP_VERILATOR verilator)
+if(NOT NP_VERILATOR)
+  message(STATUS "verilator not found: the rtl.*.verilator.* tests will be skipped (apt-get install verilator)")
+endif()
+set(NP_RTL_SRC ${PROJECT_SOURCE_DIR}/rtl_model/verilog)
+set(NP_RTL_TB ${CMAKE_CURRENT_SOURCE_DIR}/rtl)
+set(NP_RTL_WORK ${CMAKE_CURRENT_BINARY_DIR}/rtl)
+set(NP_RTL_RUN ${NP_RTL_TB}/rtl_run.cmake)
+set(NP_RTL_PIPE_SRC ${NP_RTL_SRC}/np_pipe_in_reg.v ${NP_RTL_SRC}/np_pipe_skid.v)
+
+# np_rtl_test(name tool expect pattern labels command...): expect pass or fail.
+function(np_rtl_test name tool expect pattern labels)
+  string(JOIN "|" cmd ${ARGN})
+  add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} "-DTOOL=${tool}" -DEXPECT=${expect}
+    "-DPATTERN=${pattern}" "-DCMD=${cmd}" -P ${NP_RTL_RUN})
+  set_tests_properties(${name} PROPERTIES TIMEOUT 900 LABELS "${labels}"
+    SKIP_REGULAR_EXPRESSION "rtl: SKIPPED: ")
+endfunction()
+
+# Bench builds of <unit>: variant ok, fault_flip or fault_stall (the RTL with
+# `define NP_FAULT_FLIP / NP_FAULT_STALL). Fixtures rtl_<unit>_<sim>_<variant>.
+function(np_rtl_builds unit variant top)
+  set(defs)
+  if(variant STREQUAL "fault_flip")
+    set(defs -DNP_FAULT_FLIP)
+  elseif(variant STREQUAL "fault_stall")
+    set(defs -DNP_FAULT_STALL)
+  endif()
+  set(dir ${NP_RTL_WORK}/${unit}/${variant})
+  file(MAKE_DIRECTORY ${dir})
+  set(sfx "")
+  if(NOT variant STREQUAL "ok")
+    set(sfx ".${variant}")
+  endif()
+  np_rtl_test(rtl.${unit}.icarus.build${sfx} "${NP_IVERILOG}" pass "" "rtl"
+    ${NP_IVERILOG} -g2012 -Wall ${defs} -o ${dir}/${top}.vvp -s ${top} ${ARGN})
+  set_tests_properties(rtl.${unit}.icarus.build${sfx} PROPERTIES FIXTURES_SETUP rtl_${unit}_icarus_${variant})
+  np_rtl_test(rtl.${unit}.verilator.build${sfx} "${NP_VERILATOR}" pass "" "rtl;nosan"
+    ${NP_VERILATOR} --binary -j 1 -Wall ${defs} --top-module ${top} -Mdir ${dir}/verilator -o ${top} ${ARGN})
+  set_tests_properties(rtl.${unit}.verilator.build${sfx} PROPERTIES
+    FIXTURES_SETUP rtl_${unit}_verilator_${variant})
+endfunction()
+
+# Vector set <unit>-<level>-<cfg>.memh; config "" = the default. Fixture rtl_<unit>_<level>_<cfg>.
+function(np_rtl_gen unit level cfg config)
+  file(MAKE_DIRECTORY ${NP_RTL_WORK}/${unit}/vec)
+  set(args vectors --unit ${unit} --format readmemh -o ${NP_RTL_WORK}/${unit}/vec/${unit}-${level}-${cfg}.memh)
+  if(level STREQUAL "l2")
+    list(APPEND args --level 2)
+  else()
+    list(APPEND args --level 1)
+  endif()
+  if(config)
+    list(APPEND args --config ${config})
+  endif()
+  set(labels "rtl")
+  if(level STREQUAL "l2")
+    set(labels "rtl;nosan")
+  endif()
+  np_rtl_test(rtl.${unit}.gen.${level}.${cfg} "$<TARGET_FILE:noisepipe>" pass "" "${labels}"
+    $<TARGET_FILE:noisepipe> ${args})
+  set_tests_properties(rtl.${unit}.gen.${level}.${cfg} PROPERTIES FIXTURES_SETUP rtl_${unit}_${level}_${cfg})
+endfunction()
+
+# Run the bench of <sim> (icarus | verilator) on a vector file.
+#   np_rtl_check(name unit sim variant top cfg file expect pattern labels fixtures...)
+function(np_rtl_check name unit sim variant top cfg file expect pattern labels)
+  set(dir ${NP_RTL_WORK}/${unit}/${variant})
+  if(sim STREQUAL "icarus")
+    set(cmd ${NP_VVP} -n ${dir}/${top}.vvp)
+    set(tool "${NP_VVP}")
+  else()
+    set(cmd ${dir}/verilator/${top})
+    set(tool "${NP_VERILATOR}")
+  endif()
+  np_rtl_test(${name} "${tool}" ${expect} "${pattern}" "${labels}" ${cmd} +vectors=${file} +cfg=${cfg})
+  set_tests_properties(${name} PROPERTIES FIXTURES_REQUIRED "rtl_${unit}_${sim}_${variant};${ARGN}")
+endfunction()
+
+# ------------------------------------------------------------------ classic3
+set(NP_RTL_C3_SRC ${NP_RTL_TB}/rtl_classic3_tb.v ${NP_RTL_SRC}/np_classic3.v ${NP_RTL_PIPE_SRC})
+foreach(v ok fault_flip fault_stall)
+  np_rtl_builds(classic3 ${v} rtl_classic3_tb ${NP_RTL_C3_SRC})
+endforeach()
+# The configurations of rtl_classic3_tb.v's table (name and config string).
+set(NP_RTL_C3_CFGS default s_frac10 cheap exact_s wide_l opts)
+set(NP_RTL_C3_default "")
+set(NP_RTL_C3_s_frac10 "out_bits=8,s_frac=10,lerp_frac=11")
+set(NP_RTL_C3_cheap "out_bits=8,s_frac=4,lerp_frac=6")
+set(NP_RTL_C3_exact_s "out_bits=12,s_frac=24,lerp_frac=30")
+set(NP_RTL_C3_wide_l "out_bits=15,s_frac=3,lerp_frac=20")
+set(NP_RTL_C3_opts "") # the default configuration with the input register and the skid buffer
+set(c3_vec ${NP_RTL_WORK}/classic3/vec)
+set(c3_golden ${PROJECT_SOURCE_DIR}/vectors/classic3/classic3-l1-seed1.memh)
+set(pass_re "In [1-9][0-9]* tests, no errors found\\.")
+foreach(sim icarus verilator)
+  set(lab "rtl")
+  if(sim STREQUAL "verilator")
+    set(lab "rtl;nosan")
+  endif()
+  np_rtl_check(rtl.classic3.${sim}.golden.default classic3 ${sim} ok rtl_classic3_tb default
+    ${c3_golden} pass "${pass_re}" "${lab}")
+  np_rtl_check(rtl.classic3.${sim}.golden.opts classic3 ${sim} ok rtl_classic3_tb opts
+    ${c3_golden} pass "${pass_re}" "${lab}")
+  foreach(cfg ${NP_RTL_C3_CFGS})
+    if(NOT cfg STREQUAL "default" AND NOT cfg STREQUAL "opts")
+      np_rtl_check(rtl.classic3.${sim}.l1.${cfg} classic3 ${sim} ok rtl_classic3_tb ${cfg}
+        ${c3_vec}/classic3-l1-${cfg}.memh pass "${pass_re}" "${lab}" rtl_classic3_l1_${cfg})
+    endif()
+  endforeach()
+  # Faults: a flipped datapath bit and a broken stall path must each be caught.
+  np_rtl_check(rtl.classic3.${sim}.fault_flip classic3 ${sim} fault_flip rtl_classic3_tb default
+    ${c3_golden} fail "In 4224 tests, [1-9][0-9]* errors found" "${lab}")
+  np_rtl_check(rtl.classic3.${sim}.fault_stall classic3 ${sim} fault_stall rtl_classic3_tb default
+    ${c3_golden} fail "no output for 1000 cycles|errors found" "${lab}")
+endforeach()
+foreach(cfg ${NP_RTL_C3_CFGS})
+  if(NOT cfg STREQUAL "default" AND NOT cfg STREQUAL "opts")
+    np_rtl_gen(classic3 l1 ${cfg} "${NP_RTL_C3_${cfg}}")
+  endif()
+  if(NOT cfg STREQUAL "opts")
+    np_rtl_gen(classic3 l2 ${cfg} "${NP_RTL_C3_${cfg}}")
+    np_rtl_check(rtl.classic3.verilator.l2.${cfg} classic3 verilator ok rtl_classic3_tb ${cfg}
+      ${c3_vec}/classic3-l2-${cfg}.memh pass "In 10[0-9][0-9][0-9][0-9][0-9] tests, no errors found\\." "rtl;nosan"
+      rtl_classic3_l2_${cfg})
+  endif()
+endforeach()
+np_rtl_check(rtl.classic3.verilator.l2.opts classic3 verilator ok rtl_classic3_tb opts
+  ${c3_vec}/classic3-l2-default.memh pass "In 1031952 tests, no errors found\\." "rtl;nosan" rtl_classic3_l2_default)
+# Icarus runs about 5,000 vectors/s here: level 2 only at the default (minutes), labelled slow.
+np_rtl_check(rtl.classic3.icarus.l2.default classic3 icarus ok rtl_classic3_tb default
+  ${c3_vec}/classic3-l2-default.memh pass "In 1031952 tests, no errors found\\." "rtl;nosan;slow"
+  rtl_classic3_l2_default)
