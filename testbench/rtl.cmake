@@ -142,3 +142,57 @@ np_rtl_check(rtl.classic3.verilator.l2.opts classic3 verilator ok rtl_classic3_t
 np_rtl_check(rtl.classic3.icarus.l2.default classic3 icarus ok rtl_classic3_tb default
   ${c3_vec}/classic3-l2-default.memh pass "In 1031952 tests, no errors found\\." "rtl;nosan;slow"
   rtl_classic3_l2_default)
+
+# ------------------------------------------------------------------ co-simulation
+# The C side (np_cosim.c: the cycle model and the stimulus) is a static
+# library built with the project's flags; each Verilated build links it.
+add_library(np_cosim STATIC ${NP_RTL_TB}/np_cosim.c)
+target_link_libraries(np_cosim PUBLIC np_rtl_model)
+target_include_directories(np_cosim PRIVATE $<TARGET_PROPERTY:np_tools,INCLUDE_DIRECTORIES>)
+np_project_target(np_cosim)
+
+# np_rtl_cosim_build(unit name top rtl_defines gparams sources...): a Verilated
+# co-simulation binary ${NP_RTL_WORK}/<unit>/cosim-<name>/cosim. Fixture rtl_<unit>_cosim_<name>.
+function(np_rtl_cosim_build unit name top defs gparams)
+  set(dir ${NP_RTL_WORK}/${unit}/cosim-${name})
+  file(MAKE_DIRECTORY ${dir})
+  set(cflags "-I${NP_RTL_TB} -O2")
+  if(unit STREQUAL "simplex3")
+    string(APPEND cflags " -DNP_COSIM_SIMPLEX")
+  endif()
+  np_rtl_test(rtl.${unit}.cosim.build.${name} "${NP_VERILATOR}" pass "" "rtl;nosan"
+    ${NP_VERILATOR} --cc --exe --build -j 1 -Wall ${defs} ${gparams} --top-module ${top} --prefix Vcosim
+    -Mdir ${dir} -o cosim -CFLAGS ${cflags}
+    -LDFLAGS "$<TARGET_FILE:np_cosim> $<TARGET_FILE:np_rtl_model>"
+    ${NP_RTL_TB}/cosim_main.cpp ${ARGN})
+  set_tests_properties(rtl.${unit}.cosim.build.${name} PROPERTIES FIXTURES_SETUP rtl_${unit}_cosim_${name})
+endfunction()
+
+# np_rtl_cosim(test unit name expect pattern args...)
+function(np_rtl_cosim test unit name expect pattern)
+  np_rtl_test(${test} "${NP_VERILATOR}" ${expect} "${pattern}" "rtl;nosan"
+    ${NP_RTL_WORK}/${unit}/cosim-${name}/cosim --unit ${unit} ${ARGN})
+  set_tests_properties(${test} PROPERTIES FIXTURES_REQUIRED rtl_${unit}_cosim_${name})
+endfunction()
+
+set(NP_RTL_C3_RTL ${NP_RTL_SRC}/np_classic3.v ${NP_RTL_PIPE_SRC})
+np_rtl_cosim_build(classic3 default np_classic3 "" "" ${NP_RTL_C3_RTL})
+np_rtl_cosim_build(classic3 opts np_classic3 "" "-GIN_REG=1;-GOUT_SKID=1" ${NP_RTL_C3_RTL})
+np_rtl_cosim_build(classic3 cheap np_classic3 "" "-GS_FRAC=4;-GLERP_FRAC=6" ${NP_RTL_C3_RTL})
+np_rtl_cosim_build(classic3 fault_flip np_classic3 "-DNP_FAULT_FLIP" "" ${NP_RTL_C3_RTL})
+np_rtl_cosim_build(classic3 fault_stall np_classic3 "-DNP_FAULT_STALL" "" ${NP_RTL_C3_RTL})
+set(cosim_ok "cycles, .* 0 mismatches")
+np_rtl_cosim(rtl.classic3.cosim.default classic3 default pass "1000000 cycles, .* 0 mismatches"
+  --cfg 8,12,11 --cycles 1000000 --bench)
+np_rtl_cosim(rtl.classic3.cosim.stream classic3 default pass "${cosim_ok}"
+  --cfg 8,12,11 --cycles 100000 --no-traffic)
+np_rtl_cosim(rtl.classic3.cosim.opts classic3 opts pass "1000000 cycles, .* 0 mismatches"
+  --cfg 8,12,11 --in-reg --out-skid --cycles 1000000)
+np_rtl_cosim(rtl.classic3.cosim.cheap classic3 cheap pass "${cosim_ok}" --cfg 8,4,6 --cycles 300000)
+# The options must show: the plain model against the RTL with options differs.
+np_rtl_cosim(rtl.classic3.cosim.opts_differ classic3 opts fail "[1-9][0-9]* mismatches"
+  --cfg 8,12,11 --cycles 10000)
+np_rtl_cosim(rtl.classic3.cosim.fault_flip classic3 fault_flip fail "[1-9][0-9]* mismatches"
+  --cfg 8,12,11 --cycles 100000)
+np_rtl_cosim(rtl.classic3.cosim.fault_stall classic3 fault_stall fail "[1-9][0-9]* mismatches"
+  --cfg 8,12,11 --cycles 100000)
