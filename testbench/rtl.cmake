@@ -196,3 +196,66 @@ np_rtl_cosim(rtl.classic3.cosim.fault_flip classic3 fault_flip fail "[1-9][0-9]*
   --cfg 8,12,11 --cycles 100000)
 np_rtl_cosim(rtl.classic3.cosim.fault_stall classic3 fault_stall fail "[1-9][0-9]* mismatches"
   --cfg 8,12,11 --cycles 100000)
+
+# ------------------------------------------------------------------ simplex3
+set(NP_RTL_S3_RTL ${NP_RTL_SRC}/np_simplex3.v ${NP_RTL_PIPE_SRC})
+set(NP_RTL_S3_SRC ${NP_RTL_TB}/rtl_simplex3_tb.v ${NP_RTL_S3_RTL})
+foreach(v ok fault_flip fault_stall)
+  np_rtl_builds(simplex3 ${v} rtl_simplex3_tb ${NP_RTL_S3_SRC})
+endforeach()
+# The configurations of rtl_simplex3_tb.v's table.
+set(NP_RTL_S3_CFGS default f_only t1 narrow wide_p)
+set(NP_RTL_S3_default "")
+set(NP_RTL_S3_f_only "deriv=0")   # f only: 9 banks, default widths t23 p20 k22
+set(NP_RTL_S3_t1 "t_frac=1")      # the output saturates; intermediates exceed their nominal ranges
+set(NP_RTL_S3_narrow "out_bits=8,dout_bits=8")
+set(NP_RTL_S3_wide_p "out_bits=12,dout_bits=10,t_frac=10,p_frac=30,k_frac=4")
+set(s3_vec ${NP_RTL_WORK}/simplex3/vec)
+set(s3_golden ${PROJECT_SOURCE_DIR}/vectors/simplex3/simplex3-l1-seed1.memh)
+foreach(sim icarus verilator)
+  set(lab "rtl")
+  if(sim STREQUAL "verilator")
+    set(lab "rtl;nosan")
+  endif()
+  np_rtl_check(rtl.simplex3.${sim}.golden.default simplex3 ${sim} ok rtl_simplex3_tb default
+    ${s3_golden} pass "${pass_re}" "${lab}")
+  np_rtl_check(rtl.simplex3.${sim}.golden.opts simplex3 ${sim} ok rtl_simplex3_tb opts
+    ${s3_golden} pass "${pass_re}" "${lab}")
+  foreach(cfg ${NP_RTL_S3_CFGS})
+    if(NOT cfg STREQUAL "default")
+      np_rtl_check(rtl.simplex3.${sim}.l1.${cfg} simplex3 ${sim} ok rtl_simplex3_tb ${cfg}
+        ${s3_vec}/simplex3-l1-${cfg}.memh pass "${pass_re}" "${lab}" rtl_simplex3_l1_${cfg})
+    endif()
+  endforeach()
+  np_rtl_check(rtl.simplex3.${sim}.fault_flip simplex3 ${sim} fault_flip rtl_simplex3_tb default
+    ${s3_golden} fail "In 1520 tests, [1-9][0-9]* errors found" "${lab}")
+  np_rtl_check(rtl.simplex3.${sim}.fault_stall simplex3 ${sim} fault_stall rtl_simplex3_tb default
+    ${s3_golden} fail "no output for 1000 cycles|errors found" "${lab}")
+endforeach()
+foreach(cfg ${NP_RTL_S3_CFGS})
+  if(NOT cfg STREQUAL "default")
+    np_rtl_gen(simplex3 l1 ${cfg} "${NP_RTL_S3_${cfg}}")
+  endif()
+  np_rtl_gen(simplex3 l2 ${cfg} "${NP_RTL_S3_${cfg}}")
+  np_rtl_check(rtl.simplex3.verilator.l2.${cfg} simplex3 verilator ok rtl_simplex3_tb ${cfg}
+    ${s3_vec}/simplex3-l2-${cfg}.memh pass "In 10[0-9][0-9][0-9][0-9][0-9] tests, no errors found\\." "rtl;nosan"
+    rtl_simplex3_l2_${cfg})
+endforeach()
+np_rtl_check(rtl.simplex3.verilator.l2.opts simplex3 verilator ok rtl_simplex3_tb opts
+  ${s3_vec}/simplex3-l2-default.memh pass "In 10[0-9][0-9][0-9][0-9][0-9] tests, no errors found\\." "rtl;nosan"
+  rtl_simplex3_l2_default)
+
+# Co-simulation of simplex3: the default, f only, t_frac = 1, the options, a fault.
+np_rtl_cosim_build(simplex3 default np_simplex3 "" "" ${NP_RTL_S3_RTL})
+np_rtl_cosim_build(simplex3 f_only np_simplex3 "" "-GDERIV=0;-GT_FRAC=23;-GP_FRAC=20" ${NP_RTL_S3_RTL})
+np_rtl_cosim_build(simplex3 t1 np_simplex3 "" "-GT_FRAC=1" ${NP_RTL_S3_RTL})
+np_rtl_cosim_build(simplex3 opts np_simplex3 "" "-GIN_REG=1;-GOUT_SKID=1" ${NP_RTL_S3_RTL})
+np_rtl_cosim_build(simplex3 fault_stall np_simplex3 "-DNP_FAULT_STALL" "" ${NP_RTL_S3_RTL})
+np_rtl_cosim(rtl.simplex3.cosim.default simplex3 default pass "1000000 cycles, .* 0 mismatches"
+  --cfg 16,16,1,24,22,22 --cycles 1000000 --bench)
+np_rtl_cosim(rtl.simplex3.cosim.f_only simplex3 f_only pass "${cosim_ok}" --cfg 16,16,0,23,20,22 --cycles 300000)
+np_rtl_cosim(rtl.simplex3.cosim.t1 simplex3 t1 pass "${cosim_ok}" --cfg 16,16,1,1,22,22 --cycles 300000)
+np_rtl_cosim(rtl.simplex3.cosim.opts simplex3 opts pass "1000000 cycles, .* 0 mismatches"
+  --cfg 16,16,1,24,22,22 --in-reg --out-skid --cycles 1000000)
+np_rtl_cosim(rtl.simplex3.cosim.fault_stall simplex3 fault_stall fail "[1-9][0-9]* mismatches"
+  --cfg 16,16,1,24,22,22 --cycles 100000)
