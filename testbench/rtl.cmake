@@ -259,3 +259,31 @@ np_rtl_cosim(rtl.simplex3.cosim.opts simplex3 opts pass "1000000 cycles, .* 0 mi
   --cfg 16,16,1,24,22,22 --in-reg --out-skid --cycles 1000000)
 np_rtl_cosim(rtl.simplex3.cosim.fault_stall simplex3 fault_stall fail "[1-9][0-9]* mismatches"
   --cfg 16,16,1,24,22,22 --cycles 100000)
+
+# ------------------------------------------------------------------ DPI-C
+# The models as DPI-C functions (rtl_model/verilog/dpi), built as C with the
+# project's flags; the example SV bench links them (and the fault copy must fail).
+add_library(np_dpi STATIC ${NP_RTL_SRC}/dpi/np_dpi.c)
+target_link_libraries(np_dpi PUBLIC np_rtl_model)
+np_project_target(np_dpi)
+foreach(v ok fault_flip)
+  set(defs)
+  set(sfx "")
+  if(v STREQUAL "fault_flip")
+    set(defs -DNP_FAULT_FLIP)
+    set(sfx ".fault_flip")
+  endif()
+  set(dir ${NP_RTL_WORK}/dpi/${v})
+  file(MAKE_DIRECTORY ${dir})
+  np_rtl_test(rtl.dpi.build${sfx} "${NP_VERILATOR}" pass "" "rtl;nosan"
+    ${NP_VERILATOR} --binary -j 1 -Wall ${defs} --top-module dpi_classic3_tb -Mdir ${dir} -o dpi_classic3_tb
+    ${NP_RTL_SRC}/dpi/np_dpi_pkg.sv ${NP_RTL_TB}/dpi_classic3_tb.sv ${NP_RTL_C3_RTL}
+    $<TARGET_FILE:np_dpi> $<TARGET_FILE:np_rtl_model>)
+  set_tests_properties(rtl.dpi.build${sfx} PROPERTIES FIXTURES_SETUP rtl_dpi_${v})
+endforeach()
+np_rtl_test(rtl.dpi.classic3 "${NP_VERILATOR}" pass "200000 transactions in [0-9]+ cycles: 0 scoreboard errors"
+  "rtl;nosan" ${NP_RTL_WORK}/dpi/ok/dpi_classic3_tb)
+set_tests_properties(rtl.dpi.classic3 PROPERTIES FIXTURES_REQUIRED rtl_dpi_ok)
+np_rtl_test(rtl.dpi.classic3.fault_flip "${NP_VERILATOR}" fail "[1-9][0-9]* scoreboard errors, [1-9][0-9]* lock-step mismatches"
+  "rtl;nosan" ${NP_RTL_WORK}/dpi/fault_flip/dpi_classic3_tb)
+set_tests_properties(rtl.dpi.classic3.fault_flip PROPERTIES FIXTURES_REQUIRED rtl_dpi_fault_flip)
