@@ -113,6 +113,10 @@ foreach(sim icarus verilator)
     ${c3_golden} pass "${pass_re}" "${lab}")
   np_rtl_check(rtl.classic3.${sim}.golden.opts classic3 ${sim} ok rtl_classic3_tb opts
     ${c3_golden} pass "${pass_re}" "${lab}")
+  foreach(g cheap wide_l)  # the checked-in sets at non-default configurations
+    np_rtl_check(rtl.classic3.${sim}.golden.${g} classic3 ${sim} ok rtl_classic3_tb ${g}
+      ${PROJECT_SOURCE_DIR}/vectors/classic3/classic3-l1-seed1-${g}.memh pass "${pass_re}" "${lab}")
+  endforeach()
   foreach(cfg ${NP_RTL_C3_CFGS})
     if(NOT cfg STREQUAL "default" AND NOT cfg STREQUAL "opts")
       np_rtl_check(rtl.classic3.${sim}.l1.${cfg} classic3 ${sim} ok rtl_classic3_tb ${cfg}
@@ -204,12 +208,13 @@ foreach(v ok fault_flip fault_stall)
   np_rtl_builds(simplex3 ${v} rtl_simplex3_tb ${NP_RTL_S3_SRC})
 endforeach()
 # The configurations of rtl_simplex3_tb.v's table.
-set(NP_RTL_S3_CFGS default f_only t1 narrow wide_p)
+set(NP_RTL_S3_CFGS default f_only t1 narrow wide_p coarse)
 set(NP_RTL_S3_default "")
 set(NP_RTL_S3_f_only "deriv=0")   # f only: 9 banks, default widths t23 p20 k22
 set(NP_RTL_S3_t1 "t_frac=1")      # the output saturates; intermediates exceed their nominal ranges
 set(NP_RTL_S3_narrow "out_bits=8,dout_bits=8")
 set(NP_RTL_S3_wide_p "out_bits=12,dout_bits=10,t_frac=10,p_frac=30,k_frac=4")
+set(NP_RTL_S3_coarse "t_frac=20,p_frac=14,k_frac=16")  # checked-in set: catches e_neg_after, kd_3kf, tau_rounded
 set(s3_vec ${NP_RTL_WORK}/simplex3/vec)
 set(s3_golden ${PROJECT_SOURCE_DIR}/vectors/simplex3/simplex3-l1-seed1.memh)
 foreach(sim icarus verilator)
@@ -221,6 +226,10 @@ foreach(sim icarus verilator)
     ${s3_golden} pass "${pass_re}" "${lab}")
   np_rtl_check(rtl.simplex3.${sim}.golden.opts simplex3 ${sim} ok rtl_simplex3_tb opts
     ${s3_golden} pass "${pass_re}" "${lab}")
+  foreach(g t1 coarse)
+    np_rtl_check(rtl.simplex3.${sim}.golden.${g} simplex3 ${sim} ok rtl_simplex3_tb ${g}
+      ${PROJECT_SOURCE_DIR}/vectors/simplex3/simplex3-l1-seed1-${g}.memh pass "${pass_re}" "${lab}")
+  endforeach()
   foreach(cfg ${NP_RTL_S3_CFGS})
     if(NOT cfg STREQUAL "default")
       np_rtl_check(rtl.simplex3.${sim}.l1.${cfg} simplex3 ${sim} ok rtl_simplex3_tb ${cfg}

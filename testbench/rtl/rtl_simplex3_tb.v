@@ -10,7 +10,7 @@
 // their clock held), so one Verilated build serves every configuration.
 //
 //   +vectors=FILE   the $readmemh vector file (required)
-//   +cfg=NAME       default | f_only | t1 | narrow | wide_p | opts
+//   +cfg=NAME       default | f_only | t1 | narrow | wide_p | opts | coarse
 //   +bubble=B +stall=S   input bubbles and output stalls, in 1/8 (default 2, 2)
 //   +seed=N         the bubble/stall generator's seed (xorshift32, default 1)
 //
@@ -25,7 +25,7 @@
 // reads files and keeps counts, so blocking assignments are intended there.
 /* verilator lint_off BLKSEQ */
 module rtl_simplex3_tb;
-    localparam integer NCFG = 6;
+    localparam integer NCFG = 7;
     localparam integer MAX_ERRORS = 20;
     function [8*8-1:0] cfg_name;
         input integer k;
@@ -35,7 +35,8 @@ module rtl_simplex3_tb;
             2: cfg_name = "t1";
             3: cfg_name = "narrow";
             4: cfg_name = "wide_p";
-            default: cfg_name = "opts";
+            5: cfg_name = "opts";
+            default: cfg_name = "coarse";
         endcase
     endfunction
 
@@ -68,6 +69,7 @@ module rtl_simplex3_tb;
     `NP_DUT(3, 8, 8, 1, 16, 14, 14, 0, 0)
     `NP_DUT(4, 12, 10, 1, 10, 30, 4, 0, 0)
     `NP_DUT(5, 16, 16, 1, 24, 22, 22, 1, 1)
+    `NP_DUT(6, 16, 16, 1, 20, 14, 16, 0, 0)
 
     wire in_ready = in_ready_k[sel];
     wire out_valid = out_valid_k[sel];
