@@ -5,11 +5,18 @@
 // out_valid and, when valid, every output word, every cycle.
 //
 //   cosim --unit classic3 --cfg 8,12,11 [--in-reg] [--out-skid] [--cycles N]
-//         [--seed S] [--no-traffic] [--bench]
+//         [--seed S] [--no-traffic] [--bench] [--trace FILE]
 // --cfg lists the configuration the RTL was Verilated with (-G parameters),
 // in the order of np_cosim_open. --bench also times the two models alone on
 // the same stimulus and prints their cycles/s. Exit status 0: no mismatch;
 // 1: a mismatch (the first 10 are printed); 2: bad usage.
+//
+// --trace FILE writes the cycle-level trace of the run (the ports, which
+// both models drive identically when there is no mismatch), one line per
+// cycle, after '#' header lines:
+//   cycle in_valid in_ready x y z out_valid out_ready out...
+// decimal cycle, 0/1 handshake bits, hex x y z (4 digits) and, when
+// out_valid, each output word in hex (ceil(bits/4) digits), else '-'.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -83,7 +90,7 @@ int usage()
 
 int main(int argc, char **argv)
 {
-    const char *unit = nullptr, *cfg = nullptr;
+    const char *unit = nullptr, *cfg = nullptr, *trace_path = nullptr;
     int in_reg = 0, out_skid = 0, traffic = 1, bench = 0;
     unsigned long long cycles = 1000000, seed = 1;
     for (int i = 1; i < argc; i++) {
@@ -94,6 +101,7 @@ int main(int argc, char **argv)
         else if (a == "--out-skid") out_skid = 1;
         else if (a == "--no-traffic") traffic = 0;
         else if (a == "--bench") bench = 1;
+        else if (a == "--trace" && i + 1 < argc) trace_path = argv[++i];
         else if (a == "--cycles" && i + 1 < argc) cycles = std::strtoull(argv[++i], nullptr, 10);
         else if (a == "--seed" && i + 1 < argc) seed = std::strtoull(argv[++i], nullptr, 10);
         else if (a.rfind("+verilator", 0) == 0) continue;
@@ -117,6 +125,19 @@ int main(int argc, char **argv)
     Rtl rtl;
     rtl.reset();
 
+    FILE *trace = nullptr;
+    if (trace_path) {
+        trace = std::fopen(trace_path, "w");
+        if (!trace) {
+            std::fprintf(stderr, "cosim: cannot write %s\n", trace_path);
+            return 2;
+        }
+        std::fprintf(trace, "# noisepipe cycle trace 1\n# unit %s\n# config %s%s%s\n# seed %llu\n", unit, cfg,
+                     in_reg ? " in_reg" : "", out_skid ? " out_skid" : "", seed);
+        std::fprintf(trace, "# columns cycle in_valid in_ready x y z out_valid out_ready");
+        for (unsigned k = 0; k < nout; k++) std::fprintf(trace, " out%u(%u bits)", k, np_cosim_out_bits(m, k));
+        std::fprintf(trace, "\n");
+    }
     unsigned long long mismatches = 0, compared = 0;
     np_cosim_cycle c{};
     uint32_t ro[NP_COSIM_OUTS];
@@ -141,9 +162,21 @@ int main(int argc, char **argv)
                 std::printf("\n");
             }
         }
+        if (trace) {
+            std::fprintf(trace, "%llu %d %d %04x %04x %04x %d %d", cy, c.in_valid, c.in_ready, c.x, c.y, c.z,
+                         c.out_valid, c.out_ready);
+            for (unsigned k = 0; k < nout; k++) {
+                if (c.out_valid)
+                    std::fprintf(trace, " %0*x", (int)((np_cosim_out_bits(m, k) + 3) / 4), c.out[k]);
+                else
+                    std::fprintf(trace, " -");
+            }
+            std::fprintf(trace, "\n");
+        }
         rtl.edge();
         np_cosim_clock(m, &c);
     }
+    if (trace && std::fclose(trace) == 0) std::printf("trace: %llu cycles written to %s\n", cycles, trace_path);
     double t_both = seconds_since(t0);
     uint64_t n[5];
     np_cosim_counts(m, n);
