@@ -299,3 +299,24 @@ set_tests_properties(rtl.dpi.classic3 PROPERTIES FIXTURES_REQUIRED rtl_dpi_ok)
 np_rtl_test(rtl.dpi.classic3.fault_flip "${NP_VERILATOR}" fail "[1-9][0-9]* scoreboard errors, [1-9][0-9]* lock-step mismatches"
   "rtl;nosan" ${NP_RTL_WORK}/dpi/fault_flip/dpi_classic3_tb)
 set_tests_properties(rtl.dpi.classic3.fault_flip PROPERTIES FIXTURES_REQUIRED rtl_dpi_fault_flip)
+
+# ------------------------------------------------------------------ synthesizable
+# Yosys elaborates each unit (default and with the options / f only), runs proc
+# and opt, and `check -assert` (no undriven or multiply driven signals, no logic loops).
+find_program(NP_YOSYS yosys)
+foreach(u "classic3;np_classic3;;default" "classic3;np_classic3;-set IN_REG 1 -set OUT_SKID 1;opts"
+          "simplex3;np_simplex3;;default" "simplex3;np_simplex3;-set DERIV 0 -set T_FRAC 23 -set P_FRAC 20;f_only")
+  list(GET u 0 unit)
+  list(GET u 1 top)
+  list(GET u 2 params)
+  list(GET u 3 name)
+  string(JOIN " " pipe_src ${NP_RTL_PIPE_SRC})
+  set(ys "read_verilog ${NP_RTL_SRC}/${top}.v ${pipe_src}\n")
+  if(params)
+    string(APPEND ys "chparam ${params} ${top}\n")
+  endif()
+  string(APPEND ys "hierarchy -top ${top}\nproc\nopt\ncheck -assert\n")
+  file(WRITE ${NP_RTL_WORK}/yosys-${unit}-${name}.ys "${ys}")
+  np_rtl_test(rtl.${unit}.yosys_check.${name} "${NP_YOSYS}" pass "" "rtl"
+    ${NP_YOSYS} -q -s ${NP_RTL_WORK}/yosys-${unit}-${name}.ys)
+endforeach()
