@@ -191,7 +191,8 @@ size_t np_classic_datapath(const np_classic_cfg *cfg, np_op *ops, size_t max)
     OP("L", NULL, NP_OP_REG, 1, 3 * 8 + 8 * 6 + 3 * 16 + 1, 0, 0, 0, 0); /* u,v,w; h; squares; valid */
     /* H: select p, q, r (3:1 muxes of s9 offsets), conditional negates, two additions. */
     OP("H", NULL, NP_OP_MUX, 24, 9, 3, 0, 0, 0);
-    OP("H", NULL, NP_OP_NEG, 24, 9, 0, 0, 0, 1);
+    /* -(-256) = 256 needs s10: the conditional negates are 10 bits wide (np_classic3.v). */
+    OP("H", NULL, NP_OP_NEG, 24, 10, 0, 0, 0, 1);
     OP("H", NULL, NP_OP_ADD, 8, 10, 0, 0, 0, 2);
     OP("H", "g", NP_OP_ADD, 8, NP_CLASSIC_G_BITS, 0, NP_CLASSIC_G_BITS, 1, 3);
     /* S second half, in parallel: 768 - 2u, the 16 x 10 product, rounding to WS bits. */

@@ -15,7 +15,10 @@
  *   h[c]       u6         corner hash, corner c = 4*cz + 2*cy + cx (cx = 1:
  *                         the corner at i + 1), np_hash6 of the wrapped point.
  *   d          s9  Q1.8   corner-relative offset: u for cx = 0, u - 256 for
- *                         cx = 1; range [-256, 255].
+ *                         cx = 1; range [-256, 255]. Its conditional negate
+ *                         needs s10 (-(-256) = 256); a -256 only ever meets
+ *                         an interpolation weight s(0) = 0, so a 9-bit negate
+ *                         would change g but no output bit (misread.classic3).
  *   g[c]       s11 Q2.8   gradient contribution, exact, range [-768, 768].
  *   s{x,y,z}   u(WS+1) Q1.WS  s-curve of the fraction, from the exact 24-bit
  *                         product u^2 (768 - 2u) = 2^24 s(u/256) rounded to WS

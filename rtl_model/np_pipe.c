@@ -17,7 +17,8 @@ int np_pipe_init(np_pipe *p, const np_stage_desc *stages, unsigned depth, size_t
     p->regs = calloc(depth, sig_size);
     p->valid = calloc(depth, 1);
     p->moves = calloc(depth, 1);
-    if (!p->regs || !p->valid || !p->moves) {
+    p->opt = calloc(3, sig_size);
+    if (!p->regs || !p->valid || !p->moves || !p->opt) {
         np_pipe_free(p);
         return -1;
     }
@@ -29,8 +30,9 @@ void np_pipe_free(np_pipe *p)
     free(p->regs);
     free(p->valid);
     free(p->moves);
+    free(p->opt);
     p->regs = NULL;
-    p->valid = p->moves = NULL;
+    p->valid = p->moves = p->opt = NULL;
 }
 
 void np_pipe_reset(np_pipe *p)
@@ -38,6 +40,8 @@ void np_pipe_reset(np_pipe *p)
     memset(p->valid, 0, p->depth);
     memset(p->moves, 0, p->depth);
     memset(p->regs, 0, p->depth * p->sig_size);
+    memset(p->opt, 0, 3 * p->sig_size);
+    p->in_v = p->main_v = p->skid_v = 0;
     memset(&p->stats, 0, sizeof p->stats);
 }
 
@@ -46,21 +50,26 @@ unsigned np_pipe_occupancy(const np_pipe *p)
     unsigned n = 0;
     for (unsigned k = 0; k < p->depth; k++)
         n += p->valid[k];
-    return n;
+    return n + p->in_v + p->main_v + p->skid_v;
 }
 
 static unsigned char *bank(np_pipe *p, unsigned k) { return p->regs + (size_t)k * p->sig_size; }
+/* The option registers: 0 input register, 1 skid main, 2 skid spare. */
+static unsigned char *opt(np_pipe *p, unsigned k) { return p->opt + (size_t)k * p->sig_size; }
 
 void np_pipe_eval(np_pipe *p, np_pipe_port *port)
 {
     unsigned last = p->depth - 1u;
-    /* Ready chain, from the output back to the input. */
-    p->moves[last] = (unsigned char)(p->valid[last] && port->out_ready);
+    /* Ready chain, from the output back to the input. The skid buffer's
+     * ready is its spare register being empty: a flip-flop. */
+    int last_ready = p->out_skid ? !p->skid_v : port->out_ready;
+    p->moves[last] = (unsigned char)(p->valid[last] && last_ready);
     for (unsigned k = last; k-- > 0;)
         p->moves[k] = (unsigned char)(p->valid[k] && (!p->valid[k + 1] || p->moves[k + 1]));
-    port->in_ready = !p->valid[0] || p->moves[0];
-    port->out_valid = p->valid[last];
-    port->out_sig = bank(p, last);
+    p->core_in_ready = (unsigned char)(!p->valid[0] || p->moves[0]);
+    port->in_ready = p->in_reg ? (!p->in_v || p->core_in_ready) : p->core_in_ready;
+    port->out_valid = p->out_skid ? p->main_v : p->valid[last];
+    port->out_sig = p->out_skid ? opt(p, 1) : bank(p, last);
 }
 
 void np_pipe_clock(np_pipe *p, const np_pipe_port *port)
@@ -71,8 +80,24 @@ void np_pipe_clock(np_pipe *p, const np_pipe_port *port)
         p->stats.out_stalls++;
     if (port->in_ready && !port->in_valid)
         p->stats.in_bubbles++;
-    if (p->moves[last])
+    if (port->out_valid && port->out_ready)
         p->stats.delivered++;
+    if (p->out_skid) {
+        /* Before the banks move: the last bank's content is what it offers. */
+        if (!p->main_v || port->out_ready) {
+            if (p->skid_v) {
+                memcpy(opt(p, 1), opt(p, 2), p->sig_size);
+                p->skid_v = 0;
+            } else {
+                p->main_v = p->valid[last];
+                if (p->valid[last])
+                    memcpy(opt(p, 1), bank(p, last), p->sig_size);
+            }
+        } else if (p->valid[last] && !p->skid_v) {
+            memcpy(opt(p, 2), bank(p, last), p->sig_size);
+            p->skid_v = 1;
+        }
+    }
     /* Back to front, so each bank reads its predecessor's old content. */
     for (unsigned k = last; k > 0; k--) {
         if (p->valid[k] && !p->moves[k])
@@ -85,14 +110,22 @@ void np_pipe_clock(np_pipe *p, const np_pipe_port *port)
             p->valid[k] = 0;
         }
     }
-    if (port->in_ready) {
-        if (port->in_valid) {
-            memcpy(bank(p, 0), port->in_sig, p->sig_size);
+    if (port->in_ready && port->in_valid)
+        p->stats.accepted++;
+    int in_valid = p->in_reg ? p->in_v : port->in_valid;
+    const void *in_sig = p->in_reg ? opt(p, 0) : port->in_sig;
+    if (p->core_in_ready) {
+        if (in_valid) {
+            memcpy(bank(p, 0), in_sig, p->sig_size);
             p->stages[0].fn(p->cfg, bank(p, 0));
             p->valid[0] = 1;
-            p->stats.accepted++;
         } else {
             p->valid[0] = 0;
         }
+    }
+    if (p->in_reg && port->in_ready) {
+        p->in_v = (unsigned char)(port->in_valid != 0);
+        if (port->in_valid)
+            memcpy(opt(p, 0), port->in_sig, p->sig_size);
     }
 }

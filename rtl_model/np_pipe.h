@@ -19,9 +19,21 @@
  * Backpressure propagates combinationally from out_ready back to in_ready
  * through the bank valid bits (a bank may load when it is empty or when its
  * content moves on in the same cycle), so bubbles are squeezed out and the
- * pipe accepts one input per clock whenever downstream is ready. An RTL
- * version with a long chain would cut this ready path with skid buffers; the
- * transfer sequence seen at the ports would be the same.
+ * pipe accepts one input per clock whenever downstream is ready.
+ *
+ * Two options (fields of np_pipe, set after np_pipe_init; both 0 by default,
+ * which is the pipe above, bit for bit and cycle for cycle). The reference
+ * RTL (rtl_model/verilog/np_pipe_in_reg.v, np_pipe_skid.v) has the same two:
+ *   in_reg   an input register: one more bank in front of stage 0 that holds
+ *            the port's bundle as it came in, with the same load rule.
+ *            Latency + 1. in_ready = !in_valid_reg | (bank 0 loads): the ready
+ *            path is one bank longer and still combinational.
+ *   out_skid a two-entry skid buffer after the last bank (a main register
+ *            that drives the output port and a skid register that catches
+ *            the transfer already under way when out_ready drops). Latency
+ *            + 1, full throughput. The last bank sees "ready" = !skid_valid,
+ *            a register: no combinational path from out_ready to in_ready.
+ * The order of transfers at the ports is unchanged by either option.
  *
  * A testbench cycle is: fill the port's inputs, np_pipe_eval() (combinational
  * outputs), consume the output if it transfers, then np_pipe_clock() (edge).
@@ -72,6 +84,11 @@ typedef struct np_pipe {
     unsigned char *valid; /* depth valid bits */
     unsigned char *moves; /* scratch: bank k transfers onward this cycle */
     np_pipe_stats stats;
+    /* Options (see above); set after np_pipe_init, before use. */
+    int in_reg, out_skid;
+    unsigned char *opt;   /* 3 bundles: input register, skid main, skid spare */
+    unsigned char in_v, main_v, skid_v;
+    unsigned char core_in_ready; /* scratch: bank 0 loads this cycle */
 } np_pipe;
 
 /* 0 on success, -1 when out of memory. cfg is kept by reference. */
@@ -80,7 +97,10 @@ int np_pipe_init(np_pipe *p, const np_stage_desc *stages, unsigned depth, size_t
 void np_pipe_free(np_pipe *p);
 /* Empty every bank and clear the statistics (synchronous reset). */
 void np_pipe_reset(np_pipe *p);
-static inline unsigned np_pipe_latency(const np_pipe *p) { return p->depth; }
+static inline unsigned np_pipe_latency(const np_pipe *p)
+{
+    return p->depth + (p->in_reg ? 1u : 0u) + (p->out_skid ? 1u : 0u);
+}
 /* Number of banks holding valid data. */
 unsigned np_pipe_occupancy(const np_pipe *p);
 

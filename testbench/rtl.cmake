@@ -1,0 +1,322 @@
+# SPDX-License-Identifier: MIT
+# Reference RTL (rtl_model/verilog/) under Icarus Verilog and Verilator;
+# docs/rtl.md says what each test checks. Names:
+#   rtl.<unit>.<sim>.build[.<fault>]       compile the bench (fixture)
+#   rtl.<unit>.gen.<level>.<cfg>           vectors at that configuration (fixture)
+#   rtl.<unit>.<sim>.golden.default        the checked-in golden set
+#   rtl.<unit>.<sim>.<level>.<cfg>         a set generated at <cfg> (l1: ~4k, l2: ~10^6 vectors)
+#   rtl.<unit>.<sim>.<fault>               the bench on a fault-injected RTL copy must fail
+# Verilator tests are labelled "nosan" (the C sanitizers do not reach them,
+# and the sanitizer pass need not pay for their builds); so is the slow Icarus
+# level-2 run. Without iverilog or verilator the tests report themselves skipped.
+find_program(NP_VERILATOR verilator)
+if(NOT NP_VERILATOR)
+  message(STATUS "verilator not found: the rtl.*.verilator.* tests will be skipped (apt-get install verilator)")
+endif()
+set(NP_RTL_SRC ${PROJECT_SOURCE_DIR}/rtl_model/verilog)
+set(NP_RTL_TB ${CMAKE_CURRENT_SOURCE_DIR}/rtl)
+set(NP_RTL_WORK ${CMAKE_CURRENT_BINARY_DIR}/rtl)
+set(NP_RTL_RUN ${NP_RTL_TB}/rtl_run.cmake)
+set(NP_RTL_PIPE_SRC ${NP_RTL_SRC}/np_pipe_in_reg.v ${NP_RTL_SRC}/np_pipe_skid.v)
+
+# np_rtl_test(name tool expect pattern labels command...): expect pass or fail.
+function(np_rtl_test name tool expect pattern labels)
+  string(JOIN "|" cmd ${ARGN})
+  add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} "-DTOOL=${tool}" -DEXPECT=${expect}
+    "-DPATTERN=${pattern}" "-DCMD=${cmd}" -P ${NP_RTL_RUN})
+  set_tests_properties(${name} PROPERTIES TIMEOUT 900 LABELS "${labels}"
+    SKIP_REGULAR_EXPRESSION "rtl: SKIPPED: ")
+endfunction()
+
+# Bench builds of <unit>: variant ok, fault_flip or fault_stall (the RTL with
+# `define NP_FAULT_FLIP / NP_FAULT_STALL). Fixtures rtl_<unit>_<sim>_<variant>.
+function(np_rtl_builds unit variant top)
+  set(defs)
+  if(variant STREQUAL "fault_flip")
+    set(defs -DNP_FAULT_FLIP)
+  elseif(variant STREQUAL "fault_stall")
+    set(defs -DNP_FAULT_STALL)
+  endif()
+  set(dir ${NP_RTL_WORK}/${unit}/${variant})
+  file(MAKE_DIRECTORY ${dir})
+  set(sfx "")
+  if(NOT variant STREQUAL "ok")
+    set(sfx ".${variant}")
+  endif()
+  np_rtl_test(rtl.${unit}.icarus.build${sfx} "${NP_IVERILOG}" pass "" "rtl"
+    ${NP_IVERILOG} -g2012 -Wall ${defs} -o ${dir}/${top}.vvp -s ${top} ${ARGN})
+  set_tests_properties(rtl.${unit}.icarus.build${sfx} PROPERTIES FIXTURES_SETUP rtl_${unit}_icarus_${variant})
+  np_rtl_test(rtl.${unit}.verilator.build${sfx} "${NP_VERILATOR}" pass "" "rtl;nosan"
+    ${NP_VERILATOR} --binary -j 1 -Wall ${defs} --top-module ${top} -Mdir ${dir}/verilator -o ${top} ${ARGN})
+  set_tests_properties(rtl.${unit}.verilator.build${sfx} PROPERTIES
+    FIXTURES_SETUP rtl_${unit}_verilator_${variant})
+endfunction()
+
+# Vector set <unit>-<level>-<cfg>.memh; config "" = the default. Fixture rtl_<unit>_<level>_<cfg>.
+function(np_rtl_gen unit level cfg config)
+  file(MAKE_DIRECTORY ${NP_RTL_WORK}/${unit}/vec)
+  set(args vectors --unit ${unit} --format readmemh -o ${NP_RTL_WORK}/${unit}/vec/${unit}-${level}-${cfg}.memh)
+  if(level STREQUAL "l2")
+    list(APPEND args --level 2)
+  else()
+    list(APPEND args --level 1)
+  endif()
+  if(config)
+    list(APPEND args --config ${config})
+  endif()
+  set(labels "rtl")
+  if(level STREQUAL "l2")
+    set(labels "rtl;nosan")
+  endif()
+  np_rtl_test(rtl.${unit}.gen.${level}.${cfg} "$<TARGET_FILE:noisepipe>" pass "" "${labels}"
+    $<TARGET_FILE:noisepipe> ${args})
+  set_tests_properties(rtl.${unit}.gen.${level}.${cfg} PROPERTIES FIXTURES_SETUP rtl_${unit}_${level}_${cfg})
+endfunction()
+
+# Run the bench of <sim> (icarus | verilator) on a vector file.
+#   np_rtl_check(name unit sim variant top cfg file expect pattern labels fixtures...)
+function(np_rtl_check name unit sim variant top cfg file expect pattern labels)
+  set(dir ${NP_RTL_WORK}/${unit}/${variant})
+  if(sim STREQUAL "icarus")
+    set(cmd ${NP_VVP} -n ${dir}/${top}.vvp)
+    set(tool "${NP_VVP}")
+  else()
+    set(cmd ${dir}/verilator/${top})
+    set(tool "${NP_VERILATOR}")
+  endif()
+  np_rtl_test(${name} "${tool}" ${expect} "${pattern}" "${labels}" ${cmd} +vectors=${file} +cfg=${cfg})
+  set_tests_properties(${name} PROPERTIES FIXTURES_REQUIRED "rtl_${unit}_${sim}_${variant};${ARGN}")
+endfunction()
+
+# ------------------------------------------------------------------ classic3
+set(NP_RTL_C3_SRC ${NP_RTL_TB}/rtl_classic3_tb.v ${NP_RTL_SRC}/np_classic3.v ${NP_RTL_PIPE_SRC})
+foreach(v ok fault_flip fault_stall)
+  np_rtl_builds(classic3 ${v} rtl_classic3_tb ${NP_RTL_C3_SRC})
+endforeach()
+# The configurations of rtl_classic3_tb.v's table (name and config string).
+set(NP_RTL_C3_CFGS default s_frac10 cheap exact_s wide_l opts)
+set(NP_RTL_C3_default "")
+set(NP_RTL_C3_s_frac10 "out_bits=8,s_frac=10,lerp_frac=11")
+set(NP_RTL_C3_cheap "out_bits=8,s_frac=4,lerp_frac=6")
+set(NP_RTL_C3_exact_s "out_bits=12,s_frac=24,lerp_frac=30")
+set(NP_RTL_C3_wide_l "out_bits=15,s_frac=3,lerp_frac=20")
+set(NP_RTL_C3_opts "") # the default configuration with the input register and the skid buffer
+set(c3_vec ${NP_RTL_WORK}/classic3/vec)
+set(c3_golden ${PROJECT_SOURCE_DIR}/vectors/classic3/classic3-l1-seed1.memh)
+set(pass_re "In [1-9][0-9]* tests, no errors found\\.")
+foreach(sim icarus verilator)
+  set(lab "rtl")
+  if(sim STREQUAL "verilator")
+    set(lab "rtl;nosan")
+  endif()
+  np_rtl_check(rtl.classic3.${sim}.golden.default classic3 ${sim} ok rtl_classic3_tb default
+    ${c3_golden} pass "${pass_re}" "${lab}")
+  np_rtl_check(rtl.classic3.${sim}.golden.opts classic3 ${sim} ok rtl_classic3_tb opts
+    ${c3_golden} pass "${pass_re}" "${lab}")
+  foreach(g cheap wide_l)  # the checked-in sets at non-default configurations
+    np_rtl_check(rtl.classic3.${sim}.golden.${g} classic3 ${sim} ok rtl_classic3_tb ${g}
+      ${PROJECT_SOURCE_DIR}/vectors/classic3/classic3-l1-seed1-${g}.memh pass "${pass_re}" "${lab}")
+  endforeach()
+  foreach(cfg ${NP_RTL_C3_CFGS})
+    if(NOT cfg STREQUAL "default" AND NOT cfg STREQUAL "opts")
+      np_rtl_check(rtl.classic3.${sim}.l1.${cfg} classic3 ${sim} ok rtl_classic3_tb ${cfg}
+        ${c3_vec}/classic3-l1-${cfg}.memh pass "${pass_re}" "${lab}" rtl_classic3_l1_${cfg})
+    endif()
+  endforeach()
+  # Faults: a flipped datapath bit and a broken stall path must each be caught.
+  np_rtl_check(rtl.classic3.${sim}.fault_flip classic3 ${sim} fault_flip rtl_classic3_tb default
+    ${c3_golden} fail "In 4224 tests, [1-9][0-9]* errors found" "${lab}")
+  np_rtl_check(rtl.classic3.${sim}.fault_stall classic3 ${sim} fault_stall rtl_classic3_tb default
+    ${c3_golden} fail "no output for 1000 cycles|errors found" "${lab}")
+endforeach()
+foreach(cfg ${NP_RTL_C3_CFGS})
+  if(NOT cfg STREQUAL "default" AND NOT cfg STREQUAL "opts")
+    np_rtl_gen(classic3 l1 ${cfg} "${NP_RTL_C3_${cfg}}")
+  endif()
+  if(NOT cfg STREQUAL "opts")
+    np_rtl_gen(classic3 l2 ${cfg} "${NP_RTL_C3_${cfg}}")
+    np_rtl_check(rtl.classic3.verilator.l2.${cfg} classic3 verilator ok rtl_classic3_tb ${cfg}
+      ${c3_vec}/classic3-l2-${cfg}.memh pass "In 10[0-9][0-9][0-9][0-9][0-9] tests, no errors found\\." "rtl;nosan"
+      rtl_classic3_l2_${cfg})
+  endif()
+endforeach()
+np_rtl_check(rtl.classic3.verilator.l2.opts classic3 verilator ok rtl_classic3_tb opts
+  ${c3_vec}/classic3-l2-default.memh pass "In 1031952 tests, no errors found\\." "rtl;nosan" rtl_classic3_l2_default)
+# Icarus runs about 5,000 vectors/s here: level 2 only at the default (minutes), labelled slow.
+np_rtl_check(rtl.classic3.icarus.l2.default classic3 icarus ok rtl_classic3_tb default
+  ${c3_vec}/classic3-l2-default.memh pass "In 1031952 tests, no errors found\\." "rtl;nosan;slow"
+  rtl_classic3_l2_default)
+
+# ------------------------------------------------------------------ co-simulation
+# The C side (np_cosim.c: the cycle model and the stimulus) is a static
+# library built with the project's flags; each Verilated build links it.
+add_library(np_cosim STATIC ${NP_RTL_TB}/np_cosim.c)
+target_link_libraries(np_cosim PUBLIC np_rtl_model)
+target_include_directories(np_cosim PRIVATE $<TARGET_PROPERTY:np_tools,INCLUDE_DIRECTORIES>)
+np_project_target(np_cosim)
+
+# np_rtl_cosim_build(unit name top rtl_defines gparams sources...): a Verilated
+# co-simulation binary ${NP_RTL_WORK}/<unit>/cosim-<name>/cosim. Fixture rtl_<unit>_cosim_<name>.
+function(np_rtl_cosim_build unit name top defs gparams)
+  set(dir ${NP_RTL_WORK}/${unit}/cosim-${name})
+  file(MAKE_DIRECTORY ${dir})
+  set(cflags "-I${NP_RTL_TB} -O2")
+  if(unit STREQUAL "simplex3")
+    string(APPEND cflags " -DNP_COSIM_SIMPLEX")
+  endif()
+  np_rtl_test(rtl.${unit}.cosim.build.${name} "${NP_VERILATOR}" pass "" "rtl;nosan"
+    ${NP_VERILATOR} --cc --exe --build -j 1 -Wall ${defs} ${gparams} --top-module ${top} --prefix Vcosim
+    -Mdir ${dir} -o cosim -CFLAGS ${cflags}
+    -LDFLAGS "$<TARGET_FILE:np_cosim> $<TARGET_FILE:np_rtl_model>"
+    ${NP_RTL_TB}/cosim_main.cpp ${ARGN})
+  set_tests_properties(rtl.${unit}.cosim.build.${name} PROPERTIES FIXTURES_SETUP rtl_${unit}_cosim_${name})
+endfunction()
+
+# np_rtl_cosim(test unit name expect pattern args...)
+function(np_rtl_cosim test unit name expect pattern)
+  np_rtl_test(${test} "${NP_VERILATOR}" ${expect} "${pattern}" "rtl;nosan"
+    ${NP_RTL_WORK}/${unit}/cosim-${name}/cosim --unit ${unit} ${ARGN})
+  set_tests_properties(${test} PROPERTIES FIXTURES_REQUIRED rtl_${unit}_cosim_${name})
+endfunction()
+
+set(NP_RTL_C3_RTL ${NP_RTL_SRC}/np_classic3.v ${NP_RTL_PIPE_SRC})
+np_rtl_cosim_build(classic3 default np_classic3 "" "" ${NP_RTL_C3_RTL})
+np_rtl_cosim_build(classic3 opts np_classic3 "" "-GIN_REG=1;-GOUT_SKID=1" ${NP_RTL_C3_RTL})
+np_rtl_cosim_build(classic3 cheap np_classic3 "" "-GS_FRAC=4;-GLERP_FRAC=6" ${NP_RTL_C3_RTL})
+np_rtl_cosim_build(classic3 fault_flip np_classic3 "-DNP_FAULT_FLIP" "" ${NP_RTL_C3_RTL})
+np_rtl_cosim_build(classic3 fault_stall np_classic3 "-DNP_FAULT_STALL" "" ${NP_RTL_C3_RTL})
+set(cosim_ok "cycles, .* 0 mismatches")
+np_rtl_cosim(rtl.classic3.cosim.default classic3 default pass "1000000 cycles, .* 0 mismatches"
+  --cfg 8,12,11 --cycles 1000000 --bench)
+np_rtl_cosim(rtl.classic3.cosim.stream classic3 default pass "${cosim_ok}"
+  --cfg 8,12,11 --cycles 100000 --no-traffic)
+np_rtl_cosim(rtl.classic3.cosim.opts classic3 opts pass "1000000 cycles, .* 0 mismatches"
+  --cfg 8,12,11 --in-reg --out-skid --cycles 1000000)
+np_rtl_cosim(rtl.classic3.cosim.cheap classic3 cheap pass "${cosim_ok}" --cfg 8,4,6 --cycles 300000)
+# A cycle-level trace of a run (format: docs/rtl.md), 2000 cycles.
+np_rtl_cosim(rtl.classic3.cosim.trace classic3 default pass "trace: 2000 cycles written to"
+  --cfg 8,12,11 --cycles 2000 --trace ${NP_RTL_WORK}/classic3/cosim-trace.txt)
+# The options must show: the plain model against the RTL with options differs.
+np_rtl_cosim(rtl.classic3.cosim.opts_differ classic3 opts fail "[1-9][0-9]* mismatches"
+  --cfg 8,12,11 --cycles 10000)
+np_rtl_cosim(rtl.classic3.cosim.fault_flip classic3 fault_flip fail "[1-9][0-9]* mismatches"
+  --cfg 8,12,11 --cycles 100000)
+np_rtl_cosim(rtl.classic3.cosim.fault_stall classic3 fault_stall fail "[1-9][0-9]* mismatches"
+  --cfg 8,12,11 --cycles 100000)
+
+# ------------------------------------------------------------------ simplex3
+set(NP_RTL_S3_RTL ${NP_RTL_SRC}/np_simplex3.v ${NP_RTL_PIPE_SRC})
+set(NP_RTL_S3_SRC ${NP_RTL_TB}/rtl_simplex3_tb.v ${NP_RTL_S3_RTL})
+foreach(v ok fault_flip fault_stall)
+  np_rtl_builds(simplex3 ${v} rtl_simplex3_tb ${NP_RTL_S3_SRC})
+endforeach()
+# The configurations of rtl_simplex3_tb.v's table.
+set(NP_RTL_S3_CFGS default f_only t1 narrow wide_p coarse)
+set(NP_RTL_S3_default "")
+set(NP_RTL_S3_f_only "deriv=0")   # f only: 9 banks, default widths t23 p20 k22
+set(NP_RTL_S3_t1 "t_frac=1")      # the output saturates; intermediates exceed their nominal ranges
+set(NP_RTL_S3_narrow "out_bits=8,dout_bits=8")
+set(NP_RTL_S3_wide_p "out_bits=12,dout_bits=10,t_frac=10,p_frac=30,k_frac=4")
+set(NP_RTL_S3_coarse "t_frac=20,p_frac=14,k_frac=16")  # checked-in set: catches e_neg_after, kd_3kf, tau_rounded
+set(s3_vec ${NP_RTL_WORK}/simplex3/vec)
+set(s3_golden ${PROJECT_SOURCE_DIR}/vectors/simplex3/simplex3-l1-seed1.memh)
+foreach(sim icarus verilator)
+  set(lab "rtl")
+  if(sim STREQUAL "verilator")
+    set(lab "rtl;nosan")
+  endif()
+  np_rtl_check(rtl.simplex3.${sim}.golden.default simplex3 ${sim} ok rtl_simplex3_tb default
+    ${s3_golden} pass "${pass_re}" "${lab}")
+  np_rtl_check(rtl.simplex3.${sim}.golden.opts simplex3 ${sim} ok rtl_simplex3_tb opts
+    ${s3_golden} pass "${pass_re}" "${lab}")
+  foreach(g t1 coarse)
+    np_rtl_check(rtl.simplex3.${sim}.golden.${g} simplex3 ${sim} ok rtl_simplex3_tb ${g}
+      ${PROJECT_SOURCE_DIR}/vectors/simplex3/simplex3-l1-seed1-${g}.memh pass "${pass_re}" "${lab}")
+  endforeach()
+  foreach(cfg ${NP_RTL_S3_CFGS})
+    if(NOT cfg STREQUAL "default")
+      np_rtl_check(rtl.simplex3.${sim}.l1.${cfg} simplex3 ${sim} ok rtl_simplex3_tb ${cfg}
+        ${s3_vec}/simplex3-l1-${cfg}.memh pass "${pass_re}" "${lab}" rtl_simplex3_l1_${cfg})
+    endif()
+  endforeach()
+  np_rtl_check(rtl.simplex3.${sim}.fault_flip simplex3 ${sim} fault_flip rtl_simplex3_tb default
+    ${s3_golden} fail "In 1520 tests, [1-9][0-9]* errors found" "${lab}")
+  np_rtl_check(rtl.simplex3.${sim}.fault_stall simplex3 ${sim} fault_stall rtl_simplex3_tb default
+    ${s3_golden} fail "no output for 1000 cycles|errors found" "${lab}")
+endforeach()
+foreach(cfg ${NP_RTL_S3_CFGS})
+  if(NOT cfg STREQUAL "default")
+    np_rtl_gen(simplex3 l1 ${cfg} "${NP_RTL_S3_${cfg}}")
+  endif()
+  np_rtl_gen(simplex3 l2 ${cfg} "${NP_RTL_S3_${cfg}}")
+  np_rtl_check(rtl.simplex3.verilator.l2.${cfg} simplex3 verilator ok rtl_simplex3_tb ${cfg}
+    ${s3_vec}/simplex3-l2-${cfg}.memh pass "In 10[0-9][0-9][0-9][0-9][0-9] tests, no errors found\\." "rtl;nosan"
+    rtl_simplex3_l2_${cfg})
+endforeach()
+np_rtl_check(rtl.simplex3.verilator.l2.opts simplex3 verilator ok rtl_simplex3_tb opts
+  ${s3_vec}/simplex3-l2-default.memh pass "In 10[0-9][0-9][0-9][0-9][0-9] tests, no errors found\\." "rtl;nosan"
+  rtl_simplex3_l2_default)
+
+# Co-simulation of simplex3: the default, f only, t_frac = 1, the options, a fault.
+np_rtl_cosim_build(simplex3 default np_simplex3 "" "" ${NP_RTL_S3_RTL})
+np_rtl_cosim_build(simplex3 f_only np_simplex3 "" "-GDERIV=0;-GT_FRAC=23;-GP_FRAC=20" ${NP_RTL_S3_RTL})
+np_rtl_cosim_build(simplex3 t1 np_simplex3 "" "-GT_FRAC=1" ${NP_RTL_S3_RTL})
+np_rtl_cosim_build(simplex3 opts np_simplex3 "" "-GIN_REG=1;-GOUT_SKID=1" ${NP_RTL_S3_RTL})
+np_rtl_cosim_build(simplex3 fault_stall np_simplex3 "-DNP_FAULT_STALL" "" ${NP_RTL_S3_RTL})
+np_rtl_cosim(rtl.simplex3.cosim.default simplex3 default pass "1000000 cycles, .* 0 mismatches"
+  --cfg 16,16,1,24,22,22 --cycles 1000000 --bench)
+np_rtl_cosim(rtl.simplex3.cosim.f_only simplex3 f_only pass "${cosim_ok}" --cfg 16,16,0,23,20,22 --cycles 300000)
+np_rtl_cosim(rtl.simplex3.cosim.t1 simplex3 t1 pass "${cosim_ok}" --cfg 16,16,1,1,22,22 --cycles 300000)
+np_rtl_cosim(rtl.simplex3.cosim.opts simplex3 opts pass "1000000 cycles, .* 0 mismatches"
+  --cfg 16,16,1,24,22,22 --in-reg --out-skid --cycles 1000000)
+np_rtl_cosim(rtl.simplex3.cosim.fault_stall simplex3 fault_stall fail "[1-9][0-9]* mismatches"
+  --cfg 16,16,1,24,22,22 --cycles 100000)
+
+# ------------------------------------------------------------------ DPI-C
+# The models as DPI-C functions (rtl_model/verilog/dpi), built as C with the
+# project's flags; the example SV bench links them (and the fault copy must fail).
+add_library(np_dpi STATIC ${NP_RTL_SRC}/dpi/np_dpi.c)
+target_link_libraries(np_dpi PUBLIC np_rtl_model)
+np_project_target(np_dpi)
+foreach(v ok fault_flip)
+  set(defs)
+  set(sfx "")
+  if(v STREQUAL "fault_flip")
+    set(defs -DNP_FAULT_FLIP)
+    set(sfx ".fault_flip")
+  endif()
+  set(dir ${NP_RTL_WORK}/dpi/${v})
+  file(MAKE_DIRECTORY ${dir})
+  np_rtl_test(rtl.dpi.build${sfx} "${NP_VERILATOR}" pass "" "rtl;nosan"
+    ${NP_VERILATOR} --binary -j 1 -Wall ${defs} --top-module dpi_classic3_tb -Mdir ${dir} -o dpi_classic3_tb
+    ${NP_RTL_SRC}/dpi/np_dpi_pkg.sv ${NP_RTL_TB}/dpi_classic3_tb.sv ${NP_RTL_C3_RTL}
+    $<TARGET_FILE:np_dpi> $<TARGET_FILE:np_rtl_model>)
+  set_tests_properties(rtl.dpi.build${sfx} PROPERTIES FIXTURES_SETUP rtl_dpi_${v})
+endforeach()
+np_rtl_test(rtl.dpi.classic3 "${NP_VERILATOR}" pass "200000 transactions in [0-9]+ cycles: 0 scoreboard errors"
+  "rtl;nosan" ${NP_RTL_WORK}/dpi/ok/dpi_classic3_tb)
+set_tests_properties(rtl.dpi.classic3 PROPERTIES FIXTURES_REQUIRED rtl_dpi_ok)
+np_rtl_test(rtl.dpi.classic3.fault_flip "${NP_VERILATOR}" fail "[1-9][0-9]* scoreboard errors, [1-9][0-9]* lock-step mismatches"
+  "rtl;nosan" ${NP_RTL_WORK}/dpi/fault_flip/dpi_classic3_tb)
+set_tests_properties(rtl.dpi.classic3.fault_flip PROPERTIES FIXTURES_REQUIRED rtl_dpi_fault_flip)
+
+# ------------------------------------------------------------------ synthesizable
+# Yosys elaborates each unit (default and with the options / f only), runs proc
+# and opt, and `check -assert` (no undriven or multiply driven signals, no logic loops).
+find_program(NP_YOSYS yosys)
+foreach(u "classic3;np_classic3;;default" "classic3;np_classic3;-set IN_REG 1 -set OUT_SKID 1;opts"
+          "simplex3;np_simplex3;;default" "simplex3;np_simplex3;-set DERIV 0 -set T_FRAC 23 -set P_FRAC 20;f_only")
+  list(GET u 0 unit)
+  list(GET u 1 top)
+  list(GET u 2 params)
+  list(GET u 3 name)
+  string(JOIN " " pipe_src ${NP_RTL_PIPE_SRC})
+  set(ys "read_verilog ${NP_RTL_SRC}/${top}.v ${pipe_src}\n")
+  if(params)
+    string(APPEND ys "chparam ${params} ${top}\n")
+  endif()
+  string(APPEND ys "hierarchy -top ${top}\nproc\nopt\ncheck -assert\n")
+  file(WRITE ${NP_RTL_WORK}/yosys-${unit}-${name}.ys "${ys}")
+  np_rtl_test(rtl.${unit}.yosys_check.${name} "${NP_YOSYS}" pass "" "rtl"
+    ${NP_YOSYS} -q -s ${NP_RTL_WORK}/yosys-${unit}-${name}.ys)
+endforeach()

@@ -1,0 +1,65 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * np_cosim.h - the C side of the RTL co-simulation (cosim_main.cpp): a unit's
+ * cycle model (np_pipe) and the stimulus both sides get, from the project's
+ * generator (np_rng): random inputs, and random input bubbles and output
+ * stalls in phases of 16..271 cycles whose densities are each one of none,
+ * 1/8, 1/2 and 7/8 (the traffic of `noisepipe verify`). A presented input
+ * stays presented until it is accepted.
+ *
+ * A cycle: np_cosim_drive (stimulus), np_cosim_eval (the model's outputs),
+ * then the caller compares with the RTL, then np_cosim_clock (the edge).
+ * Plain C (compiled with the project's flags); the C++ harness includes it.
+ */
+#ifndef NP_COSIM_H
+#define NP_COSIM_H
+
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum { NP_COSIM_OUTS = 4 };
+
+typedef struct np_cosim_cycle {
+    /* stimulus, from np_cosim_drive */
+    int in_valid;
+    uint16_t x, y, z;
+    int out_ready;
+    /* the cycle model's outputs, from np_cosim_eval (out: outputs' words masked to their widths) */
+    int in_ready;
+    int out_valid;
+    uint32_t out[NP_COSIM_OUTS];
+} np_cosim_cycle;
+
+typedef struct np_cosim np_cosim;
+
+/*
+ * unit "classic3": p[0..2] = out_bits, s_frac, lerp_frac.
+ * unit "simplex3": p[0..5] = out_bits, dout_bits, deriv, t_frac, p_frac, k_frac.
+ * in_reg, out_skid: the pipe options (np_pipe.h). Returns NULL with a message
+ * in err (size errn) on a bad unit or configuration.
+ */
+np_cosim *np_cosim_open(const char *unit, const unsigned *p, unsigned np, int in_reg, int out_skid,
+                        uint64_t seed, char *err, unsigned errn);
+void np_cosim_close(np_cosim *c);
+/* Number of outputs of the unit (1 or 4) and the width of output k. */
+unsigned np_cosim_outputs(const np_cosim *c);
+unsigned np_cosim_out_bits(const np_cosim *c, unsigned k);
+/* Stimulus of this cycle; traffic 0 streams without bubbles or stalls. */
+void np_cosim_drive(np_cosim *c, np_cosim_cycle *cy, int traffic);
+void np_cosim_eval(np_cosim *c, np_cosim_cycle *cy);
+/* The edge: the model's clock and the stimulus's bookkeeping (np_cosim_accept). */
+void np_cosim_clock(np_cosim *c, const np_cosim_cycle *cy);
+/* The stimulus's bookkeeping alone (an input with in_valid && in_ready is
+ * taken), for a run of the RTL without the model. */
+void np_cosim_accept(np_cosim *c, const np_cosim_cycle *cy);
+/* Counts so far: cycles, accepted inputs, delivered outputs, bubbles, stalls. */
+void np_cosim_counts(const np_cosim *c, uint64_t counts[5]);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* NP_COSIM_H */

@@ -1,0 +1,43 @@
+# SPDX-License-Identifier: MIT
+# Driver of the rtl.* CTest cases (cmake -P): runs one command and judges it.
+#   -DCMD=a;b;c      the command (a CMake list; pass it with '|' for ';': -DCMD=a|b|c)
+#   -DEXPECT=pass    exit status 0 and the output matches PATTERN
+#   -DEXPECT=fail    a non-zero exit status and the output matches PATTERN: a
+#                    test that a fault is caught, for the reason it should be
+#   -DTOOL=path      the simulator the command needs; empty or NOTFOUND: the
+#                    test reports itself skipped (SKIP_REGULAR_EXPRESSION)
+#   -DOUT=file       optional: stdout of the command goes there as well
+cmake_minimum_required(VERSION 3.18)
+if(DEFINED TOOL AND (NOT TOOL OR TOOL MATCHES "NOTFOUND$"))
+  message("rtl: SKIPPED: simulator not found (Debian packages iverilog, verilator)")
+  return()
+endif()
+string(REPLACE "|" ";" cmd "${CMD}")
+execute_process(COMMAND ${cmd} OUTPUT_VARIABLE out ERROR_VARIABLE out RESULT_VARIABLE rc)
+string(LENGTH "${out}" len)
+if(len GREATER 6000)
+  string(SUBSTRING "${out}" 0 3000 a)
+  math(EXPR from "${len} - 3000")
+  string(SUBSTRING "${out}" ${from} -1 b)
+  set(out "${a}\n[...]\n${b}")
+endif()
+message("${out}")
+if(OUT)
+  file(WRITE "${OUT}" "${out}")
+endif()
+string(REPLACE ";" " " shown "${cmd}")
+if(EXPECT STREQUAL "pass")
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "rtl: failed (exit status ${rc}): ${shown}")
+  endif()
+elseif(EXPECT STREQUAL "fail")
+  if(rc EQUAL 0)
+    message(FATAL_ERROR "rtl: the fault was NOT caught (exit status 0): ${shown}")
+  endif()
+else()
+  message(FATAL_ERROR "rtl: EXPECT must be pass or fail")
+endif()
+if(PATTERN AND NOT out MATCHES "${PATTERN}")
+  message(FATAL_ERROR "rtl: exit status ${rc} as expected, but the output does not match '${PATTERN}': ${shown}")
+endif()
+message("rtl: ${EXPECT} as expected (exit status ${rc})")
