@@ -175,7 +175,8 @@ void np_render_legend_layout(unsigned w, np_render_legend *l)
     l->scale = s;
     l->height = 20 * s;
     l->x0 = 4 * s;
-    l->x1 = w - 1 - 20 * s;
+    /* Room on the right for "2 LSB"; x1 - x0 a multiple of 4, so each tick is exactly 0.5 LSB. */
+    l->x1 = l->x0 + (w - 1 - 20 * s - l->x0) / 4 * 4;
     l->y0 = 3 * s;
     l->y1 = 9 * s;
 }
