@@ -204,7 +204,7 @@ static void draw_text(uint8_t *img, unsigned w, unsigned x, unsigned y, unsigned
         const uint8_t *g = glyph(*t);
         for (unsigned r = 0; g && r < 5 * s; r++)
             for (unsigned c = 0; c < 3 * s; c++)
-                if (g[r / s] >> (2 - c / s) & 1u && x + c < w)
+                if (((unsigned)g[r / s] >> (2u - c / s) & 1u) && x + c < w)
                     memset(img + ((size_t)(y + r) * w + x + c) * 3, LEGEND_INK, 3);
     }
 }
