@@ -591,31 +591,47 @@ static uint8_t *png_read_back(const char *path, unsigned *w, unsigned *h, const 
     return px;
 }
 
-/* Every error PNG carries the colour bar: the heat map's end colours at its documented ends, and the scale as text. */
-static int error_colour_bar(void)
-{
+/* A seed scene rendered by both units at their defaults (render_default), and its release. */
+typedef struct seed_render {
     np_scene s;
     np_render_frame fr;
     np_render_run fd, tx;
-    if (render_default("wood", &s, &fr, &fd, &tx))
+} seed_render;
+
+static void seed_close(seed_render *r)
+{
+    np_render_run_free(&r->fd);
+    np_render_run_free(&r->tx);
+    np_render_frame_free(&r->fr);
+    np_scene_free(&r->s);
+}
+
+/* Every error PNG carries the colour bar: the heat map's end colours at its documented ends, and the scale as text. */
+static int error_colour_bar(void)
+{
+    seed_render R;
+    if (render_default("wood", &R.s, &R.fr, &R.fd, &R.tx))
         return 1;
+    const np_scene *s = &R.s;
+    const np_render_frame *fr = &R.fr;
+    const np_render_run *fd = &R.fd;
     char err[512], val[512];
     np_render_legend lg;
-    np_render_legend_layout(s.width, &lg);
-    NP_CHECK(lg.height > 0 && (lg.x1 - lg.x0) % 4 == 0 && lg.x0 < lg.x1 && lg.x1 < s.width && lg.y0 < lg.y1 && lg.y1 <= lg.height,
+    np_render_legend_layout(s->width, &lg);
+    NP_CHECK(lg.height > 0 && (lg.x1 - lg.x0) % 4 == 0 && lg.x0 < lg.x1 && lg.x1 < s->width && lg.y0 < lg.y1 && lg.y1 <= lg.height,
              "legend layout %u rows, x %u..%u, y %u..%u", lg.height, lg.x0, lg.x1, lg.y0, lg.y1);
     for (int rounded = 0; rounded < 2; rounded++) {
         const char *base = rounded ? "test_render_bar_cr" : "test_render_bar";
         char path[256];
-        NP_CHECK(np_render_write_error(base, &fr, "fdiff", fd.rgb, rounded, err, sizeof err) == 0, "%s", err);
+        NP_CHECK(np_render_write_error(base, fr, "fdiff", fd->rgb, rounded, err, sizeof err) == 0, "%s", err);
         snprintf(path, sizeof path, "%s.png", base);
         unsigned w = 0, h = 0;
         uint8_t *px = png_read_back(path, &w, &h, "noisepipe:scale", val, sizeof val);
-        NP_CHECK(px && w == s.width && h == s.height + lg.height, "%s: %ux%u, want %ux%u", path, w, h, s.width,
-                 s.height + lg.height);
+        NP_CHECK(px && w == s->width && h == s->height + lg.height, "%s: %ux%u, want %ux%u", path, w, h, s->width,
+                 s->height + lg.height);
         if (!px)
             continue;
-        unsigned top = s.height;
+        unsigned top = s->height;
         for (unsigned y = lg.y0; y < lg.y1; y++) {
             const uint8_t *lo = px + ((size_t)(top + y) * w + lg.x0) * 3, *hi = px + ((size_t)(top + y) * w + lg.x1) * 3;
             const uint8_t *mid = px + ((size_t)(top + y) * w + (lg.x0 + lg.x1) / 2) * 3;
@@ -645,10 +661,7 @@ static int error_colour_bar(void)
         snprintf(path, sizeof path, "%s.exr", base);
         remove(path);
     }
-    np_render_run_free(&fd);
-    np_render_run_free(&tx);
-    np_render_frame_free(&fr);
-    np_scene_free(&s);
+    seed_close(&R);
     return 0;
 }
 
@@ -659,25 +672,26 @@ static int error_colour_bar(void)
  */
 static int error_rounded(void)
 {
-    np_scene s;
-    np_render_frame fr;
-    np_render_run fd, tx;
-    if (render_default("wood", &s, &fr, &fd, &tx))
+    seed_render R;
+    if (render_default("wood", &R.s, &R.fr, &R.fd, &R.tx))
         return 1;
-    size_t n = (size_t)s.width * s.height;
+    const np_scene *s = &R.s;
+    const np_render_frame *fr = &R.fr;
+    const np_render_run *fd = &R.fd, *tx = &R.tx;
+    size_t n = (size_t)s->width * s->height;
     uint8_t *ref8 = malloc(3 * n);
-    np_render_ref_rgb8(&fr, ref8);
+    np_render_ref_rgb8(fr, ref8);
     const struct { const char *name; const uint8_t *rgb; uint64_t want; } k[3] = {
-        { "ref8", ref8, 0 }, { "fdiff", fd.rgb, fd.err.over_cr }, { "texel", tx.rgb, tx.err.over_cr } };
+        { "ref8", ref8, 0 }, { "fdiff", fd->rgb, fd->err.over_cr }, { "texel", tx->rgb, tx->err.over_cr } };
     np_render_err e;
-    np_render_error(&fr, ref8, &e);
+    np_render_error(fr, ref8, &e);
     NP_CHECK(e.over_cr == 0 && e.max_cr == 0 && e.max_lsb <= 0.5, "ref8: %llu differ, max %.3f",
              (unsigned long long)e.over_cr, e.max_lsb);
     for (int i = 0; i < 3; i++) {
         char err[512], rn[NP_IMAGE_MAX_CHANNELS][NP_IMAGE_NAME];
         unsigned w, h, nc;
         float *pl = NULL;
-        NP_CHECK(np_render_write_error("test_render_cr", &fr, k[i].name, k[i].rgb, 1, err, sizeof err) == 0, "%s", err);
+        NP_CHECK(np_render_write_error("test_render_cr", fr, k[i].name, k[i].rgb, 1, err, sizeof err) == 0, "%s", err);
         NP_CHECK(np_image_read_exr("test_render_cr.exr", &w, &h, &nc, rn, &pl, err, sizeof err) == 0, "%s", err);
         if (!pl)
             continue;
@@ -695,15 +709,12 @@ static int error_rounded(void)
                  (unsigned long long)nonzero, (unsigned long long)k[i].want, (unsigned long long)bad);
         free(pl);
     }
-    NP_CHECK(fd.err.over_cr > 0 && fd.err.over_cr < fd.err.samples / 100, "fdiff: %llu of %llu",
-             (unsigned long long)fd.err.over_cr, (unsigned long long)fd.err.samples);
+    NP_CHECK(fd->err.over_cr > 0 && fd->err.over_cr < fd->err.samples / 100, "fdiff: %llu of %llu",
+             (unsigned long long)fd->err.over_cr, (unsigned long long)fd->err.samples);
     remove("test_render_cr.exr");
     remove("test_render_cr.png");
     free(ref8);
-    np_render_run_free(&fd);
-    np_render_run_free(&tx);
-    np_render_frame_free(&fr);
-    np_scene_free(&s);
+    seed_close(&R);
     return 0;
 }
 
@@ -732,58 +743,59 @@ static int golden_hash(const char *scene, const char *image, char hex[65])
  */
 static int shading_view(void)
 {
-    np_scene s;
-    np_render_frame fr;
-    np_render_run fd, tx;
-    if (render_default("wood", &s, &fr, &fd, &tx))
+    seed_render R;
+    if (render_default("wood", &R.s, &R.fr, &R.fd, &R.tx))
         return 1;
-    size_t n = (size_t)s.width * s.height;
+    const np_scene *s = &R.s;
+    const np_render_frame *fr = &R.fr;
+    const np_render_run *fd = &R.fd;
+    size_t n = (size_t)s->width * s->height;
     char err[512], val[256], hex[65], want[65];
     uint8_t *copy = malloc(3 * n);
-    memcpy(copy, fd.rgb, 3 * n);
-    NP_CHECK(np_render_write_rgb8("test_render_view", &fr, "fdiff", fd.rgb, err, sizeof err) == 0, "%s", err);
-    NP_CHECK(memcmp(copy, fd.rgb, 3 * n) == 0, "writing the views changed the unit's image");
-    np_image_hash(s.width, s.height, fd.rgb, hex);
+    memcpy(copy, fd->rgb, 3 * n);
+    NP_CHECK(np_render_write_rgb8("test_render_view", fr, "fdiff", fd->rgb, err, sizeof err) == 0, "%s", err);
+    NP_CHECK(memcmp(copy, fd->rgb, 3 * n) == 0, "writing the views changed the unit's image");
+    np_image_hash(s->width, s->height, fd->rgb, hex);
     NP_CHECK(golden_hash("wood", "fdiff", want) == 0 && strcmp(hex, want) == 0, "hash %s, golden %s", hex, want);
     unsigned w, h;
     uint8_t *png = png_read_back("test_render_view.png", &w, &h, "noisepipe:scene", val, sizeof val);
-    NP_CHECK(png && w == s.width && h == s.height && memcmp(png, fd.rgb, 3 * n) == 0, "the PNG is not the unit's image");
+    NP_CHECK(png && w == s->width && h == s->height && memcmp(png, fd->rgb, 3 * n) == 0, "the PNG is not the unit's image");
     NP_CHECK(strcmp(val, "wood") == 0, "noisepipe:scene = '%s'", val);
     uint8_t *lit = png_read_back("test_render_view_lit.png", &w, &h, "noisepipe:view", val, sizeof val);
-    NP_CHECK(lit && w == s.width && h == s.height, "no lit view");
+    NP_CHECK(lit && w == s->width && h == s->height, "no lit view");
     NP_CHECK(strstr(val, "not the unit's output") != NULL, "noisepipe:view = '%s'", val);
     /* Per face: the mean ratio lit / unlit over its pixels (its Lambert factor). */
     double sum[6] = { 0 }, cnt[6] = { 0 };
     uint64_t changed = 0, bg_changed = 0;
-    for (size_t i = 0; lit && i < fr.n_spans; i++) {
-        const np_rspan *sp = &fr.spans[i];
+    for (size_t i = 0; lit && i < fr->n_spans; i++) {
+        const np_rspan *sp = &fr->spans[i];
         for (uint32_t x = 0; x < sp->hw.n && sp->poly < 6; x++) {
-            size_t p = ((size_t)sp->hw.y * s.width + sp->hw.x0 + x) * 3;
+            size_t p = ((size_t)sp->hw.y * s->width + sp->hw.x0 + x) * 3;
             for (int c = 0; c < 3; c++)
-                if (fd.rgb[p + (size_t)c] >= 64) {
-                    sum[sp->poly] += (double)lit[p + (size_t)c] / fd.rgb[p + (size_t)c];
+                if (fd->rgb[p + (size_t)c] >= 64) {
+                    sum[sp->poly] += (double)lit[p + (size_t)c] / fd->rgb[p + (size_t)c];
                     cnt[sp->poly]++;
                 }
-            changed += memcmp(lit + p, fd.rgb + p, 3) != 0;
+            changed += memcmp(lit + p, fd->rgb + p, 3) != 0;
         }
     }
     for (size_t i = 0; lit && i < n; i++)
-        bg_changed += !fr.mask[i] && memcmp(lit + 3 * i, fd.rgb + 3 * i, 3) != 0;
+        bg_changed += !fr->mask[i] && memcmp(lit + 3 * i, fd->rgb + 3 * i, 3) != 0;
     double f[6];
     unsigned faces = 0;
-    printf("wood, light (%.3f, %.3f, %.3f), ambient %.2f; Lambert factor per visible face:", s.light_dir[0],
-           s.light_dir[1], s.light_dir[2], s.ambient);
+    printf("wood, light (%.3f, %.3f, %.3f), ambient %.2f; Lambert factor per visible face:", s->light_dir[0],
+           s->light_dir[1], s->light_dir[2], s->ambient);
     for (int p = 0; p < 6; p++)
         if (cnt[p] > 0) {
             f[faces++] = sum[p] / cnt[p];
             printf(" %.3f", sum[p] / cnt[p]);
         }
     printf("; %llu of %llu covered pixels changed, background changed: %llu\n", (unsigned long long)changed,
-           (unsigned long long)fr.pixels, (unsigned long long)bg_changed);
+           (unsigned long long)fr->pixels, (unsigned long long)bg_changed);
     NP_CHECK(faces == 3, "%u faces visible", faces);
     NP_CHECK(faces == 3 && fabs(f[0] - f[1]) > 0.1 && fabs(f[1] - f[2]) > 0.1 && fabs(f[0] - f[2]) > 0.1,
              "faces not told apart by the light");
-    NP_CHECK(changed > fr.pixels / 2 && bg_changed == 0, "shading changed %llu pixels, background %llu",
+    NP_CHECK(changed > fr->pixels / 2 && bg_changed == 0, "shading changed %llu pixels, background %llu",
              (unsigned long long)changed, (unsigned long long)bg_changed);
     free(png);
     free(lit);
@@ -791,10 +803,7 @@ static int shading_view(void)
     remove("test_render_view.png");
     remove("test_render_view_lit.png");
     remove("test_render_view.exr");
-    np_render_run_free(&fd);
-    np_render_run_free(&tx);
-    np_render_frame_free(&fr);
-    np_scene_free(&s);
+    seed_close(&R);
     /* The light section: given, normalised; zero and unknown keys refused with the field. */
     char buf[4096];
     np_scene t;
@@ -818,14 +827,14 @@ static int shading_view(void)
 /* Colour EXRs hold linear light with the chromaticities attribute; error EXRs say they hold LSB data. */
 static int exr_colour_attributes(void)
 {
-    np_scene s;
-    np_render_frame fr;
-    np_render_run fd, tx;
-    if (render_default("marble", &s, &fr, &fd, &tx))
+    seed_render R;
+    if (render_default("marble", &R.s, &R.fr, &R.fd, &R.tx))
         return 1;
+    const np_render_frame *fr = &R.fr;
+    const np_render_run *tx = &R.tx;
     char err[512];
-    NP_CHECK(np_render_write_rgb8("test_render_attr", &fr, "texel", tx.rgb, err, sizeof err) == 0, "%s", err);
-    NP_CHECK(np_render_write_error("test_render_attr_err", &fr, "texel", tx.rgb, 0, err, sizeof err) == 0, "%s", err);
+    NP_CHECK(np_render_write_rgb8("test_render_attr", fr, "texel", tx->rgb, err, sizeof err) == 0, "%s", err);
+    NP_CHECK(np_render_write_error("test_render_attr_err", fr, "texel", tx->rgb, 0, err, sizeof err) == 0, "%s", err);
     const char *files[2] = { "test_render_attr.exr", "test_render_attr_err.exr" };
     for (int i = 0; i < 2; i++) {
         exr_context_t ctx = NULL;
@@ -863,7 +872,7 @@ static int exr_colour_attributes(void)
     size_t n = (size_t)w * h;
     double worst = 0;
     for (size_t i = 0; pl && i < n; i++) {
-        double v = tx.rgb[3 * i] / 255.0; /* R: the file's channels are B, G, R */
+        double v = tx->rgb[3 * i] / 255.0; /* R: the file's channels are B, G, R */
         double lin = v <= 0.04045 ? v / 12.92 : pow((v + 0.055) / 1.055, 2.4);
         worst = fmax(worst, fabs((double)pl[2 * n + i] - lin));
     }
@@ -874,10 +883,7 @@ static int exr_colour_attributes(void)
     remove("test_render_attr_lit.png");
     remove("test_render_attr_err.exr");
     remove("test_render_attr_err.png");
-    np_render_run_free(&fd);
-    np_render_run_free(&tx);
-    np_render_frame_free(&fr);
-    np_scene_free(&s);
+    seed_close(&R);
     return 0;
 }
 
