@@ -20,8 +20,9 @@ target_link_libraries(test_render PRIVATE np_render)
 target_compile_definitions(test_render PRIVATE NP_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 np_add_cases(test_render render
   sha256_kat exr_roundtrip png_roundtrip scene_errors scene_seed seed_scenes_1lsb golden_hashes
-  scanline perspective_polygon builtin_textures stream_vectors)
-foreach(c exr_roundtrip png_roundtrip stream_vectors)
+  scanline perspective_polygon builtin_textures stream_vectors
+  error_colour_bar error_rounded shading_view exr_colour_attributes)
+foreach(c exr_roundtrip png_roundtrip stream_vectors error_colour_bar error_rounded shading_view exr_colour_attributes)
   set_tests_properties(render.${c} PROPERTIES WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
 endforeach()
 
@@ -40,6 +41,24 @@ if(NP_EXRHEADER)
       PASS_REGULAR_EXPRESSION "R, 32-bit floating-point")
   endforeach()
 endif()
+# The colour EXRs carry the chromaticities (Rec. 709, D65) and say what their values are.
+if(NP_EXRHEADER)
+  add_test(NAME render.exrheader_chromaticities COMMAND ${NP_EXRHEADER} ${np_render_out}/wood_fdiff.exr)
+  set_tests_properties(render.exrheader_chromaticities PROPERTIES FIXTURES_REQUIRED np_render_images
+    PASS_REGULAR_EXPRESSION "red +\\(0\\.64 0\\.33\\)")
+endif()
+# -o naming a regular file: exit 2, and the first line is the project's message, not the EXR library's.
+file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/render_out_file "a file, not a folder\n")
+add_test(NAME render.cli_out_file COMMAND ${CMAKE_COMMAND}
+  -DCMD=$<TARGET_FILE:noisepipe> -DARGS=render\;-o\;${CMAKE_CURRENT_BINARY_DIR}/render_out_file -DWANT_RC=2 -DFIRST=1
+  "-DWANT=noisepipe render: -o ${CMAKE_CURRENT_BINARY_DIR}/render_out_file: not a folder: render writes several images into a folder"
+  -P ${CMAKE_CURRENT_SOURCE_DIR}/render_expect.cmake)
+# report -o a folder that does not exist (two levels): created, as render creates its folder.
+add_test(NAME render.report_out_newdir COMMAND ${CMAKE_COMMAND}
+  -DCMD=$<TARGET_FILE:noisepipe> -DARGS=report\;gates\;-o\;${CMAKE_CURRENT_BINARY_DIR}/report-newdir/sub -DWANT_RC=0
+  -DWANT= -DREMOVE=${CMAKE_CURRENT_BINARY_DIR}/report-newdir
+  -DWANT_FILE=${CMAKE_CURRENT_BINARY_DIR}/report-newdir/sub/gates.md
+  -P ${CMAKE_CURRENT_SOURCE_DIR}/render_expect.cmake)
 # A malformed scene: exit status 2 and a message naming the file and the field.
 file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/render_bad_scene.json
   "{ \"noisepipe_scene\": 1, \"name\": \"bad\", \"image\": { \"width\": 0, \"height\": 8 } }\n")

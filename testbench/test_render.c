@@ -4,6 +4,7 @@
  * golden-image hashes and the image files (OpenEXR, PNG, SHA-256).
  */
 #include <math.h>
+#include <openexr.h>
 #include <png.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -551,6 +552,341 @@ static int stream_vectors(void)
     return 0;
 }
 
+/* --- Images a person can read (issue 11, item 8) --- */
+
+/* Read an RGB PNG back through libpng with its text chunks: pixels (malloc'd) and the value of key (or ""). */
+static uint8_t *png_read_back(const char *path, unsigned *w, unsigned *h, const char *key, char *val, size_t n)
+{
+    FILE *f = fopen(path, "rb");
+    val[0] = '\0';
+    if (!f)
+        return NULL;
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+    png_infop info = png_create_info_struct(png);
+    uint8_t *px = NULL;
+    if (setjmp(png_jmpbuf(png))) {
+        png_destroy_read_struct(&png, &info, NULL);
+        fclose(f);
+        free(px);
+        return NULL;
+    }
+    png_init_io(png, f);
+    png_read_info(png, info);
+    *w = png_get_image_width(png, info);
+    *h = png_get_image_height(png, info);
+    NP_CHECK(png_get_color_type(png, info) == PNG_COLOR_TYPE_RGB && png_get_bit_depth(png, info) == 8, "%s: not RGB8",
+             path);
+    px = malloc((size_t)*w * *h * 3);
+    for (unsigned y = 0; y < *h; y++)
+        png_read_row(png, px + (size_t)y * *w * 3, NULL);
+    png_read_end(png, info);
+    png_textp text;
+    int nt = 0;
+    png_get_text(png, info, &text, &nt);
+    for (int i = 0; i < nt; i++)
+        if (strcmp(text[i].key, key) == 0)
+            snprintf(val, n, "%s", text[i].text);
+    png_destroy_read_struct(&png, &info, NULL);
+    fclose(f);
+    return px;
+}
+
+/* A seed scene rendered by both units at their defaults (render_default), and its release. */
+typedef struct seed_render {
+    np_scene s;
+    np_render_frame fr;
+    np_render_run fd, tx;
+} seed_render;
+
+static void seed_close(seed_render *r)
+{
+    np_render_run_free(&r->fd);
+    np_render_run_free(&r->tx);
+    np_render_frame_free(&r->fr);
+    np_scene_free(&r->s);
+}
+
+/* Every error PNG carries the colour bar: the heat map's end colours at its documented ends, and the scale as text. */
+static int error_colour_bar(void)
+{
+    seed_render R;
+    if (render_default("wood", &R.s, &R.fr, &R.fd, &R.tx))
+        return 1;
+    const np_scene *s = &R.s;
+    const np_render_frame *fr = &R.fr;
+    const np_render_run *fd = &R.fd;
+    char err[512], val[512];
+    np_render_legend lg;
+    np_render_legend_layout(s->width, &lg);
+    NP_CHECK(lg.height > 0 && (lg.x1 - lg.x0) % 4 == 0 && lg.x0 < lg.x1 && lg.x1 < s->width && lg.y0 < lg.y1 && lg.y1 <= lg.height,
+             "legend layout %u rows, x %u..%u, y %u..%u", lg.height, lg.x0, lg.x1, lg.y0, lg.y1);
+    for (int rounded = 0; rounded < 2; rounded++) {
+        const char *base = rounded ? "test_render_bar_cr" : "test_render_bar";
+        char path[256];
+        NP_CHECK(np_render_write_error(base, fr, "fdiff", fd->rgb, rounded, err, sizeof err) == 0, "%s", err);
+        snprintf(path, sizeof path, "%s.png", base);
+        unsigned w = 0, h = 0;
+        uint8_t *px = png_read_back(path, &w, &h, "noisepipe:scale", val, sizeof val);
+        NP_CHECK(px && w == s->width && h == s->height + lg.height, "%s: %ux%u, want %ux%u", path, w, h, s->width,
+                 s->height + lg.height);
+        if (!px)
+            continue;
+        unsigned top = s->height;
+        for (unsigned y = lg.y0; y < lg.y1; y++) {
+            const uint8_t *lo = px + ((size_t)(top + y) * w + lg.x0) * 3, *hi = px + ((size_t)(top + y) * w + lg.x1) * 3;
+            const uint8_t *mid = px + ((size_t)(top + y) * w + (lg.x0 + lg.x1) / 2) * 3;
+            NP_CHECK(lo[0] == 0 && lo[1] == 0 && lo[2] == 0, "row %u: 0 LSB end is %u,%u,%u, want black", y, lo[0], lo[1],
+                     lo[2]);
+            NP_CHECK(hi[0] == 255 && hi[1] == 0 && hi[2] == 0, "row %u: 2 LSB end is %u,%u,%u, want red", y, hi[0],
+                     hi[1], hi[2]);
+            /* The middle column is 1 LSB (x1 - x0 is a multiple of 4): green. */
+            NP_CHECK(mid[0] == 0 && mid[1] == 255 && mid[2] == 0, "1 LSB is %u,%u,%u", mid[0], mid[1], mid[2]);
+        }
+        /* Tick labels: some ink under the bar. */
+        unsigned ink = 0;
+        for (unsigned y = lg.y1; y < lg.height; y++)
+            for (unsigned x = 0; x < w; x++)
+                ink += px[((size_t)(top + y) * w + x) * 3] > 200;
+        NP_CHECK(ink > 50, "no tick labels under the bar (%u ink pixels)", ink);
+        NP_CHECK(strstr(val, "0 .. 2 LSB") && strstr(val, "heat map"), "noisepipe:scale = '%s'", val);
+        printf("%s: %ux%u (colour bar %u rows: black at x=%u, red at x=%u); %u ink pixels of labels; "
+               "noisepipe:scale = \"%s\"\n",
+               path, w, h, lg.height, lg.x0, lg.x1, ink, val);
+        free(px);
+        unsigned w2, h2;
+        px = png_read_back(path, &w2, &h2, "noisepipe:unit", val, sizeof val);
+        NP_CHECK(strcmp(val, "fdiff") == 0, "noisepipe:unit = '%s'", val);
+        free(px);
+        remove(path);
+        snprintf(path, sizeof path, "%s.exr", base);
+        remove(path);
+    }
+    seed_close(&R);
+    return 0;
+}
+
+/*
+ * The error beyond correct rounding: zero everywhere for an image equal to the
+ * correctly rounded reference; for the units, non-zero exactly at the samples
+ * the summary counts (np_render_err.over_cr).
+ */
+static int error_rounded(void)
+{
+    seed_render R;
+    if (render_default("wood", &R.s, &R.fr, &R.fd, &R.tx))
+        return 1;
+    const np_scene *s = &R.s;
+    const np_render_frame *fr = &R.fr;
+    const np_render_run *fd = &R.fd, *tx = &R.tx;
+    size_t n = (size_t)s->width * s->height;
+    uint8_t *ref8 = malloc(3 * n);
+    np_render_ref_rgb8(fr, ref8);
+    const struct { const char *name; const uint8_t *rgb; uint64_t want; } k[3] = {
+        { "ref8", ref8, 0 }, { "fdiff", fd->rgb, fd->err.over_cr }, { "texel", tx->rgb, tx->err.over_cr } };
+    np_render_err e;
+    np_render_error(fr, ref8, &e);
+    NP_CHECK(e.over_cr == 0 && e.max_cr == 0 && e.max_lsb <= 0.5, "ref8: %llu differ, max %.3f",
+             (unsigned long long)e.over_cr, e.max_lsb);
+    for (int i = 0; i < 3; i++) {
+        char err[512], rn[NP_IMAGE_MAX_CHANNELS][NP_IMAGE_NAME];
+        unsigned w, h, nc;
+        float *pl = NULL;
+        NP_CHECK(np_render_write_error("test_render_cr", fr, k[i].name, k[i].rgb, 1, err, sizeof err) == 0, "%s", err);
+        NP_CHECK(np_image_read_exr("test_render_cr.exr", &w, &h, &nc, rn, &pl, err, sizeof err) == 0, "%s", err);
+        if (!pl)
+            continue;
+        uint64_t nonzero = 0, bad = 0;
+        for (size_t c = 0; c < 3; c++)
+            for (size_t p = 0; p < n; p++) {
+                float v = pl[c * n + p];
+                nonzero += v != 0.0f;
+                bad += v != floorf(v) || fabsf(v) > 1.0f;
+            }
+        printf("%s: error beyond correct rounding non-zero at %llu samples (summary: %llu); non-integer or > 1 LSB: "
+               "%llu\n",
+               k[i].name, (unsigned long long)nonzero, (unsigned long long)k[i].want, (unsigned long long)bad);
+        NP_CHECK(nonzero == k[i].want && bad == 0, "%s: %llu non-zero, want %llu; %llu bad", k[i].name,
+                 (unsigned long long)nonzero, (unsigned long long)k[i].want, (unsigned long long)bad);
+        free(pl);
+    }
+    NP_CHECK(fd->err.over_cr > 0 && fd->err.over_cr < fd->err.samples / 100, "fdiff: %llu of %llu",
+             (unsigned long long)fd->err.over_cr, (unsigned long long)fd->err.samples);
+    remove("test_render_cr.exr");
+    remove("test_render_cr.png");
+    free(ref8);
+    seed_close(&R);
+    return 0;
+}
+
+/* The golden hash of image `image` of scene `scene` in vectors/images/hashes.txt. */
+static int golden_hash(const char *scene, const char *image, char hex[65])
+{
+    char path[1024], line[1024], sc[64], im[16], h[65], cfg[256];
+    snprintf(path, sizeof path, "%s/vectors/images/hashes.txt", NP_SOURCE_DIR);
+    FILE *f = fopen(path, "r");
+    int found = 0;
+    while (f && fgets(line, sizeof line, f))
+        if (line[0] != '#' && sscanf(line, "%63s %15s %64s %255s", sc, im, h, cfg) == 4 && strcmp(sc, scene) == 0 &&
+            strcmp(im, image) == 0) {
+            snprintf(hex, 65, "%s", h);
+            found = 1;
+        }
+    if (f)
+        fclose(f);
+    return found ? 0 : -1;
+}
+
+/*
+ * Shading changes the view (NAME_UNIT_lit.png: three faces, three brightnesses)
+ * but not the data: the unit's image, its PNG and its golden hash stay as they
+ * were; the scene's light section is read and checked.
+ */
+static int shading_view(void)
+{
+    seed_render R;
+    if (render_default("wood", &R.s, &R.fr, &R.fd, &R.tx))
+        return 1;
+    const np_scene *s = &R.s;
+    const np_render_frame *fr = &R.fr;
+    const np_render_run *fd = &R.fd;
+    size_t n = (size_t)s->width * s->height;
+    char err[512], val[256], hex[65], want[65];
+    uint8_t *copy = malloc(3 * n);
+    memcpy(copy, fd->rgb, 3 * n);
+    NP_CHECK(np_render_write_rgb8("test_render_view", fr, "fdiff", fd->rgb, err, sizeof err) == 0, "%s", err);
+    NP_CHECK(memcmp(copy, fd->rgb, 3 * n) == 0, "writing the views changed the unit's image");
+    np_image_hash(s->width, s->height, fd->rgb, hex);
+    NP_CHECK(golden_hash("wood", "fdiff", want) == 0 && strcmp(hex, want) == 0, "hash %s, golden %s", hex, want);
+    unsigned w, h;
+    uint8_t *png = png_read_back("test_render_view.png", &w, &h, "noisepipe:scene", val, sizeof val);
+    NP_CHECK(png && w == s->width && h == s->height && memcmp(png, fd->rgb, 3 * n) == 0, "the PNG is not the unit's image");
+    NP_CHECK(strcmp(val, "wood") == 0, "noisepipe:scene = '%s'", val);
+    uint8_t *lit = png_read_back("test_render_view_lit.png", &w, &h, "noisepipe:view", val, sizeof val);
+    NP_CHECK(lit && w == s->width && h == s->height, "no lit view");
+    NP_CHECK(strstr(val, "not the unit's output") != NULL, "noisepipe:view = '%s'", val);
+    /* Per face: the mean ratio lit / unlit over its pixels (its Lambert factor). */
+    double sum[6] = { 0 }, cnt[6] = { 0 };
+    uint64_t changed = 0, bg_changed = 0;
+    for (size_t i = 0; lit && i < fr->n_spans; i++) {
+        const np_rspan *sp = &fr->spans[i];
+        for (uint32_t x = 0; x < sp->hw.n && sp->poly < 6; x++) {
+            size_t p = ((size_t)sp->hw.y * s->width + sp->hw.x0 + x) * 3;
+            for (int c = 0; c < 3; c++)
+                if (fd->rgb[p + (size_t)c] >= 64) {
+                    sum[sp->poly] += (double)lit[p + (size_t)c] / fd->rgb[p + (size_t)c];
+                    cnt[sp->poly]++;
+                }
+            changed += memcmp(lit + p, fd->rgb + p, 3) != 0;
+        }
+    }
+    for (size_t i = 0; lit && i < n; i++)
+        bg_changed += !fr->mask[i] && memcmp(lit + 3 * i, fd->rgb + 3 * i, 3) != 0;
+    double f[6];
+    unsigned faces = 0;
+    printf("wood, light (%.3f, %.3f, %.3f), ambient %.2f; Lambert factor per visible face:", s->light_dir[0],
+           s->light_dir[1], s->light_dir[2], s->ambient);
+    for (int p = 0; p < 6; p++)
+        if (cnt[p] > 0) {
+            f[faces++] = sum[p] / cnt[p];
+            printf(" %.3f", sum[p] / cnt[p]);
+        }
+    printf("; %llu of %llu covered pixels changed, background changed: %llu\n", (unsigned long long)changed,
+           (unsigned long long)fr->pixels, (unsigned long long)bg_changed);
+    NP_CHECK(faces == 3, "%u faces visible", faces);
+    NP_CHECK(faces == 3 && fabs(f[0] - f[1]) > 0.1 && fabs(f[1] - f[2]) > 0.1 && fabs(f[0] - f[2]) > 0.1,
+             "faces not told apart by the light");
+    NP_CHECK(changed > fr->pixels / 2 && bg_changed == 0, "shading changed %llu pixels, background %llu",
+             (unsigned long long)changed, (unsigned long long)bg_changed);
+    free(png);
+    free(lit);
+    free(copy);
+    remove("test_render_view.png");
+    remove("test_render_view_lit.png");
+    remove("test_render_view.exr");
+    seed_close(&R);
+    /* The light section: given, normalised; zero and unknown keys refused with the field. */
+    char buf[4096];
+    np_scene t;
+    variant(buf, sizeof buf, "\"image\"", "\"light\": { \"direction\": [0, 0, 2], \"ambient\": 0.5 }, \"image\"");
+    NP_CHECK(np_scene_parse(buf, "light.json", &t, err, sizeof err) == 0, "%s", err);
+    NP_CHECK(t.light_dir[2] == 1.0 && t.ambient == 0.5, "light %g %g %g ambient %g", t.light_dir[0], t.light_dir[1],
+             t.light_dir[2], t.ambient);
+    np_scene_free(&t);
+    variant(buf, sizeof buf, "\"image\"", "\"light\": { \"direction\": [0, 0, 0] }, \"image\"");
+    NP_CHECK(np_scene_parse(buf, "light.json", &t, err, sizeof err) != 0 &&
+                 strstr(err, "field 'light.direction': must not be zero"),
+             "zero light: %s", err);
+    printf("  %s\n", err);
+    variant(buf, sizeof buf, "\"image\"", "\"light\": { \"ambient\": 2 }, \"image\"");
+    NP_CHECK(np_scene_parse(buf, "light.json", &t, err, sizeof err) != 0 && strstr(err, "field 'light.ambient'"),
+             "ambient 2: %s", err);
+    printf("  %s\n", err);
+    return 0;
+}
+
+/* Colour EXRs hold linear light with the chromaticities attribute; error EXRs say they hold LSB data. */
+static int exr_colour_attributes(void)
+{
+    seed_render R;
+    if (render_default("marble", &R.s, &R.fr, &R.fd, &R.tx))
+        return 1;
+    const np_render_frame *fr = &R.fr;
+    const np_render_run *tx = &R.tx;
+    char err[512];
+    NP_CHECK(np_render_write_rgb8("test_render_attr", fr, "texel", tx->rgb, err, sizeof err) == 0, "%s", err);
+    NP_CHECK(np_render_write_error("test_render_attr_err", fr, "texel", tx->rgb, 0, err, sizeof err) == 0, "%s", err);
+    const char *files[2] = { "test_render_attr.exr", "test_render_attr_err.exr" };
+    for (int i = 0; i < 2; i++) {
+        exr_context_t ctx = NULL;
+        exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+        NP_CHECK(exr_start_read(&ctx, files[i], &init) == EXR_ERR_SUCCESS, "cannot read %s", files[i]);
+        exr_attr_chromaticities_t c;
+        exr_result_t rc = exr_attr_get_chromaticities(ctx, 0, "chromaticities", &c);
+        const char *v = NULL;
+        int32_t len = 0;
+        exr_result_t rs = exr_attr_get_string(ctx, 0, "noisepipe:values", &len, &v);
+        if (i == 0) {
+            NP_CHECK(rc == EXR_ERR_SUCCESS && c.red_x == 0.64f && c.red_y == 0.33f && c.green_x == 0.30f &&
+                         c.green_y == 0.60f && c.blue_x == 0.15f && c.blue_y == 0.06f && c.white_x == 0.3127f &&
+                         c.white_y == 0.3290f,
+                     "%s: chromaticities missing or not Rec. 709 / D65", files[i]);
+            if (rc == EXR_ERR_SUCCESS)
+                printf("%s: chromaticities R (%g %g) G (%g %g) B (%g %g) W (%g %g)\n", files[i], (double)c.red_x,
+                       (double)c.red_y, (double)c.green_x, (double)c.green_y, (double)c.blue_x, (double)c.blue_y,
+                       (double)c.white_x, (double)c.white_y);
+            NP_CHECK(rs == EXR_ERR_SUCCESS && strstr(v, "linear light"), "%s: noisepipe:values", files[i]);
+        } else {
+            NP_CHECK(rc != EXR_ERR_SUCCESS, "%s: an error image has chromaticities", files[i]);
+            NP_CHECK(rs == EXR_ERR_SUCCESS && strstr(v, "error in 8-bit LSB (data, not colour)"), "%s: noisepipe:values",
+                     files[i]);
+        }
+        if (rs == EXR_ERR_SUCCESS)
+            printf("%s: noisepipe:values = \"%.*s\"\n", files[i], (int)len, v);
+        exr_finish(&ctx);
+    }
+    /* The values: the sRGB EOTF of code / 255, e.g. code 255 is 1.0 and code 128 is 0.2158605. */
+    unsigned w, h, nc;
+    char rn[NP_IMAGE_MAX_CHANNELS][NP_IMAGE_NAME];
+    float *pl = NULL;
+    NP_CHECK(np_image_read_exr(files[0], &w, &h, &nc, rn, &pl, err, sizeof err) == 0, "%s", err);
+    size_t n = (size_t)w * h;
+    double worst = 0;
+    for (size_t i = 0; pl && i < n; i++) {
+        double v = tx->rgb[3 * i] / 255.0; /* R: the file's channels are B, G, R */
+        double lin = v <= 0.04045 ? v / 12.92 : pow((v + 0.055) / 1.055, 2.4);
+        worst = fmax(worst, fabs((double)pl[2 * n + i] - lin));
+    }
+    NP_CHECK(pl && strcmp(rn[2], "R") == 0 && worst < 1e-6, "R differs from the sRGB EOTF by %g", worst);
+    free(pl);
+    remove("test_render_attr.exr");
+    remove("test_render_attr.png");
+    remove("test_render_attr_lit.png");
+    remove("test_render_attr_err.exr");
+    remove("test_render_attr_err.png");
+    seed_close(&R);
+    return 0;
+}
+
 static const np_test_case cases[] = {
     { "sha256_kat", sha256_kat },
     { "exr_roundtrip", exr_roundtrip },
@@ -563,6 +899,10 @@ static const np_test_case cases[] = {
     { "perspective_polygon", perspective_polygon },
     { "builtin_textures", builtin_textures },
     { "stream_vectors", stream_vectors },
+    { "error_colour_bar", error_colour_bar },
+    { "error_rounded", error_rounded },
+    { "shading_view", shading_view },
+    { "exr_colour_attributes", exr_colour_attributes },
     { NULL, NULL },
 };
 

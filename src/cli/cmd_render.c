@@ -290,6 +290,9 @@ static void print_run(const char *unit, const char *cfg, const np_render_run *r)
     printf("  %-6s max %.3f LSB (at %u,%u), RMS %.4f LSB, mean %+.4f LSB, PSNR %s dB, >1 LSB: %llu of %llu samples\n",
            unit, r->err.max_lsb, r->err.max_x, r->err.max_y, r->err.rms_lsb, r->err.mean_lsb, psnr,
            (unsigned long long)r->err.over_one, (unsigned long long)r->err.samples);
+    printf("         beyond correct rounding: %llu of %llu samples differ from the reference rounded to 8 bits"
+           " (max %u LSB)\n",
+           (unsigned long long)r->err.over_cr, (unsigned long long)r->err.samples, r->err.max_cr);
     printf("         config %s\n", cfg);
     if (r->have_cycles)
         printf("         cycles/frame %llu, set-up stall cycles %llu, set-ups: %llu span, %llu cell, %llu interval;"
@@ -304,17 +307,24 @@ static void print_run(const char *unit, const char *cfg, const np_render_run *r)
                (unsigned long long)r->interval_setups, r->model_seconds);
 }
 
-/* The images of one unit: base_UNIT.{exr,png}, base_UNIT_err.{exr,png}, with --ppm base_UNIT.ppm. */
+/*
+ * The images of one unit: base_UNIT.{exr,png}, base_UNIT_lit.png,
+ * base_UNIT_err.{exr,png} (against the reference), base_UNIT_err_cr.{exr,png}
+ * (against the correctly rounded reference), with --ppm base_UNIT.ppm.
+ */
 static int write_unit_images(const opts *o, const np_render_frame *fr, const char *unit, const uint8_t *rgb,
                              char *err, size_t errlen)
 {
     const np_scene *sc = fr->sc;
     char base[4096];
     snprintf(base, sizeof base, "%s/%s_%s", o->out, sc->name, unit);
-    if (np_render_write_rgb8(base, sc->width, sc->height, rgb, err, errlen))
+    if (np_render_write_rgb8(base, fr, unit, rgb, err, errlen))
         return -1;
     snprintf(base, sizeof base, "%s/%s_%s_err", o->out, sc->name, unit);
-    if (np_render_write_error(base, fr, rgb, err, errlen))
+    if (np_render_write_error(base, fr, unit, rgb, 0, err, errlen))
+        return -1;
+    snprintf(base, sizeof base, "%s/%s_%s_err_cr", o->out, sc->name, unit);
+    if (np_render_write_error(base, fr, unit, rgb, 1, err, errlen))
         return -1;
     if (o->ppm) {
         snprintf(base, sizeof base, "%s/%s_%s.ppm", o->out, sc->name, unit);
@@ -390,7 +400,7 @@ static int render_scene(const opts *o, const char *path, hash_list *hashes)
     for (int i = 0; i < nu && !bad; i++) {
         bad = write_unit_images(o, &fr, us[i].u->name, runs[i].rgb, err, sizeof err);
         snprintf(names + strlen(names), sizeof names - strlen(names), ",%s", us[i].u->name);
-        snprintf(errs + strlen(errs), sizeof errs - strlen(errs), ",%s_err", us[i].u->name);
+        snprintf(errs + strlen(errs), sizeof errs - strlen(errs), ",%s_err,%s_err_cr", us[i].u->name, us[i].u->name);
     }
     ref8 = malloc((size_t)sc.width * sc.height * 3);
     if (bad || !ref8) {
@@ -407,7 +417,8 @@ static int render_scene(const opts *o, const char *path, hash_list *hashes)
             goto out;
         }
     }
-    printf("  images: %s/%s_{%s%s}.{exr,png}\n", o->out, sc.name, names, errs);
+    printf("  images: %s/%s_{%s%s}.{exr,png}, shaded views %s/%s_{%s}_lit.png\n", o->out, sc.name, names, errs,
+           o->out, sc.name, names);
     np_image_hash(sc.width, sc.height, ref8, hex);
     np_render_hash_add(hashes, sc.name, "ref", hex, "-");
     for (int i = 0; i < nu; i++) {
@@ -436,6 +447,12 @@ int np_cmd_render(int argc, char **argv)
         for (unsigned i = 0; i < o.n_scenes && rc == NP_EXIT_OK; i++)
             rc = np_render_bench(o.scenes[i], o.repeat ? o.repeat : 5, unit_spec, &o);
         return rc;
+    }
+    /* Before any work, and before the image library names a file inside it. */
+    struct stat st;
+    if (stat(o.out, &st) == 0 && !S_ISDIR(st.st_mode)) {
+        np_err(CMD, "-o %s: not a folder: render writes several images into a folder", o.out);
+        return NP_EXIT_USAGE;
     }
     hash_list got = { 0 }, golden = { 0 };
     int rc = NP_EXIT_OK;

@@ -456,10 +456,16 @@ int np_cmd_report(int argc, char **argv)
         np_err("report", "--config needs --unit");
         return NP_EXIT_USAGE;
     }
-    if (dir && strcmp(what, "runtime") != 0) { /* runtime creates its directory, as docs/plots */
+    int known = strcmp(what, "gates") == 0 || strcmp(what, "pareto") == 0 || strcmp(what, "runtime") == 0 ||
+                strcmp(what, "all") == 0;
+    if (dir && known) { /* created as render creates its folder */
         struct stat st;
-        if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
-            np_err("report", "-o %s: not a directory", dir);
+        if (stat(dir, &st) == 0 && !S_ISDIR(st.st_mode)) {
+            np_err("report", "-o %s: not a folder: a report writes several files into a folder", dir);
+            return NP_EXIT_USAGE;
+        }
+        if (np_mkdir_p(dir) != 0) {
+            np_err("report", "-o %s: cannot create: %s", dir, strerror(errno));
             return NP_EXIT_USAGE;
         }
     }

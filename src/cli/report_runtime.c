@@ -347,7 +347,7 @@ static void error_png(const char *dir, const np_render_frame *fr, const char *na
 {
     char base[4096], err[1024];
     snprintf(base, sizeof base, "%s/%s_%s_err", dir, fr->sc->name, name);
-    np_render_write_error(base, fr, rgb, err, sizeof err);
+    np_render_write_error(base, fr, name, rgb, 0, err, sizeof err);
     snprintf(base, sizeof base, "%s/%s_%s_err.exr", dir, fr->sc->name, name);
     remove(base);
 }

@@ -27,7 +27,8 @@ static int exr_fail(char *err, size_t errlen, const char *path, const char *what
  */
 typedef struct exr_mem exr_mem;
 static int exr_encode_mem(const char *path, exr_mem *mem, unsigned w, unsigned h, unsigned nch,
-                          const char *const *names, const float *planes, char *err, size_t errlen);
+                          const char *const *names, const float *planes, const np_image_meta *meta, char *err,
+                          size_t errlen);
 
 struct exr_mem {
     uint8_t *buf;
@@ -71,11 +72,26 @@ static void exr_quiet(exr_const_context_t ctxt, exr_result_t code, const char *m
     (void)msg;
 }
 
+void np_image_meta_add(np_image_meta *m, const char *key, const char *value)
+{
+    if (m->n_text < NP_IMAGE_MAX_TEXT) {
+        m->key[m->n_text] = key;
+        m->value[m->n_text] = value;
+        m->n_text++;
+    }
+}
+
 int np_image_write_exr(const char *path, unsigned w, unsigned h, unsigned nch,
                        const char *const *names, const float *planes, char *err, size_t errlen)
 {
+    return np_image_write_exr_meta(path, w, h, nch, names, planes, NULL, err, errlen);
+}
+
+int np_image_write_exr_meta(const char *path, unsigned w, unsigned h, unsigned nch, const char *const *names,
+                            const float *planes, const np_image_meta *meta, char *err, size_t errlen)
+{
     exr_mem mem = { NULL, 0, 0, 0 };
-    int ret = exr_encode_mem(path, &mem, w, h, nch, names, planes, err, errlen);
+    int ret = exr_encode_mem(path, &mem, w, h, nch, names, planes, meta, err, errlen);
     if (ret == 0) {
         np_outfile o;
         if (np_outfile_open(&o, path, "wb") != 0) {
@@ -93,8 +109,12 @@ int np_image_write_exr(const char *path, unsigned w, unsigned h, unsigned nch,
     return ret;
 }
 
+/* Rec. 709 primaries and D65 white (ITU-R BT.709-6 table 1; the primaries of sRGB). */
+static const exr_attr_chromaticities_t rec709_d65 = { 0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f };
+
 static int exr_encode_mem(const char *path, exr_mem *mem, unsigned w, unsigned h, unsigned nch,
-                          const char *const *names, const float *planes, char *err, size_t errlen)
+                          const char *const *names, const float *planes, const np_image_meta *meta, char *err,
+                          size_t errlen)
 {
     exr_context_t ctx = NULL;
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
@@ -114,7 +134,11 @@ static int exr_encode_mem(const char *path, exr_mem *mem, unsigned w, unsigned h
     if (rc == EXR_ERR_SUCCESS)
         rc = exr_initialize_required_attr_simple(ctx, part, (int32_t)w, (int32_t)h, EXR_COMPRESSION_ZIP);
     for (unsigned c = 0; c < nch && rc == EXR_ERR_SUCCESS; c++)
-        rc = exr_add_channel(ctx, part, names[c], EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1);
+        rc = exr_add_channel(ctx, part, names[c], EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
+    if (meta && meta->rec709 && rc == EXR_ERR_SUCCESS)
+        rc = exr_attr_set_chromaticities(ctx, part, "chromaticities", &rec709_d65);
+    for (unsigned t = 0; meta && t < meta->n_text && rc == EXR_ERR_SUCCESS; t++)
+        rc = exr_attr_set_string(ctx, part, meta->key[t], meta->value[t]);
     if (rc == EXR_ERR_SUCCESS)
         rc = exr_write_header(ctx);
     if (rc != EXR_ERR_SUCCESS) {
@@ -273,6 +297,12 @@ static void png_warn_fn(png_structp png, png_const_charp msg)
 int np_image_write_png(const char *path, unsigned w, unsigned h, const uint8_t *rgb, char *err,
                        size_t errlen)
 {
+    return np_image_write_png_meta(path, w, h, rgb, NULL, err, errlen);
+}
+
+int np_image_write_png_meta(const char *path, unsigned w, unsigned h, const uint8_t *rgb, const np_image_meta *meta,
+                            char *err, size_t errlen)
+{
     np_outfile o;
     if (np_outfile_open(&o, path, "wb") != 0) {
         snprintf(err, errlen, "%s", o.err);
@@ -295,6 +325,17 @@ int np_image_write_png(const char *path, unsigned w, unsigned h, const uint8_t *
     png_init_io(png, o.f);
     png_set_IHDR(png, info, w, h, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                  PNG_FILTER_TYPE_DEFAULT);
+    png_text text[NP_IMAGE_MAX_TEXT];
+    unsigned nt = meta ? meta->n_text : 0;
+    for (unsigned t = 0; t < nt; t++) {
+        memset(&text[t], 0, sizeof text[t]);
+        text[t].compression = PNG_TEXT_COMPRESSION_NONE;
+        text[t].key = (png_charp)(uintptr_t)meta->key[t]; /* libpng copies; it does not write through them */
+        text[t].text = (png_charp)(uintptr_t)meta->value[t];
+        text[t].text_length = strlen(meta->value[t]);
+    }
+    if (nt)
+        png_set_text(png, info, text, (int)nt);
     png_write_info(png, info);
     for (unsigned y = 0; y < h; y++)
         png_write_row(png, rgb + (size_t)y * w * 3u);

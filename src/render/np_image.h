@@ -11,7 +11,24 @@
 #include <stddef.h>
 #include <stdint.h>
 
-enum { NP_IMAGE_MAX_CHANNELS = 8, NP_IMAGE_NAME = 32 };
+enum { NP_IMAGE_MAX_CHANNELS = 8, NP_IMAGE_NAME = 32, NP_IMAGE_MAX_TEXT = 8 };
+
+/*
+ * What an image file says about itself besides its pixels: text pairs
+ * (PNG tEXt chunks; EXR string attributes), keys of 1..79 printable
+ * characters, values of printable Latin-1; and for EXR, whether to write the
+ * chromaticities attribute with Rec. 709 primaries and the D65 white point
+ * (the primaries and white of sRGB, so a viewer reads linear sRGB).
+ */
+typedef struct np_image_meta {
+    unsigned n_text;
+    const char *key[NP_IMAGE_MAX_TEXT];
+    const char *value[NP_IMAGE_MAX_TEXT];
+    int rec709;
+} np_image_meta;
+
+/* Add key = value to m (ignored beyond NP_IMAGE_MAX_TEXT pairs). */
+void np_image_meta_add(np_image_meta *m, const char *key, const char *value);
 
 /*
  * Write a scanline OpenEXR file with nch FLOAT channels named names[c]
@@ -21,6 +38,9 @@ enum { NP_IMAGE_MAX_CHANNELS = 8, NP_IMAGE_NAME = 32 };
  */
 int np_image_write_exr(const char *path, unsigned w, unsigned h, unsigned nch,
                        const char *const *names, const float *planes, char *err, size_t errlen);
+/* The same with meta's attributes in the header (meta may be NULL). */
+int np_image_write_exr_meta(const char *path, unsigned w, unsigned h, unsigned nch, const char *const *names,
+                            const float *planes, const np_image_meta *meta, char *err, size_t errlen);
 
 /*
  * Read a scanline OpenEXR file of FLOAT channels (data window at 0, 0) into
@@ -34,6 +54,9 @@ int np_image_read_exr(const char *path, unsigned *w, unsigned *h, unsigned *nch,
 /* Write an 8-bit RGB PNG (rgb: w * h * 3 bytes, row 0 at the top). 0, or -1 with err. */
 int np_image_write_png(const char *path, unsigned w, unsigned h, const uint8_t *rgb, char *err,
                        size_t errlen);
+/* The same with meta's text pairs as tEXt chunks before the pixels (meta may be NULL). */
+int np_image_write_png_meta(const char *path, unsigned w, unsigned h, const uint8_t *rgb, const np_image_meta *meta,
+                            char *err, size_t errlen);
 
 /* Write a binary PPM (P6, maxval 255). 0, or -1 with err. */
 int np_image_write_ppm(const char *path, unsigned w, unsigned h, const uint8_t *rgb, char *err,

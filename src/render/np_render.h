@@ -32,6 +32,7 @@
 typedef struct np_rspan {
     np_span hw;           /* what the units read */
     double s0[3], ds[3];  /* what the reference uses */
+    unsigned poly;        /* the scene polygon (np_scene.poly index): its normal shades the views */
 } np_rspan;
 
 typedef struct np_render_frame {
@@ -50,6 +51,8 @@ typedef struct np_render_err {
     uint64_t samples;     /* covered pixels x 3 channels */
     double max_lsb, rms_lsb, mean_lsb, psnr_db; /* psnr: 20 log10(255 / rms); +inf (HUGE_VAL) when rms = 0 */
     uint64_t over_half, over_one;               /* samples with |error| > 0.5, > 1 LSB */
+    uint64_t over_cr;                           /* samples that differ from the correctly rounded reference */
+    unsigned max_cr;                            /* the largest such difference, LSB */
     unsigned max_x, max_y;                      /* where the largest error is */
 } np_render_err;
 
@@ -109,20 +112,65 @@ void np_render_run_free(np_render_run *run);
 /* Error of an 8-bit image against the reference, over the covered pixels. */
 void np_render_error(const np_render_frame *fr, const uint8_t *rgb, np_render_err *e);
 
-/* The reference rounded to 8 bits (round half up), background included. */
+/*
+ * The reference correctly rounded to 8 bits: round half up, as the units'
+ * colour stage rounds (np_tex_colour_round), background included.
+ */
 void np_render_ref_rgb8(const np_render_frame *fr, uint8_t *rgb);
 
-/* Write base.exr (FLOAT R, G, B = value / 255) and base.png. 0, or -1 with err. */
-int np_render_write_rgb8(const char *base, unsigned w, unsigned h, const uint8_t *rgb, char *err, size_t errlen);
-int np_render_write_ref(const char *base, const np_render_frame *fr, char *err, size_t errlen);
 /*
- * Error images of rgb against the reference: base.exr (FLOAT R, G, B = the
- * signed error in LSB, 0 where uncovered) and base.png, a heat map of the
- * largest channel error: black 0, blue 0.5, green 1, yellow 1.5, red >= 2 LSB;
- * uncovered pixels dark grey.
+ * Colour images: base.exr, FLOAT R, G, B in linear light (the sRGB EOTF of
+ * value / 255) with the chromaticities attribute (Rec. 709 primaries, D65
+ * white) and string attributes noisepipe:values, :unit, :scene; base.png,
+ * the 8-bit image as computed (the unit's output; the reference rounded
+ * half up), with tEXt noisepipe:unit and :scene; and base_lit.png, the same
+ * shaded for viewing (np_render_shade). 0, or -1 with err.
  */
-int np_render_write_error(const char *base, const np_render_frame *fr, const uint8_t *rgb, char *err,
-                          size_t errlen);
+int np_render_write_rgb8(const char *base, const np_render_frame *fr, const char *unit, const uint8_t *rgb,
+                         char *err, size_t errlen);
+/* The same for the reference (EXR: the unrounded value; unit "ref"). */
+int np_render_write_ref(const char *base, const np_render_frame *fr, char *err, size_t errlen);
+
+/*
+ * A view of rgb (w * h * 3, the frame's) shaded with the scene's light
+ * (np_scene.light_dir, ambient): each covered pixel's colour times
+ * ambient + (1 - ambient) max(0, n . light), n the normal of its polygon
+ * turned towards the camera, rounded half up; background unchanged. For
+ * looking at only: never hashed, never compared. 0, or -1 (out of memory).
+ */
+int np_render_shade(const np_render_frame *fr, const uint8_t *rgb, uint8_t *out);
+
+/* The heat map of the error images: black 0, blue 0.5, green 1, yellow 1.5, red >= 2 LSB (linear between). */
+#define NP_RENDER_HEAT_MAX 2.0
+void np_render_heat(double lsb, uint8_t rgb[3]);
+
+/*
+ * The colour bar under every error PNG: a strip of `height` rows added below
+ * the w x h image (none when w < NP_RENDER_LEGEND_MIN_WIDTH). Rows [y0, y1)
+ * of the strip hold the heat map, column x0 = 0 LSB (black) to column x1 =
+ * NP_RENDER_HEAT_MAX LSB (red), linear between; under it a tick every
+ * 0.5 LSB and the labels 0, 0.5, 1, 1.5, 2 LSB (a 3 x 5 pixel font,
+ * `scale` pixels per font pixel) where they fit.
+ */
+enum { NP_RENDER_LEGEND_MIN_WIDTH = 32 };
+typedef struct np_render_legend {
+    unsigned height, scale, x0, x1, y0, y1;
+} np_render_legend;
+void np_render_legend_layout(unsigned w, np_render_legend *l);
+
+/*
+ * Error images of unit's rgb against the reference: base.exr (FLOAT R, G,
+ * B = the signed error in LSB, 0 where uncovered; data, not colour: no
+ * chromaticities, noisepipe:values says what they are) and base.png, the
+ * heat map of the largest channel |error| (uncovered pixels dark grey) with
+ * the colour bar below it and tEXt noisepipe:scale, :error, :unit, :scene.
+ * rounded = 0: against the unrounded reference (8-bit rounding alone is up to
+ * 1/2 LSB); rounded = 1: against the reference correctly rounded to 8 bits
+ * (np_render_ref_rgb8), i.e. the error beyond correct rounding, 0 where the
+ * unit returns the correctly rounded value.
+ */
+int np_render_write_error(const char *base, const np_render_frame *fr, const char *unit, const uint8_t *rgb,
+                          int rounded, char *err, size_t errlen);
 
 /*
  * The noise along one scanline (the seed's figures 10 and 11): for every

@@ -40,6 +40,17 @@ typedef struct np_scene {
     np_ref_texture tex;
     unsigned probe_row;                  /* scanline of the noise-difference plot */
     int allow_empty;                     /* "allow_empty": true: an image that covers no pixel is not an error */
+    /*
+     * "light": one directional light for the shaded views (NAME_*_lit.png),
+     * never for the units' outputs or the hashed images. light_dir is the unit
+     * vector from a surface towards the light (world space); a view pixel is
+     * colour * (ambient + (1 - ambient) max(0, n . light_dir)). Default, when
+     * the scene has no "light": ambient 0.3 and the direction
+     * -2 forward + up - right of the camera, normalised (from over the viewer's
+     * left shoulder).
+     */
+    double light_dir[3];
+    double ambient;
 } np_scene;
 
 /*

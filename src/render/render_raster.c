@@ -146,6 +146,7 @@ static int row_span(const np_scene *sc, const proj_poly *pp, unsigned j, np_rspa
     out->hw.y = (uint16_t)j;
     out->hw.x0 = (uint16_t)fi0;
     out->hw.n = (uint32_t)(fi1 - fi0);
+    out->poly = (unsigned)(pp->p - sc->poly);
     for (int a = 0; a < 3; a++) {
         out->ds[a] = (ts[rr][a] - ts[l][a]) / (xr - xl);
         out->s0[a] = ts[l][a] + (fi0 + 0.5 - xl) * out->ds[a];

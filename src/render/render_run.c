@@ -10,7 +10,8 @@
 
 #include "np_cli.h"
 
-static uint8_t bg8(double v) { return (uint8_t)floor(v + 0.5); }
+/* Round half up to 8 bits: the units' colour stage rounding (np_tex_colour_round). */
+static uint8_t round8(double v) { return (uint8_t)floor(v + 0.5); }
 
 static int run_alloc(const np_render_frame *fr, np_render_run *run)
 {
@@ -22,7 +23,7 @@ static int run_alloc(const np_render_frame *fr, np_render_run *run)
         return -1;
     for (size_t i = 0; i < npx; i++)
         for (int ch = 0; ch < 3; ch++)
-            run->rgb[3 * i + (size_t)ch] = bg8(sc->background[ch]);
+            run->rgb[3 * i + (size_t)ch] = round8(sc->background[ch]);
     return 0;
 }
 
@@ -156,6 +157,10 @@ void np_render_error(const np_render_frame *fr, const uint8_t *rgb, np_render_er
             e->samples++;
             e->over_half += a > 0.5;
             e->over_one += a > 1.0;
+            int cr = abs((int)rgb[3 * i + ch] - (int)round8(fr->ref[3 * i + ch]));
+            e->over_cr += cr != 0;
+            if ((unsigned)cr > e->max_cr)
+                e->max_cr = (unsigned)cr;
             if (a > e->max_lsb) {
                 e->max_lsb = a;
                 e->max_x = (unsigned)(i % sc->width);
@@ -174,6 +179,6 @@ void np_render_ref_rgb8(const np_render_frame *fr, uint8_t *rgb)
 {
     size_t n = (size_t)fr->sc->width * fr->sc->height * 3;
     for (size_t i = 0; i < n; i++)
-        rgb[i] = (uint8_t)floor(fr->ref[i] + 0.5);
+        rgb[i] = round8(fr->ref[i]);
 }
 

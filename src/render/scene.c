@@ -206,6 +206,48 @@ static int parse_camera(ctx *c, const cJSON *root, np_scene *s)
 
 static int check_polygon(ctx *c, const np_scene_poly *p, const char *field);
 
+/* "light" (np_scene.h): after the camera, whose frame gives the default direction. */
+static int parse_light(ctx *c, const cJSON *root, np_scene *s)
+{
+    static const char *const keys[] = { "direction", "ambient", NULL };
+    const cJSON *li = get(root, "light");
+    const np_scene_camera *k = &s->cam;
+    double f[3], u[3], r[3], fu = 0, *d = s->light_dir, n2 = 0;
+    s->ambient = 0.3;
+    if (li && (need_object(c, li, "light") || check_keys(c, li, "light", keys)))
+        return -1;
+    if (li && get(li, "ambient") && read_number(c, get(li, "ambient"), "light.ambient", 0, 1, &s->ambient))
+        return -1;
+    if (li && get(li, "direction")) {
+        if (read_vec3(c, get(li, "direction"), "light.direction", -COORD_MAX, COORD_MAX, d))
+            return -1;
+    } else {
+        /* The camera frame: forward f, up u (orthogonal to f), right r = f x u. */
+        for (int a = 0; a < 3; a++)
+            f[a] = k->target[a] - k->eye[a];
+        double fl = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+        for (int a = 0; a < 3; a++)
+            f[a] /= fl;
+        for (int a = 0; a < 3; a++)
+            fu += k->up[a] * f[a];
+        for (int a = 0; a < 3; a++)
+            u[a] = k->up[a] - fu * f[a];
+        r[0] = f[1] * u[2] - f[2] * u[1];
+        r[1] = f[2] * u[0] - f[0] * u[2];
+        r[2] = f[0] * u[1] - f[1] * u[0];
+        double ul = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+        for (int a = 0; a < 3; a++)
+            d[a] = -2.0 * f[a] + (u[a] - r[a]) / ul;
+    }
+    for (int a = 0; a < 3; a++)
+        n2 += d[a] * d[a];
+    if (!(n2 > 1e-18))
+        return fail(c, "light.direction", "must not be zero");
+    for (int a = 0; a < 3; a++)
+        d[a] /= sqrt(n2);
+    return 0;
+}
+
 static np_scene_poly *add_poly(ctx *c, np_scene *s, const char *field)
 {
     if (s->n_poly >= NP_SCENE_MAX_POLYS) {
@@ -468,7 +510,7 @@ static int parse_texture(ctx *c, const cJSON *root, np_scene *s)
 int np_scene_parse(const char *json, const char *name, np_scene *s, char *err, size_t errlen)
 {
     static const char *const keys[] = { "noisepipe_scene", "name", "description", "image", "camera",
-                                        "geometry", "texture", "probe_row", "allow_empty", NULL };
+                                        "geometry", "texture", "probe_row", "allow_empty", "light", NULL };
     ctx c = { name, err, errlen, 0 };
     memset(s, 0, sizeof *s);
     snprintf(s->path, sizeof s->path, "%s", name);
@@ -524,8 +566,8 @@ int np_scene_parse(const char *json, const char *name, np_scene *s, char *err, s
         fail(&c, "description", "expected a string");
         goto out;
     }
-    if (parse_image(&c, root, s) || parse_camera(&c, root, s) || parse_geometry(&c, root, s) ||
-        parse_texture(&c, root, s))
+    if (parse_image(&c, root, s) || parse_camera(&c, root, s) || parse_light(&c, root, s) ||
+        parse_geometry(&c, root, s) || parse_texture(&c, root, s))
         goto out;
     s->probe_row = s->height / 2u;
     if (get(root, "probe_row"))
