@@ -48,3 +48,26 @@ set_tests_properties(render.report PROPERTIES PASS_REGULAR_EXPRESSION "report: 9
 add_test(NAME render.bench COMMAND noisepipe render --bench --repeat 1
   ${PROJECT_SOURCE_DIR}/vectors/scenes/wood.json ${PROJECT_SOURCE_DIR}/vectors/scenes/marble.json)
 set_tests_properties(render.bench PROPERTIES PASS_REGULAR_EXPRESSION "bench marble.*hardware cycles per frame")
+# --unit-config U:K=V,... configures through the unit registry: the default guard gives the golden
+# images; another guard reaches the render (its hash line names it); an unknown unit or key, a key
+# given twice and a key the scene sets are exit 2 naming it.
+add_test(NAME render.cli_unit_config COMMAND noisepipe render -o ${CMAKE_CURRENT_BINARY_DIR}/render-unit-config
+  --no-cycles --hashes ${PROJECT_SOURCE_DIR}/vectors/images/hashes.txt --unit-config fdiff:guard=44)
+add_test(NAME render.cli_unit_config_applied COMMAND noisepipe render
+  -o ${CMAKE_CURRENT_BINARY_DIR}/render-unit-config-applied --no-cycles
+  --hashes ${PROJECT_SOURCE_DIR}/vectors/images/hashes.txt --unit-config fdiff:guard=40
+  --unit-config texel:weight_frac=15)
+set_tests_properties(render.cli_unit_config_applied PROPERTIES PASS_REGULAR_EXPRESSION
+  "wood fdiff: configuration idx_int=10,w_frac=12,guard=40,resetup=0,setup_mults=2,mult_lat=2 differs.*wood texel: configuration [^ ]*weight_frac=15")
+foreach(bad "unknown_unit|nosuch:x=1|unknown unit 'nosuch'"
+            "unknown_key|fdiff:nosuch=1|unknown configuration key 'nosuch' for unit fdiff"
+            "key_twice|fdiff:guard=4,guard=5|key guard given twice"
+            "scene_key|fdiff:texture=ramp|the scene sets texture")
+  string(REPLACE "|" ";" bad "${bad}")
+  list(GET bad 0 name)
+  list(GET bad 1 arg)
+  list(GET bad 2 want)
+  add_test(NAME render.cli_unit_config_${name} COMMAND ${CMAKE_COMMAND}
+    -DCMD=$<TARGET_FILE:noisepipe> -DARGS=render\;--unit-config\;${arg} -DWANT_RC=2 "-DWANT=${want}"
+    -P ${CMAKE_CURRENT_SOURCE_DIR}/render_expect.cmake)
+endforeach()

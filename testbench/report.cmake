@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: MIT
 # Gate and latency reports (src/report/report_gates.c, src/report/report_pareto.c).
 np_test_program(test_report test_report.c)
-np_add_cases(test_report report cost_model_calibration latency_matches_model unknown_stage_rejected)
+np_add_cases(test_report report cost_model_calibration latency_matches_model unknown_stage_rejected
+  dse_axes_from_keys)
 set_tests_properties(report.cost_model_calibration PROPERTIES
   ENVIRONMENT "NP_COST_CALIB=${CMAKE_CURRENT_SOURCE_DIR}/cost_calib.v" SKIP_RETURN_CODE 77)
 # The copies in docs/ are what `noisepipe report all` writes today, byte for byte.

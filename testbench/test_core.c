@@ -3,12 +3,19 @@
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <string.h>
 
+#include "np_classic.h"
+#include "np_fdiff.h"
 #include "np_fixed.h"
 #include "np_hash.h"
 #include "np_ref.h"
 #include "np_rng.h"
+#include "np_simplex.h"
 #include "np_test.h"
+#include "np_texel.h"
+#include "np_unit.h"
+#include "unit_tex.h"
 
 /* FNV-1a over np_hash6(i,j,k) for i, j, k = 0..255 in that nesting order. */
 #define NP_HASH_TABLE_FNV 0x3c19d3ded8996425ull
@@ -248,7 +255,226 @@ static int rng_kat(void)
     return 0;
 }
 
+/* ------------------------------------------------------------------------- */
+/* Configuration keys of every registered unit (np_unit_key, units.c). */
+
+/* For every unit: the default configuration's text configures, every key once, to the same block and text. */
+static int unit_keys_roundtrip(void)
+{
+    for (size_t i = 0; np_units[i]; i++) {
+        const np_unit *u = np_units[i];
+        np_unit_cfg def, back, none;
+        char text[512], again[512], err[512] = "";
+        NP_CHECK(u->keys && np_unit_key_count(u) > 0, "%s declares no keys", u->name);
+        np_unit_cfg_default(u, &def);
+        np_unit_cfg_format(u, &def, text, sizeof text);
+        NP_CHECK(np_unit_configure_all(u, &back, text, err, sizeof err) == 0, "%s: '%s': %s", u->name, text, err);
+        np_unit_cfg_format(u, &back, again, sizeof again);
+        NP_CHECK(strcmp(text, again) == 0, "%s: '%s' came back as '%s'", u->name, text, again);
+        NP_CHECK(memcmp(&def, &back, sizeof def) == 0, "%s: the block differs after the round trip", u->name);
+        NP_CHECK(np_unit_configure(u, &none, NULL, err, sizeof err) == 0, "%s: defaults: %s", u->name, err);
+        NP_CHECK(memcmp(&def, &none, sizeof def) == 0, "%s: configure(NULL) is not the default", u->name);
+        NP_CHECK(u->cfg_check == NULL || u->cfg_check(&def) == NULL, "%s: the default is inconsistent", u->name);
+        /* The text is every key once, in the table's order, one space between. */
+        const char *p = text;
+        for (const np_unit_key *k = u->keys; k->name; k++) {
+            size_t n = strlen(k->name);
+            NP_CHECK(strncmp(p, k->name, n) == 0 && p[n] == '=', "%s: key %s not next in '%s'", u->name, k->name, text);
+            p = strchr(p, ' ');
+            p = p ? p + 1 : text + strlen(text);
+        }
+        NP_CHECK(*p == '\0', "%s: more than the keys in '%s'", u->name, text);
+        printf("%s: %s\n", u->name, text);
+    }
+    return 0;
+}
+
+/* Every key's lo and hi are accepted, lo - 1 and hi + 1 refused with a message naming the key and range. */
+static int unit_keys_ranges(void)
+{
+    unsigned checked = 0;
+    for (size_t i = 0; np_units[i]; i++) {
+        const np_unit *u = np_units[i];
+        for (const np_unit_key *k = u->keys; k->name; k++) {
+            np_unit_cfg cfg;
+            char v[32], err[512], range[128];
+            np_unit_cfg_default(u, &cfg);
+            np_unit_key_range(k, range, sizeof range);
+            if (k->word) {
+                for (unsigned w = k->lo; w <= k->hi; w++) {
+                    NP_CHECK(k->word(w) != NULL, "%s %s: no word for %u", u->name, k->name, w);
+                    if (!k->word(w))
+                        continue;
+                    NP_CHECK(np_unit_cfg_set(u, &cfg, k->name, k->word(w), err, sizeof err) == 0, "%s", err);
+                    NP_CHECK(np_unit_key_get(k, &cfg) == w, "%s %s=%s", u->name, k->name, k->word(w));
+                }
+                err[0] = '\0';
+                NP_CHECK(np_unit_cfg_set(u, &cfg, k->name, "nosuch", err, sizeof err) != 0, "%s: word accepted",
+                         k->name);
+                NP_CHECK(strstr(err, k->name) && strstr(err, k->word(k->lo)), "%s %s: message '%s'", u->name,
+                         k->name, err);
+                checked++;
+                continue;
+            }
+            const unsigned ends[2] = { k->lo, k->hi };
+            for (unsigned e = 0; e < 2; e++) {
+                snprintf(v, sizeof v, "%u", ends[e]);
+                err[0] = '\0';
+                NP_CHECK(np_unit_cfg_set(u, &cfg, k->name, v, err, sizeof err) == 0, "%s %s=%s refused: %s", u->name,
+                         k->name, v, err);
+                NP_CHECK(np_unit_key_get(k, &cfg) == ends[e], "%s %s=%s stored %u", u->name, k->name, v,
+                         np_unit_key_get(k, &cfg));
+            }
+            const unsigned long long outside[2] = { (unsigned long long)k->lo - 1u, (unsigned long long)k->hi + 1u };
+            for (unsigned e = k->lo == 0 ? 1 : 0; e < 2; e++) {
+                snprintf(v, sizeof v, "%llu", outside[e]);
+                err[0] = '\0';
+                NP_CHECK(np_unit_cfg_set(u, &cfg, k->name, v, err, sizeof err) != 0, "%s %s=%s accepted", u->name,
+                         k->name, v);
+                NP_CHECK(strstr(err, k->name) && strstr(err, v) && strstr(err, range),
+                         "%s %s=%s: message '%s' does not name the key, value and range %s", u->name, k->name, v, err,
+                         range);
+            }
+            checked++;
+        }
+    }
+    printf("%u keys: both ends accepted, one beyond refused naming the key\n", checked);
+    return 0;
+}
+
+/* Decimal digits only: "010" is ten; a sign, a base prefix, blanks, junk or nothing are refused. */
+static int unit_keys_decimal(void)
+{
+    unsigned v = 0;
+    NP_CHECK(np_unit_parse_uint("010", 0, 100, &v) == 0 && v == 10, "\"010\" is %u, expected ten", v);
+    NP_CHECK(np_unit_parse_uint("0", 0, 100, &v) == 0 && v == 0, "\"0\"");
+    NP_CHECK(np_unit_parse_uint("4294967295", 0, 4294967295u, &v) == 0 && v == 4294967295u, "UINT_MAX");
+    static const char *const bad[] = { "0x5", "+3", "", "3abc", " 3", "3 ", "-1", "1e2", "99999999999999999999999" };
+    for (unsigned i = 0; i < sizeof bad / sizeof bad[0]; i++)
+        NP_CHECK(np_unit_parse_uint(bad[i], 0, 4294967295u, &v) != 0, "\"%s\" accepted as %u", bad[i], v);
+    const np_unit *u = np_unit_find("classic3");
+    np_unit_cfg cfg;
+    char err[512], text[256];
+    NP_CHECK(np_unit_configure(u, &cfg, "out_bits=010", err, sizeof err) == 0, "%s", err);
+    np_unit_cfg_format(u, &cfg, text, sizeof text);
+    NP_CHECK(strcmp(text, "out_bits=10 s_frac=14 lerp_frac=13") == 0, "out_bits=010 gave '%s'", text);
+    for (unsigned i = 0; i < 5; i++) {
+        char spec[64];
+        snprintf(spec, sizeof spec, "out_bits=%s", bad[i]);
+        err[0] = '\0';
+        NP_CHECK(np_unit_configure(u, &cfg, spec, err, sizeof err) != 0, "'%s' accepted", spec);
+        NP_CHECK(strstr(err, "out_bits=") && strstr(err, "2..16"), "'%s': message '%s'", spec, err);
+        printf("%-14s -> %s\n", spec, err);
+    }
+    return 0;
+}
+
+/* A key given twice is an error naming it; an unknown key lists the keys; a '# config' text misses none. */
+static int unit_keys_twice_missing(void)
+{
+    for (size_t i = 0; np_units[i]; i++) {
+        const np_unit *u = np_units[i];
+        np_unit_cfg cfg;
+        char text[512], spec[1024], err[512];
+        np_unit_cfg_default(u, &cfg);
+        np_unit_cfg_format(u, &cfg, text, sizeof text);
+        for (const np_unit_key *k = u->keys; k->name; k++) {
+            char one[128];
+            np_unit_key_text(k, &cfg, one, sizeof one);
+            /* Twice, in configure (a subset) and in a full text. */
+            snprintf(spec, sizeof spec, "%s=%s,%s=%s", k->name, one, k->name, one);
+            err[0] = '\0';
+            NP_CHECK(np_unit_configure(u, &cfg, spec, err, sizeof err) != 0, "%s: '%s' accepted", u->name, spec);
+            NP_CHECK(strstr(err, k->name) && strstr(err, "twice"), "%s '%s': message '%s'", u->name, spec, err);
+            snprintf(spec, sizeof spec, "%s %s=%s", text, k->name, one);
+            err[0] = '\0';
+            NP_CHECK(np_unit_configure_all(u, &cfg, spec, err, sizeof err) != 0, "%s: '%s' accepted", u->name, spec);
+            NP_CHECK(strstr(err, k->name) && strstr(err, "twice"), "%s '%s': message '%s'", u->name, spec, err);
+            /* Missing: the full text without this key. */
+            spec[0] = '\0';
+            for (const np_unit_key *q = u->keys; q->name; q++)
+                if (q != k) {
+                    np_unit_key_text(q, &cfg, one, sizeof one);
+                    snprintf(spec + strlen(spec), sizeof spec - strlen(spec), "%s%s=%s", *spec ? " " : "", q->name, one);
+                }
+            err[0] = '\0';
+            NP_CHECK(np_unit_configure_all(u, &cfg, spec, err, sizeof err) != 0, "%s: '%s' accepted", u->name, spec);
+            NP_CHECK(strstr(err, k->name) && strstr(err, "missing"), "%s '%s': message '%s'", u->name, spec, err);
+            NP_CHECK(np_unit_configure(u, &cfg, spec, err, sizeof err) == 0, "%s: a subset: %s", u->name, err);
+        }
+        err[0] = '\0';
+        NP_CHECK(np_unit_configure(u, &cfg, "nosuch=1", err, sizeof err) != 0, "%s: unknown key accepted", u->name);
+        for (const np_unit_key *k = u->keys; k->name; k++)
+            NP_CHECK(strstr(err, k->name) != NULL, "%s: '%s' does not list %s", u->name, err, k->name);
+        printf("%s: %s\n", u->name, err);
+    }
+    return 0;
+}
+
+/* A derived default follows the other keys unless given, whatever the order. */
+static int unit_keys_derived(void)
+{
+    const np_unit *u = np_unit_find("classic3");
+    np_unit_cfg a, b;
+    char ta[256], tb[256], err[512];
+    NP_CHECK(np_unit_configure(u, &a, "s_frac=10,out_bits=12", err, sizeof err) == 0, "%s", err);
+    NP_CHECK(np_unit_configure(u, &b, "out_bits=12 s_frac=10", err, sizeof err) == 0, "%s", err);
+    np_unit_cfg_format(u, &a, ta, sizeof ta);
+    np_unit_cfg_format(u, &b, tb, sizeof tb);
+    NP_CHECK(strcmp(ta, tb) == 0 && strcmp(ta, "out_bits=12 s_frac=10 lerp_frac=15") == 0, "'%s' / '%s'", ta, tb);
+    NP_CHECK(np_unit_configure(u, &a, "out_bits=16", err, sizeof err) == 0, "%s", err);
+    np_unit_cfg_format(u, &a, ta, sizeof ta);
+    NP_CHECK(strcmp(ta, "out_bits=16 s_frac=20 lerp_frac=19") == 0, "out_bits=16 gave '%s'", ta);
+    /* The consistency of several keys is the unit's cfg_check: lerp_frac >= out_bits - 2. */
+    err[0] = '\0';
+    NP_CHECK(np_unit_configure(u, &a, "out_bits=16,lerp_frac=13", err, sizeof err) != 0, "lerp_frac 13 < 14 accepted");
+    NP_CHECK(strstr(err, "lerp_frac") != NULL, "message '%s'", err);
+    printf("%s; out_bits=16,lerp_frac=13: %s\n", tb, err);
+    return 0;
+}
+
+/* The value of key name in the default configuration of unit unit. */
+static unsigned default_key(const char *unit, const char *name)
+{
+    const np_unit *u = np_unit_find(unit);
+    const np_unit_key *k = u ? np_unit_key_find(u, name) : NULL;
+    np_unit_cfg cfg;
+    NP_CHECK(k != NULL, "%s has no key %s", unit, name);
+    if (!k)
+        return 0;
+    np_unit_cfg_default(u, &cfg);
+    return np_unit_key_get(k, &cfg);
+}
+
+/* The key tables' defaults are the models' own (np_*_cfg_default), which the models' tests use. */
+static int unit_keys_model_defaults(void)
+{
+    np_classic_cfg c = np_classic_cfg_default(8);
+    NP_CHECK(default_key("classic3", "out_bits") == c.out_bits && default_key("classic3", "s_frac") == c.s_frac &&
+                 default_key("classic3", "lerp_frac") == c.lerp_frac, "classic3");
+    np_simplex_cfg x = np_simplex_cfg_default(16, 16, 1);
+    NP_CHECK(default_key("simplex3", "out_bits") == x.out_bits && default_key("simplex3", "dout_bits") == x.dout_bits &&
+                 default_key("simplex3", "deriv") == x.deriv && default_key("simplex3", "t_frac") == x.t_frac &&
+                 default_key("simplex3", "p_frac") == x.p_frac && default_key("simplex3", "k_frac") == x.k_frac,
+             "simplex3");
+    np_unit_cfg cfg;
+    np_fdiff_cfg f = np_fdiff_cfg_default();
+    np_unit_cfg_default(np_unit_find("fdiff"), &cfg);
+    NP_CHECK(memcmp(np_ut_fdiff_cfg(&cfg), &f, sizeof f) == 0, "fdiff: the table's defaults are not np_fdiff_cfg_default()");
+    np_texel_cfg t = np_texel_cfg_default();
+    np_unit_cfg_default(np_unit_find("texel"), &cfg);
+    NP_CHECK(memcmp(np_ut_texel_cfg(&cfg), &t, sizeof t) == 0, "texel: the table's defaults are not np_texel_cfg_default()");
+    puts("classic3, simplex3, fdiff, texel: the key tables' defaults are the models' defaults");
+    return 0;
+}
+
 static const np_test_case cases[] = {
+    { "unit_keys_model_defaults", unit_keys_model_defaults },
+    { "unit_keys_roundtrip", unit_keys_roundtrip },
+    { "unit_keys_ranges", unit_keys_ranges },
+    { "unit_keys_decimal", unit_keys_decimal },
+    { "unit_keys_twice_missing", unit_keys_twice_missing },
+    { "unit_keys_derived", unit_keys_derived },
     { "fixed_asr", fixed_asr },
     { "fixed_round", fixed_round },
     { "fixed_sat_sext", fixed_sat_sext },

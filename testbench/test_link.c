@@ -232,7 +232,7 @@ static int t_payloads(void)
     u->fields(&cfg, &f);
     memset(&c, 0, sizeof c);
     snprintf(c.unit, sizeof c.unit, "classic3");
-    u->cfg_format(&cfg, c.cfg, sizeof c.cfg);
+    np_unit_cfg_format(u, &cfg, c.cfg, sizeof c.cfg);
     np_link_layout_init(&c.lay, &f);
     n = np_link_config_encode(p, &c);
     NP_CHECK(n == 36 + 36, "CONFIG length %zu (section 8 says 72)", n);
@@ -323,7 +323,7 @@ static void config_payload(const np_unit *u, const char *spec, uint8_t *p, unsig
     u->fields(&cfg, &f);
     memset(&c, 0, sizeof c);
     snprintf(c.unit, sizeof c.unit, "%s", u->name);
-    u->cfg_format(&cfg, c.cfg, sizeof c.cfg);
+    np_unit_cfg_format(u, &cfg, c.cfg, sizeof c.cfg);
     np_link_layout_init(&c.lay, &f);
     *len = (unsigned)np_link_config_encode(p, &c);
 }

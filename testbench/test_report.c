@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "np_pareto.h"
 #include "np_report.h"
 #include "np_stream.h"
 #include "np_test.h"
@@ -181,7 +182,7 @@ static int latency_matches_model(void)
         np_unit_cfg cfg;
         np_unit_cost c;
         char err[256];
-        u->cfg_default(&cfg);
+        np_unit_cfg_default(u, &cfg);
         NP_CHECK(np_unit_cost_compute(u, &cfg, &np_cost_default, &c, err, sizeof err) == 0, "%s: %s", u->name, err);
         for (unsigned k = 0; k < c.n_stages; k++)
             NP_CHECK(c.st[k].reg_bits > 0, "%s: stage %s declares no register bank", u->name, c.st[k].name);
@@ -218,13 +219,55 @@ static int unknown_stage_rejected(void)
     np_unit_cfg cfg;
     np_unit_cost c;
     char err[256] = "";
-    u->cfg_default(&cfg);
+    np_unit_cfg_default(u, &cfg);
     NP_CHECK(np_unit_cost_compute(&tampered, &cfg, &np_cost_default, &c, err, sizeof err) != 0, "no datapath");
     printf("no declaration: \"%s\"\n", err);
     return 0;
 }
 
+/* The DSE sweeps take their keys and ranges from the unit's key table (np_dse_axis). */
+static int dse_axes_from_keys(void)
+{
+    char err[256] = "";
+    np_dse_result r;
+    /* A range narrowed by the space must lie inside the key's; an unknown key is named. */
+    const np_dse_space bad_key = { "classic3", "out_bits=8", { { "s_fracc", 3, 4 }, { "lerp_frac", 6, 7 } }, 0 };
+    NP_CHECK(np_dse_run(&bad_key, 10, 1, &r, err, sizeof err) != 0, "unknown key accepted");
+    NP_CHECK(strstr(err, "'s_fracc'") != NULL, "message names the key: %s", err);
+    printf("unknown key: \"%s\"\n", err);
+    const np_dse_space wide = { "classic3", "out_bits=8", { { "s_frac", 3, 25 }, { "lerp_frac", 6, 7 } }, 0 };
+    NP_CHECK(np_dse_run(&wide, 10, 1, &r, err, sizeof err) != 0, "s_frac 3..25 accepted (the key's range is 1..24)");
+    NP_CHECK(strstr(err, "s_frac") && strstr(err, "1..24"), "message names the key and its range: %s", err);
+    printf("outside the key's range: \"%s\"\n", err);
+    /* 0..0: the key's whole range from the table (classic3 s_frac 1..24), swept against a narrowed one. */
+    const np_dse_space whole = { "classic3", "out_bits=8", { { "s_frac", 0, 0 }, { "lerp_frac", 11, 11 } }, 0 };
+    const np_unit_key *k = np_unit_key_find(np_unit_find("classic3"), "s_frac");
+    NP_CHECK(k != NULL, "classic3 has s_frac");
+    NP_CHECK(np_dse_run(&whole, 10, 1, &r, err, sizeof err) == 0, "%s", err);
+    NP_CHECK(k && r.axis[0].lo == k->lo && r.axis[0].hi == k->hi, "s_frac swept over %u..%u, the table has %u..%u",
+             r.axis[0].lo, r.axis[0].hi, k ? k->lo : 0, k ? k->hi : 0);
+    NP_CHECK(r.axis[1].lo == 11 && r.axis[1].hi == 11, "lerp_frac narrowed to 11");
+    NP_CHECK(k && r.n == k->hi - k->lo + 1, "%zu points, expected one per s_frac", r.n);
+    printf("s_frac from the table: %u..%u, %zu points\n", r.axis[0].lo, r.axis[0].hi, r.n);
+    np_dse_free(&r);
+    /* The shipped spaces sweep numeric keys of their units inside the keys' ranges. */
+    for (const np_dse_space *sp = np_dse_spaces; sp->unit; sp++) {
+        const np_unit *u = np_unit_find(sp->unit);
+        NP_CHECK(u != NULL, "space of unknown unit %s", sp->unit);
+        for (unsigned a = 0; u && a < 2; a++) {
+            const np_unit_key *q = np_unit_key_find(u, sp->axis[a].key);
+            NP_CHECK(q && !q->word, "%s: %s is not a numeric key", sp->unit, sp->axis[a].key);
+            NP_CHECK(!q || (sp->axis[a].lo == 0 && sp->axis[a].hi == 0) ||
+                         (q->lo <= sp->axis[a].lo && sp->axis[a].lo <= sp->axis[a].hi && sp->axis[a].hi <= q->hi),
+                     "%s: %s %u..%u outside the key's range", sp->unit, sp->axis[a].key, sp->axis[a].lo,
+                     sp->axis[a].hi);
+        }
+    }
+    return 0;
+}
+
 static const np_test_case cases[] = {
+    { "dse_axes_from_keys", dse_axes_from_keys },
     { "cost_model_calibration", cost_model_calibration },
     { "latency_matches_model", latency_matches_model },
     { "unknown_stage_rejected", unknown_stage_rejected },

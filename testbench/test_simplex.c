@@ -399,7 +399,7 @@ static unsigned kat_inputs(uint16_t (*in)[3], unsigned max)
 {
     uint64_t b[64][NP_UNIT_MAX_FIELDS];
     np_unit_cfg ucfg;
-    np_unit_simplex3.cfg_default(&ucfg);
+    np_unit_cfg_default(&np_unit_simplex3, &ucfg);
     size_t nb = np_unit_simplex3.boundary(&ucfg, b, 64);
     unsigned n = 0;
     for (size_t i = 0; i < nb && i < 64 && n < max; i++, n++)
@@ -1312,7 +1312,7 @@ static int registry(void)
     char err[256];
     NP_CHECK(np_unit_configure(u, &cfg, "", err, sizeof err) == 0, "defaults: %s", err);
     char buf[256];
-    u->cfg_format(&cfg, buf, sizeof buf);
+    np_unit_cfg_format(u, &cfg, buf, sizeof buf);
     puts(buf);
     NP_CHECK(strcmp(buf, "out_bits=16 dout_bits=16 deriv=1 t_frac=24 p_frac=22 k_frac=22") == 0, "default format");
     np_unit_fields f;
@@ -1328,12 +1328,12 @@ static int registry(void)
         NP_CHECK(fabs(np_unit_field_value(&f.out[k], out[k]) - rv[k]) <= ldexp(1.0, -(int)f.out[k].frac),
                  "field %u", k);
     NP_CHECK(np_unit_configure(u, &cfg, "deriv=0,out_bits=8", err, sizeof err) == 0, "%s", err);
-    u->cfg_format(&cfg, buf, sizeof buf);
+    np_unit_cfg_format(u, &cfg, buf, sizeof buf);
     puts(buf);
     u->fields(&cfg, &f);
     NP_CHECK(f.n_out == 1 && f.out[0].bits == 8, "deriv=0 fields");
     NP_CHECK(np_unit_configure(u, &cfg, "t_frac=20,out_bits=12", err, sizeof err) == 0, "%s", err);
-    u->cfg_format(&cfg, buf, sizeof buf);
+    np_unit_cfg_format(u, &cfg, buf, sizeof buf);
     NP_CHECK(strstr(buf, "t_frac=20") != NULL, "hand-set width kept: %s", buf);
     NP_CHECK(np_unit_configure(u, &cfg, "out_bits=21", err, sizeof err) != 0, "out_bits 21 accepted");
     NP_CHECK(np_unit_configure(u, &cfg, "deriv=2", err, sizeof err) != 0, "deriv 2 accepted");

@@ -590,6 +590,13 @@ static const bad_kind bad_kinds[] = {
     { "bad_value_range", "out_bits=6", 2, 3, "7f", 0, "bad.vec:%u: field f: value 7f out of range for 6 bits" },
     { "bad_unknown_unit", NULL, -2, -1, "# unit nosuch", 0, "bad.vec:%u: unknown unit 'nosuch'" },
     { "bad_config", NULL, -3, -1, "# config out_bits=99", 0, "bad.vec:%u: bad config 'out_bits=99'" },
+    { "bad_config_missing_key", NULL, -3, -1, "# config out_bits=8 s_frac=12", 0,
+      "bad.vec:%u: bad config 'out_bits=8 s_frac=12' for unit classic3: key lerp_frac missing" },
+    { "bad_config_key_twice", NULL, -3, -1, "# config out_bits=8 s_frac=12 lerp_frac=11 s_frac=12", 0,
+      "bad.vec:%u: bad config 'out_bits=8 s_frac=12 lerp_frac=11 s_frac=12' for unit classic3: key s_frac given twice" },
+    { "bad_config_hex", NULL, -3, -1, "# config out_bits=0x8 s_frac=12 lerp_frac=11", 0,
+      "bad.vec:%u: bad config 'out_bits=0x8 s_frac=12 lerp_frac=11' for unit classic3: out_bits=0x8: expected a "
+      "decimal integer in 2..16" },
     { "bad_field_decl", NULL, -10, -1, "# field f out 8 s8 Q3.5", 0,
       "bad.vec:%u: field f: header declares 'f out 8 s8 Q3.5', but unit classic3" },
     { "bad_missing_header", NULL, 0, 0, NULL, 1, "bad.vec:%u: missing header" },
@@ -656,6 +663,9 @@ BAD_CASE(bad_too_many_fields)
 BAD_CASE(bad_value_range)
 BAD_CASE(bad_unknown_unit)
 BAD_CASE(bad_config)
+BAD_CASE(bad_config_missing_key)
+BAD_CASE(bad_config_key_twice)
+BAD_CASE(bad_config_hex)
 BAD_CASE(bad_field_decl)
 BAD_CASE(bad_missing_header)
 BAD_CASE(bad_missing_file)
@@ -728,6 +738,9 @@ static const np_test_case cases[] = {
     { "bad_value_range", bad_value_range },
     { "bad_unknown_unit", bad_unknown_unit },
     { "bad_config", bad_config },
+    { "bad_config_missing_key", bad_config_missing_key },
+    { "bad_config_key_twice", bad_config_key_twice },
+    { "bad_config_hex", bad_config_hex },
     { "bad_field_decl", bad_field_decl },
     { "bad_missing_header", bad_missing_header },
     { "bad_missing_file", bad_missing_file },

@@ -142,7 +142,7 @@ static int bench_units(double secs)
             np_err("bench", "%s: %s", v[i].unit, err);
             return NP_EXIT_USAGE;
         }
-        u->cfg_format(&cfg, text, sizeof text);
+        np_unit_cfg_format(u, &cfg, text, sizeof text);
         printf("  %s: %s\n", v[i].label, text);
         snprintf(what, sizeof what, "%s, bit-exact model", v[i].label);
         row(what, bench_unit(u, &cfg, 0, secs), "evaluations", "");
@@ -252,7 +252,7 @@ int np_cmd_bench(int argc, char **argv)
         return NP_EXIT_USAGE;
     }
     const np_classic_cfg ccfg = np_classic_cfg_default(8);
-    u->cfg_format(&cfg, cfgtext, sizeof cfgtext);
+    np_unit_cfg_format(u, &cfg, cfgtext, sizeof cfgtext);
     printf("bench of unit classic3 (%s), about %.2f s per figure, one thread unless stated\n",
            cfgtext, secs);
     printf("%-50s %9s %9s\n", "", "wall", "CPU");

@@ -16,6 +16,8 @@
 #include "np_image.h"
 #include "np_plot.h"
 #include "np_render.h"
+#include "np_unit.h"
+#include "unit_tex.h"
 
 
 static const char *const CMD = "render";
@@ -36,10 +38,11 @@ static void usage(FILE *f)
           "\n"
           "options:\n"
           "  -o, --out DIR        output directory (default render-out; created)\n"
-          "  --fdiff K=V,...      fdiff configuration over its defaults (keys: idx_int,\n"
-          "                       w_frac, guard, resetup, setup_mults, mult_lat)\n"
-          "  --texel K=V,...      texel configuration (keys: idx_int, w_frac, guard,\n"
-          "                       weight_frac, setup_mults, mult_lat)\n"
+          "  --unit-config U:K=V,...  configuration of unit U over its defaults (keys and\n"
+          "                       ranges: noisepipe units; the scene sets the texture);\n"
+          "                       repeatable, a key given twice is an error\n"
+          "  --fdiff K=V,...      the same as --unit-config fdiff:K=V,...\n"
+          "  --texel K=V,...      the same as --unit-config texel:K=V,...\n"
           "  --tolerance LSB      fail (exit 1) when a unit's max error exceeds LSB (default 1)\n"
           "  --no-check           do not compare the errors with the tolerance\n"
           "  --no-cycles          skip the cycle-accurate models\n"
@@ -56,9 +59,14 @@ static void usage(FILE *f)
           f);
 }
 
+enum { MAX_UNITS = 16, UNIT_SPEC_MAX = 512 };
+
 typedef struct opts {
     const char *out;
-    const char *fdiff_spec, *texel_spec;
+    /* --unit-config: the keys given for np_units[i], joined by commas; the unit's block configured from them. */
+    char unit_spec[MAX_UNITS][UNIT_SPEC_MAX];
+    np_unit_cfg ucfg[MAX_UNITS];
+    /* The models' configurations inside the blocks of fdiff and texel (the render calls the models). */
     np_fdiff_cfg fc;
     np_texel_cfg tc;
     double tolerance;
@@ -105,6 +113,83 @@ static int mkdir_p(const char *dir)
     return 0;
 }
 
+/* Index of unit name in np_units[], or -1. */
+static int unit_index(const char *name)
+{
+    for (int i = 0; np_units[i] && i < MAX_UNITS; i++)
+        if (strcmp(np_units[i]->name, name) == 0)
+            return i;
+    return -1;
+}
+
+/* "U:K=V,..." of --unit-config (or the keys of --fdiff / --texel for unit, then arg is "K=V,..."): added to U's keys. */
+static int add_unit_config(opts *o, const char *unit, const char *arg)
+{
+    char name[64];
+    const char *keys = arg;
+    if (!unit) {
+        const char *colon = strchr(arg, ':');
+        if (!colon || colon == arg || (size_t)(colon - arg) >= sizeof name) {
+            np_err(CMD, "--unit-config %s: expected UNIT:KEY=VALUE,...", arg);
+            return -1;
+        }
+        memcpy(name, arg, (size_t)(colon - arg));
+        name[colon - arg] = '\0';
+        unit = name;
+        keys = colon + 1;
+    }
+    int i = unit_index(unit);
+    if (i < 0) {
+        char known[256] = "";
+        for (size_t k = 0; np_units[k]; k++)
+            snprintf(known + strlen(known), sizeof known - strlen(known), "%s%s", k ? ", " : "", np_units[k]->name);
+        np_err(CMD, "--unit-config: unknown unit '%s' (units: %s)", unit, known);
+        return -1;
+    }
+    char *spec = o->unit_spec[i];
+    if (strlen(spec) + 1 + strlen(keys) >= UNIT_SPEC_MAX) {
+        np_err(CMD, "--unit-config %s: configuration too long", unit);
+        return -1;
+    }
+    snprintf(spec + strlen(spec), UNIT_SPEC_MAX - strlen(spec), "%s%s", *spec ? "," : "", keys);
+    return 0;
+}
+
+/* Configure every unit from its --unit-config keys (the scene's keys are the scene's, not the user's). */
+static int configure_units(opts *o)
+{
+    for (int i = 0; np_units[i] && i < MAX_UNITS; i++) {
+        const np_unit *u = np_units[i];
+        char err[512], key[64];
+        if (np_unit_configure(u, &o->ucfg[i], o->unit_spec[i], err, sizeof err) != 0) {
+            np_err(CMD, "--unit-config %s: %s", u->name, err);
+            return -1;
+        }
+        for (const char *p = o->unit_spec[i]; *p;) {
+            size_t n = strcspn(p, "=, ");
+            snprintf(key, sizeof key, "%.*s", (int)n, p);
+            const np_unit_key *k = np_unit_key_find(u, key);
+            if (k && (k->flags & NP_UNIT_KEY_SCENE)) {
+                np_err(CMD, "--unit-config %s:%s: the scene sets %s", u->name, key, key);
+                return -1;
+            }
+            p += strcspn(p, ", ");
+            p += strspn(p, ", ");
+        }
+    }
+    int f = unit_index("fdiff"), t = unit_index("texel");
+    o->fc = *np_ut_fdiff_cfg(&o->ucfg[f]);
+    o->tc = *np_ut_texel_cfg(&o->ucfg[t]);
+    return 0;
+}
+
+/* A unit's configuration as the golden image hashes name it: "k=v,k=v", without the keys the scene sets. */
+static void unit_cfg_text(const opts *o, const char *unit, char *buf, size_t len)
+{
+    int i = unit_index(unit);
+    np_unit_cfg_format_opt(np_units[i], &o->ucfg[i], NP_UNIT_FMT_COMMAS | NP_UNIT_FMT_NO_SCENE, buf, len);
+}
+
 /* A seed scene by name: the copy built into the program (vectors/scenes/NAME.json). */
 static const char *seed_scene(const char *name, char *path, size_t n)
 {
@@ -130,14 +215,15 @@ static int parse_opts(int argc, char **argv, opts *o)
             if (r < 0)
                 return -1;
             o->out = v;
+        } else if ((r = opt_value(argc, argv, &i, "--unit-config", &v))) {
+            if (r < 0 || add_unit_config(o, NULL, v) != 0)
+                return -1;
         } else if ((r = opt_value(argc, argv, &i, "--fdiff", &v))) {
-            if (r < 0)
+            if (r < 0 || add_unit_config(o, "fdiff", v) != 0)
                 return -1;
-            o->fdiff_spec = v;
         } else if ((r = opt_value(argc, argv, &i, "--texel", &v))) {
-            if (r < 0)
+            if (r < 0 || add_unit_config(o, "texel", v) != 0)
                 return -1;
-            o->texel_spec = v;
         } else if ((r = opt_value(argc, argv, &i, "--tolerance", &v))) {
             char *end;
             if (r < 0)
@@ -194,13 +280,7 @@ static int parse_opts(int argc, char **argv, opts *o)
         if (o->report)
             o->scenes[o->n_scenes++] = seed_scene("marble", marble, sizeof marble);
     }
-    char err[512];
-    if (np_render_fdiff_cfg_parse(&o->fc, o->fdiff_spec, err, sizeof err) ||
-        np_render_texel_cfg_parse(&o->tc, o->texel_spec, err, sizeof err)) {
-        np_err(CMD, "%s", err);
-        return -1;
-    }
-    return 0;
+    return configure_units(o);
 }
 
 /* --- Golden hashes --- */
@@ -396,8 +476,8 @@ static int render_scene(const opts *o, const char *path, hash_list *hashes)
         rc = NP_EXIT_USAGE;
         goto out;
     }
-    np_render_fdiff_cfg_format(&o->fc, fcfg, sizeof fcfg);
-    np_render_texel_cfg_format(&o->tc, tcfg, sizeof tcfg);
+    unit_cfg_text(o, "fdiff", fcfg, sizeof fcfg);
+    unit_cfg_text(o, "texel", tcfg, sizeof tcfg);
     printf("scene %s (%s): %ux%u, %llu pixels in %zu spans (longest %u), %u octave%s; reference %.4f s\n",
            sc.name, path, sc.width, sc.height, (unsigned long long)fr.pixels, fr.n_spans, fr.longest,
            sc.tex.n_oct, sc.tex.n_oct == 1 ? "" : "s", fr.ref_seconds);

@@ -277,7 +277,7 @@ static int load_file(const stream_args *a, np_link_job *j)
             np_vec_close(&r);
             return -1;
         }
-        h->unit->cfg_format(&c, text, sizeof text);
+        np_unit_cfg_format(h->unit, &c, text, sizeof text);
         if (strcmp(text, h->cfg_text) != 0) {
             np_err("stream", "%s is for configuration '%s', not '%s'", a->vectors, h->cfg_text, text);
             np_vec_close(&r);

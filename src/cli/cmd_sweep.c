@@ -96,7 +96,7 @@ static void print_summary(const np_unit *u, const void *cfg, const np_sweep_opts
     const np_sweep_stats *s = &r->total;
     char cfgtext[256];
     np_unit_fields f;
-    u->cfg_format(cfg, cfgtext, sizeof cfgtext);
+    np_unit_cfg_format(u, cfg, cfgtext, sizeof cfgtext);
     u->fields(cfg, &f);
     printf("sweep of unit %s (%s), slice %s = 0x%04x\n", u->name, cfgtext, f.in[2].name,
            (unsigned)o->z);

@@ -9,7 +9,7 @@
 int np_cmd_units(int argc, char **argv)
 {
     if (argc > 1 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0)) {
-        puts("usage: noisepipe units\n\nLists every unit with its default configuration, fields and accuracy contract.");
+        puts("usage: noisepipe units\n\nLists every unit with its default configuration, fields, accuracy contract and\nconfiguration keys (name, range, default, meaning).");
         return NP_EXIT_OK;
     }
     if (argc > 1) {
@@ -21,8 +21,8 @@ int np_cmd_units(int argc, char **argv)
         np_unit_cfg cfg;
         char buf[256];
         np_unit_fields f;
-        u->cfg_default(&cfg);
-        u->cfg_format(&cfg, buf, sizeof buf);
+        np_unit_cfg_default(u, &cfg);
+        np_unit_cfg_format(u, &cfg, buf, sizeof buf);
         u->fields(&cfg, &f);
         printf("%s: %s\n  default configuration: %s\n  inputs: ", u->name, u->summary, buf);
         for (unsigned k = 0; k < f.n_in; k++)
@@ -32,6 +32,15 @@ int np_cmd_units(int argc, char **argv)
             printf("%s%s (%s)", k ? ", " : "", f.out[k].name, f.out[k].format);
         printf("\n  accuracy: |output - float reference| <= %g LSB required, %.4f LSB guaranteed by the error argument\n",
                u->tolerance_lsb, u->error_bound_lsb(&cfg));
+        printf("  keys (name, range, default, meaning; a derived default follows the other keys):\n");
+        for (const np_unit_key *k = u->keys; k && k->name; k++) {
+            char range[128], def[112];
+            np_unit_key_range(k, range, sizeof range);
+            np_unit_key_text(k, &cfg, def, sizeof def);
+            if (k->derive)
+                snprintf(def + strlen(def), sizeof def - strlen(def), " derived");
+            printf("    %-12s %-17s %-11s %s\n", k->name, range, def, k->meaning);
+        }
     }
     return NP_EXIT_OK;
 }

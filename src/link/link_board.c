@@ -192,7 +192,7 @@ static void on_config(np_board *b, const np_link_hdr *h, const uint8_t *payload)
         send_error(b, NP_LINK_E_NO_SUCH_CONFIG, 0, "%.50s", err);
         return;
     }
-    u->cfg_format(&b->cfg, canon, sizeof canon);
+    np_unit_cfg_format(u, &b->cfg, canon, sizeof canon);
     if (strcmp(canon, c.cfg) != 0) {
         send_error(b, NP_LINK_E_NO_SUCH_CONFIG, 0, "configuration not canonical");
         return;

@@ -28,7 +28,7 @@ int np_link_job_init(np_link_job *j, const np_unit *u, const void *cfg, uint64_t
     j->unit = u;
     memcpy(&j->cfg, cfg, sizeof j->cfg);
     u->fields(&j->cfg, &j->fields);
-    u->cfg_format(&j->cfg, j->cfg_text, sizeof j->cfg_text);
+    np_unit_cfg_format(u, &j->cfg, j->cfg_text, sizeof j->cfg_text);
     np_link_layout_init(&j->lay, &j->fields);
     j->n = n;
     size_t m = n ? (size_t)n : 1u;

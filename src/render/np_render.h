@@ -62,16 +62,6 @@ typedef struct np_render_run {
     np_render_err err;
 } np_render_run;
 
-/*
- * Unit configurations as text: "key=value,key=value" over the defaults
- * (np_fdiff_cfg_default, np_texel_cfg_default). 0, or -1 with a message
- * naming the key and its range. Format: every key, fixed order, commas.
- */
-int np_render_fdiff_cfg_parse(np_fdiff_cfg *c, const char *spec, char *err, size_t errlen);
-void np_render_fdiff_cfg_format(const np_fdiff_cfg *c, char *buf, size_t len);
-int np_render_texel_cfg_parse(np_texel_cfg *c, const char *spec, char *err, size_t errlen);
-void np_render_texel_cfg_format(const np_texel_cfg *c, char *buf, size_t len);
-
 /* Scan-convert the scene and compile its texture. 0, or -1 with err. */
 int np_render_prepare(const np_scene *sc, np_render_frame *fr, char *err, size_t errlen);
 void np_render_frame_free(np_render_frame *fr);

@@ -12,14 +12,20 @@
 extern "C" {
 #endif
 
+/*
+ * One swept key of a unit (np_unit_key): its range is the key table's unless
+ * narrowed here (lo..hi inside the table's; 0..0: the table's whole range).
+ */
+typedef struct np_dse_axis {
+    const char *key;
+    unsigned lo, hi;
+} np_dse_axis;
+
 /* A two-key design space of one unit around a base configuration. */
 typedef struct np_dse_space {
     const char *unit;
     const char *base;    /* e.g. "out_bits=8" */
-    const char *key1;
-    unsigned lo1, hi1;
-    const char *key2;
-    unsigned lo2, hi2;
+    np_dse_axis axis[2];
     int claim_10k;       /* 1: check the seed's "under 10K gates" claim (classic3 only) */
 } np_dse_space;
 
@@ -36,13 +42,17 @@ typedef struct np_dse_point {
 typedef struct np_dse_result {
     const np_dse_space *space;
     const np_unit *unit;
+    np_dse_axis axis[2]; /* the ranges swept: the space's, or the key table's */
     uint64_t samples, seed;
     size_t inputs;
     size_t n;
     np_dse_point *pts;
 } np_dse_result;
 
-/* Run the sweep: samples random inputs (plus the boundary table). 0, or -1 with err. */
+/*
+ * Run the sweep: samples random inputs (plus the boundary table). 0, or -1
+ * with err (an unknown unit or key, a range outside the key's).
+ */
 int np_dse_run(const np_dse_space *sp, uint64_t samples, uint64_t seed, np_dse_result *res, char *err,
                size_t errlen);
 void np_dse_free(np_dse_result *res);

@@ -86,7 +86,7 @@ int np_unit_cost_compute(const np_unit *u, const void *cfg, const np_cost_model 
         snprintf(err, errlen, "unit %s declares no datapath", u->name);
         return -1;
     }
-    u->cfg_format(cfg, c->cfg, sizeof c->cfg);
+    np_unit_cfg_format(u, cfg, c->cfg, sizeof c->cfg);
     c->n_ops = u->datapath(cfg, c->ops, NP_REPORT_MAX_OPS);
     if (c->n_ops > NP_REPORT_MAX_OPS) {
         snprintf(err, errlen, "unit %s declares %zu ops (max %d)", u->name, c->n_ops, NP_REPORT_MAX_OPS);

@@ -16,11 +16,32 @@
 
 /* The design spaces swept for `noisepipe report pareto` (docs/pareto-*.md). */
 const np_dse_space np_dse_spaces[] = {
-    { "classic3", "out_bits=8", "s_frac", 3, 16, "lerp_frac", 6, 14, 1 },
+    /* Narrowed from the keys' 1..24 and 0..30 to the widths around the 8-bit output's faithful ones. */
+    { "classic3", "out_bits=8", { { "s_frac", 3, 16 }, { "lerp_frac", 6, 14 } }, 1 },
     /* The powers' and the products' fraction bits: they size every multiplier (k_frac only the constants'). */
-    { "simplex3", "out_bits=16,dout_bits=16,deriv=1", "t_frac", 16, 26, "p_frac", 14, 24, 0 },
-    { NULL, NULL, NULL, 0, 0, NULL, 0, 0, 0 },
+    { "simplex3", "out_bits=16,dout_bits=16,deriv=1", { { "t_frac", 16, 26 }, { "p_frac", 14, 24 } }, 0 },
+    { NULL, NULL, { { NULL, 0, 0 }, { NULL, 0, 0 } }, 0 },
 };
+
+/* The range of axis a of sp from the unit's key table (narrowed by sp). 0, or -1 with err. */
+static int resolve_axis(const np_unit *u, const np_dse_axis *a, np_dse_axis *out, char *err, size_t errlen)
+{
+    const np_unit_key *k = np_unit_key_find(u, a->key);
+    if (!k || k->word) {
+        snprintf(err, errlen, "unit %s: '%s' is not a numeric configuration key (noisepipe units)", u->name, a->key);
+        return -1;
+    }
+    *out = *a;
+    if (a->lo == 0 && a->hi == 0) {
+        out->lo = k->lo;
+        out->hi = k->hi;
+    } else if (a->lo > a->hi || a->lo < k->lo || a->hi > k->hi) {
+        snprintf(err, errlen, "unit %s: sweep of %s over %u..%u is outside the key's range %u..%u", u->name, a->key,
+                 a->lo, a->hi, k->lo, k->hi);
+        return -1;
+    }
+    return 0;
+}
 
 /* The inputs every configuration is measured on, with their reference values. */
 typedef struct sample_set {
@@ -93,6 +114,10 @@ int np_dse_run(const np_dse_space *sp, uint64_t samples, uint64_t seed, np_dse_r
         return -1;
     }
     res->unit = u;
+    for (unsigned i = 0; i < 2; i++)
+        if (resolve_axis(u, &sp->axis[i], &res->axis[i], err, errlen) != 0)
+            return -1;
+    const np_dse_axis *a1 = &res->axis[0], *a2 = &res->axis[1];
     np_unit_cfg cfg;
     if (np_unit_configure(u, &cfg, sp->base, err, errlen) != 0)
         return -1;
@@ -102,7 +127,7 @@ int np_dse_run(const np_dse_space *sp, uint64_t samples, uint64_t seed, np_dse_r
         return -1;
     }
     res->inputs = s.n;
-    size_t total = (size_t)(sp->hi1 - sp->lo1 + 1) * (size_t)(sp->hi2 - sp->lo2 + 1);
+    size_t total = (size_t)(a1->hi - a1->lo + 1) * (size_t)(a2->hi - a2->lo + 1);
     res->pts = calloc(total, sizeof *res->pts);
     if (!res->pts) {
         free(s.in);
@@ -112,11 +137,11 @@ int np_dse_run(const np_dse_space *sp, uint64_t samples, uint64_t seed, np_dse_r
     }
     np_progress pr;
     np_progress_start(&pr, "pareto", total);
-    for (unsigned a = sp->lo1; a <= sp->hi1; a++)
-        for (unsigned b = sp->lo2; b <= sp->hi2; b++) {
+    for (unsigned a = a1->lo; a <= a1->hi; a++)
+        for (unsigned b = a2->lo; b <= a2->hi; b++) {
             np_dse_point *p = &res->pts[res->n];
             char spec[256], e2[256];
-            snprintf(spec, sizeof spec, "%s,%s=%u,%s=%u", sp->base, sp->key1, a, sp->key2, b);
+            snprintf(spec, sizeof spec, "%s,%s=%u,%s=%u", sp->base, a1->key, a, a2->key, b);
             if (np_unit_configure(u, &cfg, spec, e2, sizeof e2) != 0)
                 continue; /* outside the unit's valid range */
             np_unit_cost c;
@@ -127,7 +152,7 @@ int np_dse_run(const np_dse_space *sp, uint64_t samples, uint64_t seed, np_dse_r
             }
             p->v1 = a;
             p->v2 = b;
-            u->cfg_format(&cfg, p->cfg, sizeof p->cfg);
+            np_unit_cfg_format(u, &cfg, p->cfg, sizeof p->cfg);
             p->gates = c.total;
             p->latency = c.latency;
             p->crit = c.crit;
@@ -194,7 +219,7 @@ static const np_dse_point *base_point(const np_dse_result *r)
     char e[256], name[128];
     if (np_unit_configure(r->unit, &cfg, r->space->base, e, sizeof e) != 0)
         return NULL;
-    r->unit->cfg_format(&cfg, name, sizeof name);
+    np_unit_cfg_format(r->unit, &cfg, name, sizeof name);
     for (size_t i = 0; i < r->n; i++)
         if (strcmp(r->pts[i].cfg, name) == 0)
             return &r->pts[i];
@@ -306,7 +331,7 @@ void np_dse_write_md(FILE *f, const np_dse_result *r, const char *svg_name)
                "%llu seeded random inputs, seed %llu) against the float reference; gates are the estimate of "
                "[gates.md](gates.md) ([cost-model.md](cost-model.md)). *Bound* is the unit's error argument "
                "(valid for every input); *measured* holds for the inputs tried.",
-            sp->base, sp->key1, sp->lo1, sp->hi1, sp->key2, sp->lo2, sp->hi2, r->inputs,
+            sp->base, r->axis[0].key, r->axis[0].lo, r->axis[0].hi, r->axis[1].key, r->axis[1].lo, r->axis[1].hi, r->inputs,
             (unsigned long long)r->samples, (unsigned long long)r->seed);
     if (uf.n_out > 1) {
         fprintf(f, " The unit has %u outputs (", uf.n_out);

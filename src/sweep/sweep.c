@@ -318,7 +318,7 @@ static uint32_t fnv1a(const char *s, size_t n)
 static void journal_header(const np_sweep_opts *o, char lines[HEADER_LINES][JLINE_MAX])
 {
     char cfgtext[JLINE_MAX - 16];
-    o->unit->cfg_format(o->cfg, cfgtext, sizeof cfgtext);
+    np_unit_cfg_format(o->unit, o->cfg, cfgtext, sizeof cfgtext);
     snprintf(lines[0], JLINE_MAX, "%s", JOURNAL_MAGIC);
     snprintf(lines[1], JLINE_MAX, "unit %s", o->unit->name);
     snprintf(lines[2], JLINE_MAX, "config %s", cfgtext);

@@ -51,16 +51,63 @@ typedef struct np_unit_fields {
     np_field out[NP_UNIT_MAX_FIELDS];
 } np_unit_fields;
 
+/*
+ * One configuration key of a unit, declared as data (np_unit.keys): the one
+ * place a key's name, storage, range, default and meaning are written.
+ * configure, format, the validation messages, `noisepipe units`, the
+ * renderer's --unit-config and the DSE sweeps all read it (units.c).
+ *
+ * The value is an unsigned integer field of the unit's configuration block
+ * (offset, size: 1, 2, 4 or 8 bytes). Numbers are written in decimal only
+ * (docs/vectors.md, "Configuration keys"). An enumeration (word != NULL) is
+ * written as a word and stored as its number: word(v) is the word of value v,
+ * NULL when there is none; lo..hi are the words every build has (for
+ * `noisepipe units`), and values above hi are accepted while word() names
+ * them (words added at run time, e.g. a scene's texture).
+ */
+typedef struct np_unit_key {
+    const char *name;    /* as written in "name=value" */
+    size_t offset, size; /* the field in the unit's configuration block */
+    unsigned lo, hi;     /* accepted range, inclusive */
+    unsigned def;        /* default (unused when derive is set) */
+    const char *meaning; /* one line */
+    /* Optional: the default follows other keys: the value for cfg when this key is not given. */
+    unsigned (*derive)(const void *cfg);
+    /* Optional: an enumeration (above). */
+    const char *(*word)(unsigned v);
+    /* NP_UNIT_KEY_* */
+    unsigned flags;
+} np_unit_key;
+
+enum {
+    /*
+     * The unit's cfg_scene sets this key from the scene (a texture): it is not
+     * a design choice, so a render's configuration text leaves it out
+     * (NP_UNIT_FMT_NO_SCENE) and --unit-config refuses it.
+     */
+    NP_UNIT_KEY_SCENE = 1u
+};
+
+/* Table entries: a number with a fixed default; one whose default derive() gives; an enumeration; the end. */
+#define NP_UNIT_KEY(name, type, member, lo, hi, def, meaning) \
+    { name, offsetof(type, member), sizeof(((type *)0)->member), lo, hi, def, meaning, NULL, NULL, 0u }
+#define NP_UNIT_KEY_DERIVED(name, type, member, lo, hi, derive, meaning) \
+    { name, offsetof(type, member), sizeof(((type *)0)->member), lo, hi, 0u, meaning, derive, NULL, 0u }
+#define NP_UNIT_KEY_WORDS(name, type, member, lo, hi, def, meaning, word, flags) \
+    { name, offsetof(type, member), sizeof(((type *)0)->member), lo, hi, def, meaning, NULL, word, flags }
+#define NP_UNIT_KEY_END { NULL, 0u, 0u, 0u, 0u, 0u, NULL, NULL, NULL, 0u }
+
 typedef struct np_unit {
     const char *name;    /* as typed on the command line, e.g. "classic3" */
     const char *summary; /* one line */
-    /* Configuration: an opaque block of at most NP_UNIT_CFG_MAX bytes. */
-    void (*cfg_default)(void *cfg);
-    /* Set one "key=value"; 0, or -1 with a message naming key and range in err. */
-    int (*cfg_set)(void *cfg, const char *key, const char *value, char *err, size_t errlen);
-    /* "key=value key=value", every key, in a fixed order (goes in file headers). */
-    void (*cfg_format)(const void *cfg, char *buf, size_t len);
-    /* NULL when consistent, else a message. */
+    /*
+     * Configuration: an opaque block of at most NP_UNIT_CFG_MAX bytes whose
+     * keys are this table, terminated by a NULL name. Configure, format and
+     * default through np_unit_configure / np_unit_cfg_format /
+     * np_unit_cfg_default (the table's order is the text's order).
+     */
+    const np_unit_key *keys;
+    /* NULL when the keys are consistent with each other (each key's range is the table's), else a message. */
     const char *(*cfg_check)(const void *cfg);
     void (*fields)(const void *cfg, np_unit_fields *f);
     /* Bit-exact model. */
@@ -153,14 +200,54 @@ const np_unit *np_unit_find(const char *name);
 /* Real value of an output word of field f. */
 double np_unit_field_value(const np_field *f, uint64_t word);
 
-/* For units' cfg_set: a whole decimal number in [lo, hi]; 0, or -1 if malformed or out of range. */
+/* A whole decimal number in [lo, hi] (digits only: no sign, blank or base prefix); 0, or -1. */
 int np_unit_parse_uint(const char *v, unsigned lo, unsigned hi, unsigned *out);
 
 /* For units' fields(): fill one field description. */
 void np_unit_set_field(np_field *f, const char *name, unsigned bits, int sgn, unsigned frac, const char *fmt);
 
-/* Configure u from "key=value[,key=value...]" (NULL or "" = defaults). */
+/* The key of u called name, or NULL. */
+const np_unit_key *np_unit_key_find(const np_unit *u, const char *name);
+/* Number of keys of u. */
+size_t np_unit_key_count(const np_unit *u);
+/* The value of key k in cfg; store one (no check: np_unit_cfg_set checks). */
+unsigned np_unit_key_get(const np_unit_key *k, const void *cfg);
+void np_unit_key_put(const np_unit_key *k, void *cfg, unsigned v);
+/* "lo..hi", or "w1|w2|w3" for an enumeration. */
+void np_unit_key_range(const np_unit_key *k, char *buf, size_t len);
+/* The value text of key k in cfg (a number, or an enumeration's word). */
+void np_unit_key_text(const np_unit_key *k, const void *cfg, char *buf, size_t len);
+
+/* Every key at its default (derived keys from the others). */
+void np_unit_cfg_default(const np_unit *u, void *cfg);
+/*
+ * Set one key from its text, no other key changes (a derived key is not
+ * re-derived: np_unit_configure does that). 0, or -1 with a message naming
+ * the key, the value and the range (or the known keys when key is unknown).
+ */
+int np_unit_cfg_set(const np_unit *u, void *cfg, const char *key, const char *value, char *err, size_t errlen);
+
+enum {
+    NP_UNIT_FMT_COMMAS = 1u,  /* "k=v,k=v" (one token) instead of "k=v k=v" */
+    NP_UNIT_FMT_NO_SCENE = 2u /* leave out the keys the scene sets (NP_UNIT_KEY_SCENE) */
+};
+/* "key=value key=value": every key, in the table's order (the '# config' header line). */
+void np_unit_cfg_format(const np_unit *u, const void *cfg, char *buf, size_t len);
+/* The same with NP_UNIT_FMT_* options (the golden image hashes: COMMAS | NO_SCENE). */
+void np_unit_cfg_format_opt(const np_unit *u, const void *cfg, unsigned how, char *buf, size_t len);
+
+/*
+ * Configure u from "key=value[,key=value...]" (commas or blanks between;
+ * NULL or "" = defaults): the keys given over the defaults, the derived keys
+ * not given derived, then the unit's cfg_check. A key given twice is an
+ * error naming it. 0, or -1 with a message in err.
+ */
 int np_unit_configure(const np_unit *u, void *cfg, const char *spec, char *err, size_t errlen);
+/*
+ * The same, but spec must give every key exactly once (a vector file's
+ * '# config' line): a missing key is an error naming it.
+ */
+int np_unit_configure_all(const np_unit *u, void *cfg, const char *spec, char *err, size_t errlen);
 
 #ifdef __cplusplus
 } /* extern "C" */

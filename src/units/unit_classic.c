@@ -9,63 +9,32 @@
 #include "np_sweep.h"
 #include "np_unit.h"
 
-/* The registry's configuration block: the model's, plus which widths were set by hand. */
+/* The registry's configuration block: the model's. */
 typedef struct classic_cfg {
     np_classic_cfg c;
-    unsigned char s_set, l_set;
 } classic_cfg;
 _Static_assert(sizeof(classic_cfg) <= NP_UNIT_CFG_MAX, "configuration block too large");
 
-static void cfg_default(void *cfg)
+/* The faithful widths for the output width (np_classic_cfg_default) unless given. */
+static unsigned s_frac_default(const void *cfg)
 {
-    classic_cfg *k = cfg;
-    memset(k, 0, sizeof *k);
-    k->c = np_classic_cfg_default(8);
+    return np_classic_cfg_default(((const classic_cfg *)cfg)->c.out_bits).s_frac;
+}
+static unsigned lerp_frac_default(const void *cfg)
+{
+    return np_classic_cfg_default(((const classic_cfg *)cfg)->c.out_bits).lerp_frac;
 }
 
-static int cfg_set(void *cfg, const char *key, const char *value, char *err, size_t errlen)
-{
-    classic_cfg *k = cfg;
-    unsigned n;
-    if (strcmp(key, "out_bits") == 0) {
-        if (np_unit_parse_uint(value, NP_CLASSIC_OUT_MIN, NP_CLASSIC_OUT_MAX, &n) != 0)
-            goto range;
-        np_classic_cfg d = np_classic_cfg_default(n);
-        k->c.out_bits = n;
-        if (!k->s_set)
-            k->c.s_frac = d.s_frac;
-        if (!k->l_set)
-            k->c.lerp_frac = d.lerp_frac;
-        return 0;
-    }
-    if (strcmp(key, "s_frac") == 0) {
-        if (np_unit_parse_uint(value, NP_CLASSIC_WS_MIN, NP_CLASSIC_WS_MAX, &n) != 0)
-            goto range;
-        k->c.s_frac = n;
-        k->s_set = 1;
-        return 0;
-    }
-    if (strcmp(key, "lerp_frac") == 0) {
-        if (np_unit_parse_uint(value, 0, NP_CLASSIC_WL_MAX, &n) != 0)
-            goto range;
-        k->c.lerp_frac = n;
-        k->l_set = 1;
-        return 0;
-    }
-    snprintf(err, errlen, "unknown configuration key '%s' for unit classic3 (keys: out_bits, s_frac, lerp_frac)", key);
-    return -1;
-range:
-    snprintf(err, errlen, "%s=%s: out of range (out_bits 2..16, s_frac 1..24, lerp_frac out_bits-2..30)",
-             key, value);
-    return -1;
-}
-
-static void cfg_format(const void *cfg, char *buf, size_t len)
-{
-    const classic_cfg *k = cfg;
-    snprintf(buf, len, "out_bits=%u s_frac=%u lerp_frac=%u", k->c.out_bits, k->c.s_frac,
-             k->c.lerp_frac);
-}
+static const np_unit_key keys[] = {
+    NP_UNIT_KEY("out_bits", classic_cfg, c.out_bits, NP_CLASSIC_OUT_MIN, NP_CLASSIC_OUT_MAX, 8,
+                "N: output f is sN Q2.(N-2)"),
+    NP_UNIT_KEY_DERIVED("s_frac", classic_cfg, c.s_frac, NP_CLASSIC_WS_MIN, NP_CLASSIC_WS_MAX, s_frac_default,
+                        "WS: s-curve fraction bits (default N - 2 + 6, at most 24)"),
+    /* At least out_bits - 2: the unit's cfg_check says so, as it involves two keys. */
+    NP_UNIT_KEY_DERIVED("lerp_frac", classic_cfg, c.lerp_frac, 0, NP_CLASSIC_WL_MAX, lerp_frac_default,
+                        "WL: interpolator fraction bits, at least N - 2 (default N - 2 + 5)"),
+    NP_UNIT_KEY_END,
+};
 
 static const char *cfg_check(const void *cfg) { return np_classic_cfg_check(&((const classic_cfg *)cfg)->c); }
 
@@ -328,9 +297,7 @@ static void sweep_rows(const void *cfgv, uint16_t x0, uint16_t y0, uint16_t z, u
 const np_unit np_unit_classic3 = {
     .name = "classic3",
     .summary = "classic 3-D gradient noise, 8.8 inputs, L/H/S/I pipeline (Perlin, Noise Hardware)",
-    .cfg_default = cfg_default,
-    .cfg_set = cfg_set,
-    .cfg_format = cfg_format,
+    .keys = keys,
     .cfg_check = cfg_check,
     .fields = fields,
     .eval = eval,

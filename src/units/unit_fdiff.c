@@ -126,22 +126,6 @@ int np_ut_cfg_scene(const np_scene *sc, unsigned *tex, char *err, size_t errlen)
     return np_ut_texture_add(name, &sc->tex, tex, err, errlen) == 0 ? 1 : -1;
 }
 
-int np_ut_texture_set(const char *value, unsigned *tex, char *err, size_t errlen)
-{
-    for (unsigned i = 0; np_texreg_builtin_name(i); i++)
-        if (strcmp(np_texreg_builtin_name(i), value) == 0 && i < N_TEX) {
-            *tex = i;
-            return 0;
-        }
-    for (unsigned i = 0; i < ut_n_scene; i++)
-        if (strcmp(ut_scene_name[i], value) == 0) {
-            *tex = N_TEX + i;
-            return 0;
-        }
-    snprintf(err, errlen, "texture=%s: unknown texture (built-in: wood, marble, ramp; or a scene's, scene:NAME)", value);
-    return -1;
-}
-
 void np_ut_ref(unsigned tex, const uint64_t *in, double *out)
 {
     const np_ref_texture *t = ut_ref_texture(tex);
@@ -244,47 +228,20 @@ typedef struct fd_cfg {
 } fd_cfg;
 _Static_assert(sizeof(fd_cfg) <= NP_UNIT_CFG_MAX, "configuration block too large");
 
-static void cfg_default(void *cfg)
-{
-    fd_cfg *k = cfg;
-    memset(k, 0, sizeof *k);
-    k->c = np_fdiff_cfg_default();
-    k->tex = 0;
-}
+const np_fdiff_cfg *np_ut_fdiff_cfg(const void *cfg) { return &((const fd_cfg *)cfg)->c; }
 
-static int cfg_set(void *cfg, const char *key, const char *value, char *err, size_t errlen)
-{
-    fd_cfg *k = cfg;
-    static const struct { const char *name; size_t off; unsigned lo, hi; } keys[] = {
-        { "idx_int", offsetof(np_fdiff_cfg, idx_int), 1, 11 },
-        { "w_frac", offsetof(np_fdiff_cfg, w_frac), 1, 24 },
-        { "guard", offsetof(np_fdiff_cfg, guard), 0, NP_FDIFF_GUARD_MAX },
-        { "resetup", offsetof(np_fdiff_cfg, resetup), 0, NP_TEX_SPAN_MAX },
-        { "setup_mults", offsetof(np_fdiff_cfg, setup_mults), 1, NP_FDIFF_MULTS_MAX },
-        { "mult_lat", offsetof(np_fdiff_cfg, mult_lat), 1, NP_FDIFF_LAT_MAX },
-    };
-    if (strcmp(key, "texture") == 0)
-        return np_ut_texture_set(value, &k->tex, err, errlen);
-    for (unsigned i = 0; i < sizeof keys / sizeof keys[0]; i++)
-        if (strcmp(key, keys[i].name) == 0) {
-            if (np_unit_parse_uint(value, keys[i].lo, keys[i].hi, (unsigned *)(void *)((char *)&k->c + keys[i].off))) {
-                snprintf(err, errlen, "%s=%s: out of range (%u..%u)", key, value, keys[i].lo, keys[i].hi);
-                return -1;
-            }
-            return 0;
-        }
-    snprintf(err, errlen, "unknown configuration key '%s' for unit fdiff (keys: texture, idx_int, w_frac, guard, "
-             "resetup, setup_mults, mult_lat)", key);
-    return -1;
-}
-
-static void cfg_format(const void *cfg, char *buf, size_t len)
-{
-    const fd_cfg *k = cfg;
-    snprintf(buf, len, "texture=%s idx_int=%u w_frac=%u guard=%u resetup=%u setup_mults=%u mult_lat=%u",
-             np_ut_texture_name(k->tex), k->c.idx_int, k->c.w_frac, k->c.guard, k->c.resetup, k->c.setup_mults,
-             k->c.mult_lat);
-}
+/* The defaults are np_fdiff_cfg_default()'s (test core.unit_keys_model_defaults compares them). */
+static const np_unit_key keys[] = {
+    UT_TEXTURE_KEY(fd_cfg, tex),
+    NP_UNIT_KEY("idx_int", fd_cfg, c.idx_int, NP_TEX_IDX_INT_MIN, 11, 10, "I: colour-map index integer bits"),
+    NP_UNIT_KEY("w_frac", fd_cfg, c.w_frac, NP_TEX_W_FRAC_MIN, NP_TEX_W_FRAC_MAX, 12, "Fw: colour weight fraction bits"),
+    NP_UNIT_KEY("guard", fd_cfg, c.guard, 0, NP_FDIFF_GUARD_MAX, 44,
+                "G: guard bits of the difference registers, index fraction F = Fw + G"),
+    NP_UNIT_KEY("resetup", fd_cfg, c.resetup, 0, NP_TEX_SPAN_MAX, 0, "K: re-set-up after K steps without one; 0: off"),
+    NP_UNIT_KEY("setup_mults", fd_cfg, c.setup_mults, 1, NP_FDIFF_MULTS_MAX, 2, "P: multipliers of the set-up engine"),
+    NP_UNIT_KEY("mult_lat", fd_cfg, c.mult_lat, 1, NP_FDIFF_LAT_MAX, 2, "Lm: their pipeline latency, clocks"),
+    NP_UNIT_KEY_END,
+};
 
 static const char *cfg_check(const void *cfg) { return np_fdiff_cfg_check(&((const fd_cfg *)cfg)->c); }
 
@@ -546,16 +503,14 @@ static int timing(const void *cfg, np_unit_timing *t, char *err, size_t errlen)
 static int cfg_scene(void *cfg, const np_scene *sc, char *err, size_t errlen)
 {
     fd_cfg *k = cfg;
-    cfg_default(k);
+    np_unit_cfg_default(&np_unit_fdiff, k);
     return np_ut_cfg_scene(sc, &k->tex, err, errlen);
 }
 
 const np_unit np_unit_fdiff = {
     .name = "fdiff",
     .summary = "forward-difference scanline texturing unit: span in, pixels out (Kameya & Hart, Bresenham Noise)",
-    .cfg_default = cfg_default,
-    .cfg_set = cfg_set,
-    .cfg_format = cfg_format,
+    .keys = keys,
     .cfg_check = cfg_check,
     .fields = fields,
     .eval = eval,

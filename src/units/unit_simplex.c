@@ -8,95 +8,36 @@
 #include "np_simplex.h"
 #include "np_unit.h"
 
-/* The registry's configuration block: the model's, plus which widths were set by hand. */
+/* The registry's configuration block: the model's. */
 typedef struct simplex_cfg {
     np_simplex_cfg c;
-    unsigned char t_set, p_set, k_set;
 } simplex_cfg;
 _Static_assert(sizeof(simplex_cfg) <= NP_UNIT_CFG_MAX, "configuration block too large");
 
-enum { DEFAULT_OUT_BITS = 16, DEFAULT_DOUT_BITS = 16, DEFAULT_DERIV = 1 };
-
-static void cfg_default(void *cfg)
+/* The faithful internal widths for the output widths and deriv (np_simplex_cfg_default) unless given. */
+static np_simplex_cfg faithful(const void *cfg)
 {
-    simplex_cfg *k = cfg;
-    memset(k, 0, sizeof *k);
-    k->c = np_simplex_cfg_default(DEFAULT_OUT_BITS, DEFAULT_DOUT_BITS, DEFAULT_DERIV);
+    const np_simplex_cfg *c = &((const simplex_cfg *)cfg)->c;
+    return np_simplex_cfg_default(c->out_bits, c->dout_bits, c->deriv);
 }
+static unsigned t_frac_default(const void *cfg) { return faithful(cfg).t_frac; }
+static unsigned p_frac_default(const void *cfg) { return faithful(cfg).p_frac; }
+static unsigned k_frac_default(const void *cfg) { return faithful(cfg).k_frac; }
 
-/* Re-derive the widths not set by hand after an output width or deriv changed. */
-static void refresh_defaults(simplex_cfg *k)
-{
-    np_simplex_cfg d = np_simplex_cfg_default(k->c.out_bits, k->c.dout_bits, k->c.deriv);
-    if (!k->t_set)
-        k->c.t_frac = d.t_frac;
-    if (!k->p_set)
-        k->c.p_frac = d.p_frac;
-    if (!k->k_set)
-        k->c.k_frac = d.k_frac;
-}
-
-static int cfg_set(void *cfg, const char *key, const char *value, char *err, size_t errlen)
-{
-    simplex_cfg *k = cfg;
-    unsigned n;
-    if (strcmp(key, "out_bits") == 0 || strcmp(key, "dout_bits") == 0) {
-        if (np_unit_parse_uint(value, key[0] == 'o' ? NP_SIMPLEX_OUT_MIN : NP_SIMPLEX_DOUT_MIN, NP_SIMPLEX_OUT_MAX, &n) != 0)
-            goto range;
-        if (key[0] == 'o')
-            k->c.out_bits = n;
-        else
-            k->c.dout_bits = n;
-        refresh_defaults(k);
-        return 0;
-    }
-    if (strcmp(key, "deriv") == 0) {
-        if (np_unit_parse_uint(value, 0, 1, &n) != 0)
-            goto range;
-        k->c.deriv = n;
-        refresh_defaults(k);
-        return 0;
-    }
-    if (strcmp(key, "t_frac") == 0) {
-        if (np_unit_parse_uint(value, 1, NP_SIMPLEX_WT_MAX, &n) != 0)
-            goto range;
-        k->c.t_frac = n;
-        k->t_set = 1;
-        return 0;
-    }
-    if (strcmp(key, "p_frac") == 0) {
-        if (np_unit_parse_uint(value, 1, NP_SIMPLEX_WP_MAX, &n) != 0)
-            goto range;
-        k->c.p_frac = n;
-        k->p_set = 1;
-        return 0;
-    }
-    if (strcmp(key, "k_frac") == 0) {
-        if (np_unit_parse_uint(value, 1, NP_SIMPLEX_WK_MAX, &n) != 0)
-            goto range;
-        k->c.k_frac = n;
-        k->k_set = 1;
-        return 0;
-    }
-    snprintf(err, errlen,
-             "unknown configuration key '%s' for unit simplex3 (keys: out_bits, dout_bits, deriv, "
-             "t_frac, p_frac, k_frac)",
-             key);
-    return -1;
-range:
-    snprintf(err, errlen,
-             "%s=%s: out of range (out_bits 4..20, dout_bits 5..20, deriv 0..1, t_frac 1..30, "
-             "p_frac 1..32, k_frac 1..26)",
-             key, value);
-    return -1;
-}
-
-static void cfg_format(const void *cfg, char *buf, size_t len)
-{
-    const simplex_cfg *k = cfg;
-    snprintf(buf, len, "out_bits=%u dout_bits=%u deriv=%u t_frac=%u p_frac=%u k_frac=%u",
-             k->c.out_bits, k->c.dout_bits, k->c.deriv, k->c.t_frac, k->c.p_frac, k->c.k_frac);
-}
+static const np_unit_key keys[] = {
+    NP_UNIT_KEY("out_bits", simplex_cfg, c.out_bits, NP_SIMPLEX_OUT_MIN, NP_SIMPLEX_OUT_MAX, 16,
+                "N: f is sN Q-1.N"),
+    NP_UNIT_KEY("dout_bits", simplex_cfg, c.dout_bits, NP_SIMPLEX_DOUT_MIN, NP_SIMPLEX_OUT_MAX, 16,
+                "ND: df/dx, df/dy, df/dz are sND Q1.(ND-2)"),
+    NP_UNIT_KEY("deriv", simplex_cfg, c.deriv, 0, 1, 1, "1: the derivative datapath is present; 0: f only"),
+    NP_UNIT_KEY_DERIVED("t_frac", simplex_cfg, c.t_frac, 1, NP_SIMPLEX_WT_MAX, t_frac_default,
+                        "WT: fraction bits of tau^2, tau^3, tau^4 (default: faithful for the outputs)"),
+    NP_UNIT_KEY_DERIVED("p_frac", simplex_cfg, c.p_frac, 1, NP_SIMPLEX_WP_MAX, p_frac_default,
+                        "WP: fraction bits of products and sums (default: faithful for the outputs)"),
+    NP_UNIT_KEY_DERIVED("k_frac", simplex_cfg, c.k_frac, 1, NP_SIMPLEX_WK_MAX, k_frac_default,
+                        "WK: fraction bits of the output constants (default: faithful for the outputs)"),
+    NP_UNIT_KEY_END,
+};
 
 static const char *cfg_check(const void *cfg) { return np_simplex_cfg_check(&((const simplex_cfg *)cfg)->c); }
 
@@ -249,9 +190,7 @@ const np_unit np_unit_simplex3 = {
     .name = "simplex3",
     .summary = "3-D simplex noise with analytic derivative, 8.8 inputs, exact skew/rank "
                "(Perlin, Noise Hardware, Appendix B)",
-    .cfg_default = cfg_default,
-    .cfg_set = cfg_set,
-    .cfg_format = cfg_format,
+    .keys = keys,
     .cfg_check = cfg_check,
     .fields = fields,
     .eval = eval,

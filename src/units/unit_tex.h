@@ -28,6 +28,8 @@
 #include "np_texture.h"
 #include "np_unit.h"
 
+extern const np_unit np_unit_fdiff, np_unit_texel;
+
 enum { UT_S, UT_T, UT_R, UT_DS, UT_DT, UT_DR, UT_N, UT_K, UT_NIN, UT_NDESC = UT_K };
 
 void np_ut_fields(np_unit_fields *f);
@@ -35,6 +37,7 @@ void np_ut_fields(np_unit_fields *f);
 void np_ut_span(const uint64_t *in, np_span *sp);
 /* The registers of built-in texture number tex (compiled once, thread-safe). */
 const np_tex_regs *np_ut_regs(unsigned tex);
+/* The name of texture number tex; NULL past the last one defined. */
 const char *np_ut_texture_name(unsigned tex);
 /*
  * A scene's texture as a named texture of the registry (after the built-in
@@ -46,8 +49,20 @@ const char *np_ut_texture_name(unsigned tex);
 int np_ut_texture_add(const char *name, const np_ref_texture *t, unsigned *tex, char *err, size_t errlen);
 /* The units' cfg_scene: register the scene's texture and select it (returns 1: the scene uses the unit). */
 int np_ut_cfg_scene(const struct np_scene *sc, unsigned *tex, char *err, size_t errlen);
-/* "texture=NAME": 0, or -1 with a message listing the names. */
-int np_ut_texture_set(const char *value, unsigned *tex, char *err, size_t errlen);
+/*
+ * The units' texture key (an enumeration: np_ut_texture_name's words, the
+ * built-in textures then the scenes' "scene:NAME"), over member of type.
+ */
+#define UT_TEXTURE_KEY(type, member)                                                                     \
+    NP_UNIT_KEY_WORDS("texture", type, member, 0, 2, 0,                                                  \
+                      "texture in the registers: a built-in one, or a scene's (scene:NAME, added by a render)", \
+                      np_ut_texture_name, NP_UNIT_KEY_SCENE)
+/*
+ * The model's configuration inside the registry's block of fdiff / texel:
+ * the renderer calls the models (np_render_fdiff, np_render_texel) with it.
+ */
+const struct np_fdiff_cfg *np_ut_fdiff_cfg(const void *cfg);
+const struct np_texel_cfg *np_ut_texel_cfg(const void *cfg);
 /* The float reference's colour of pixel k (8-bit units). */
 void np_ut_ref(unsigned tex, const uint64_t *in, double *out);
 /* Annotated descriptors (the stiff cases) and random ones. */

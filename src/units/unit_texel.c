@@ -21,49 +21,20 @@ typedef struct tx_cfg {
 } tx_cfg;
 _Static_assert(sizeof(tx_cfg) <= NP_UNIT_CFG_MAX, "configuration block too large");
 
-static void cfg_default(void *cfg)
-{
-    tx_cfg *k = cfg;
-    memset(k, 0, sizeof *k);
-    k->c = np_texel_cfg_default();
-}
+const np_texel_cfg *np_ut_texel_cfg(const void *cfg) { return &((const tx_cfg *)cfg)->c; }
 
-static int cfg_set(void *cfg, const char *key, const char *value, char *err, size_t errlen)
-{
-    tx_cfg *k = cfg;
-    static const struct { const char *name; size_t off; unsigned lo, hi; } keys[] = {
-        { "idx_int", offsetof(np_texel_cfg, idx_int), 1, 11 },
-        { "w_frac", offsetof(np_texel_cfg, w_frac), 1, 24 },
-        { "guard", offsetof(np_texel_cfg, guard), 0, 100 },
-        { "weight_frac", offsetof(np_texel_cfg, weight_frac), NP_TEXEL_WT_MIN, NP_TEXEL_WT_MAX },
-        { "setup_mults", offsetof(np_texel_cfg, setup_mults), 1, 64 },
-        { "mult_lat", offsetof(np_texel_cfg, mult_lat), 1, 16 },
-    };
-    if (strcmp(key, "texture") == 0)
-        return np_ut_texture_set(value, &k->tex, err, errlen);
-    for (unsigned i = 0; i < sizeof keys / sizeof keys[0]; i++)
-        if (strcmp(key, keys[i].name) == 0) {
-            char *end;
-            unsigned long n = strtoul(value, &end, 10);
-            if (*value == '\0' || *end != '\0' || *value == '-' || n < keys[i].lo || n > keys[i].hi) {
-                snprintf(err, errlen, "%s=%s: out of range (%u..%u)", key, value, keys[i].lo, keys[i].hi);
-                return -1;
-            }
-            *(unsigned *)(void *)((char *)&k->c + keys[i].off) = (unsigned)n;
-            return 0;
-        }
-    snprintf(err, errlen, "unknown configuration key '%s' for unit texel (keys: texture, idx_int, w_frac, guard, "
-             "weight_frac, setup_mults, mult_lat)", key);
-    return -1;
-}
-
-static void cfg_format(const void *cfg, char *buf, size_t len)
-{
-    const tx_cfg *k = cfg;
-    snprintf(buf, len, "texture=%s idx_int=%u w_frac=%u guard=%u weight_frac=%u setup_mults=%u mult_lat=%u",
-             np_ut_texture_name(k->tex), k->c.idx_int, k->c.w_frac, k->c.guard, k->c.weight_frac, k->c.setup_mults,
-             k->c.mult_lat);
-}
+/* The defaults are np_texel_cfg_default()'s (test core.unit_keys_model_defaults compares them). */
+static const np_unit_key keys[] = {
+    UT_TEXTURE_KEY(tx_cfg, tex),
+    NP_UNIT_KEY("idx_int", tx_cfg, c.idx_int, NP_TEX_IDX_INT_MIN, 11, 10, "I: colour-map index integer bits"),
+    NP_UNIT_KEY("w_frac", tx_cfg, c.w_frac, NP_TEX_W_FRAC_MIN, NP_TEX_W_FRAC_MAX, 12, "Fw: colour weight fraction bits"),
+    NP_UNIT_KEY("guard", tx_cfg, c.guard, 0, 100, 20, "G: index fraction bits F = Fw + G"),
+    NP_UNIT_KEY("weight_frac", tx_cfg, c.weight_frac, NP_TEXEL_WT_MIN, NP_TEXEL_WT_MAX, 16,
+                "WT: trilinear weight fraction bits"),
+    NP_UNIT_KEY("setup_mults", tx_cfg, c.setup_mults, 1, 64, 2, "P: multipliers of the span front end"),
+    NP_UNIT_KEY("mult_lat", tx_cfg, c.mult_lat, 1, 16, 2, "Lm: their pipeline latency, clocks"),
+    NP_UNIT_KEY_END,
+};
 
 static const char *cfg_check(const void *cfg) { return np_texel_cfg_check(&((const tx_cfg *)cfg)->c); }
 
@@ -291,16 +262,14 @@ static int timing(const void *cfg, np_unit_timing *t, char *err, size_t errlen)
 static int cfg_scene(void *cfg, const np_scene *sc, char *err, size_t errlen)
 {
     tx_cfg *k = cfg;
-    cfg_default(k);
+    np_unit_cfg_default(&np_unit_texel, k);
     return np_ut_cfg_scene(sc, &k->tex, err, errlen);
 }
 
 const np_unit np_unit_texel = {
     .name = "texel",
     .summary = "per-pixel scanline texturing unit (trilinear value noise, pipelined): span in, pixels out",
-    .cfg_default = cfg_default,
-    .cfg_set = cfg_set,
-    .cfg_format = cfg_format,
+    .keys = keys,
     .cfg_check = cfg_check,
     .fields = fields,
     .eval = eval,

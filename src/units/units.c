@@ -32,9 +32,183 @@ double np_unit_field_value(const np_field *f, uint64_t word)
     return (double)word * scale;
 }
 
-int np_unit_configure(const np_unit *u, void *cfg, const char *spec, char *err, size_t errlen)
+int np_unit_parse_uint(const char *v, unsigned lo, unsigned hi, unsigned *out)
 {
-    u->cfg_default(cfg);
+    /* Digits only, so "010" is ten and "0x5", "+3", " 3", "", "3abc" are refused (strtoul takes several). */
+    unsigned long long n = 0;
+    if (*v == '\0')
+        return -1;
+    for (const char *p = v; *p; p++) {
+        if (*p < '0' || *p > '9')
+            return -1;
+        n = n * 10u + (unsigned)(*p - '0');
+        if (n > hi)
+            return -1;
+    }
+    if (n < lo)
+        return -1;
+    *out = (unsigned)n;
+    return 0;
+}
+
+const np_unit_key *np_unit_key_find(const np_unit *u, const char *name)
+{
+    for (const np_unit_key *k = u->keys; k && k->name; k++)
+        if (strcmp(k->name, name) == 0)
+            return k;
+    return NULL;
+}
+
+size_t np_unit_key_count(const np_unit *u)
+{
+    size_t n = 0;
+    while (u->keys && u->keys[n].name)
+        n++;
+    return n;
+}
+
+unsigned np_unit_key_get(const np_unit_key *k, const void *cfg)
+{
+    const unsigned char *p = (const unsigned char *)cfg + k->offset;
+    uint8_t v8;
+    uint16_t v16;
+    uint32_t v32;
+    uint64_t v64;
+    switch (k->size) {
+    case 1: memcpy(&v8, p, sizeof v8); return v8;
+    case 2: memcpy(&v16, p, sizeof v16); return v16;
+    case 4: memcpy(&v32, p, sizeof v32); return v32;
+    default: memcpy(&v64, p, sizeof v64); return (unsigned)v64;
+    }
+}
+
+void np_unit_key_put(const np_unit_key *k, void *cfg, unsigned v)
+{
+    unsigned char *p = (unsigned char *)cfg + k->offset;
+    uint8_t v8 = (uint8_t)v;
+    uint16_t v16 = (uint16_t)v;
+    uint32_t v32 = (uint32_t)v;
+    uint64_t v64 = v;
+    switch (k->size) {
+    case 1: memcpy(p, &v8, sizeof v8); break;
+    case 2: memcpy(p, &v16, sizeof v16); break;
+    case 4: memcpy(p, &v32, sizeof v32); break;
+    default: memcpy(p, &v64, sizeof v64); break;
+    }
+}
+
+/* Append "%s%s" of a, b to buf (always terminated, truncated when full). */
+static void put(char *buf, size_t len, const char *a, const char *b)
+{
+    size_t n = strlen(buf);
+    if (n + 1 < len)
+        snprintf(buf + n, len - n, "%s%s", a, b);
+}
+
+/* An enumeration's words from lo, joined by sep: up to hi, or (all) every one word() names. */
+static void words(const np_unit_key *k, int all, const char *sep, char *buf, size_t len)
+{
+    buf[0] = '\0';
+    for (unsigned v = k->lo; (all || v <= k->hi) && k->word(v); v++)
+        put(buf, len, v == k->lo ? "" : sep, k->word(v));
+}
+
+void np_unit_key_range(const np_unit_key *k, char *buf, size_t len)
+{
+    if (k->word)
+        words(k, 0, "|", buf, len);
+    else
+        snprintf(buf, len, "%u..%u", k->lo, k->hi);
+}
+
+void np_unit_key_text(const np_unit_key *k, const void *cfg, char *buf, size_t len)
+{
+    unsigned v = np_unit_key_get(k, cfg);
+    const char *w = k->word ? k->word(v) : NULL;
+    if (w)
+        snprintf(buf, len, "%s", w);
+    else
+        snprintf(buf, len, "%u", v);
+}
+
+void np_unit_cfg_default(const np_unit *u, void *cfg)
+{
+    memset(cfg, 0, NP_UNIT_CFG_MAX);
+    for (const np_unit_key *k = u->keys; k && k->name; k++)
+        if (!k->derive)
+            np_unit_key_put(k, cfg, k->def);
+    for (const np_unit_key *k = u->keys; k && k->name; k++)
+        if (k->derive)
+            np_unit_key_put(k, cfg, k->derive(cfg));
+}
+
+/* "unknown configuration key 'K' for unit U (keys: a, b, c)". */
+static int unknown_key(const np_unit *u, const char *key, char *err, size_t errlen)
+{
+    char list[512] = "";
+    for (const np_unit_key *k = u->keys; k && k->name; k++)
+        put(list, sizeof list, k == u->keys ? "" : ", ", k->name);
+    snprintf(err, errlen, "unknown configuration key '%s' for unit %s (keys: %s)", key, u->name, list);
+    return -1;
+}
+
+int np_unit_cfg_set(const np_unit *u, void *cfg, const char *key, const char *value, char *err, size_t errlen)
+{
+    const np_unit_key *k = np_unit_key_find(u, key);
+    if (!k)
+        return unknown_key(u, key, err, errlen);
+    unsigned v;
+    if (k->word) {
+        for (v = k->lo; k->word(v); v++)
+            if (strcmp(k->word(v), value) == 0) {
+                np_unit_key_put(k, cfg, v);
+                return 0;
+            }
+        char list[512];
+        words(k, 1, ", ", list, sizeof list);
+        snprintf(err, errlen, "%s=%s: expected one of %s", key, value, list);
+        return -1;
+    }
+    if (np_unit_parse_uint(value, k->lo, k->hi, &v) != 0) {
+        snprintf(err, errlen, "%s=%s: expected a decimal integer in %u..%u", key, value, k->lo, k->hi);
+        return -1;
+    }
+    np_unit_key_put(k, cfg, v);
+    return 0;
+}
+
+void np_unit_cfg_format_opt(const np_unit *u, const void *cfg, unsigned how, char *buf, size_t len)
+{
+    const char *sep = how & NP_UNIT_FMT_COMMAS ? "," : " ";
+    int first = 1;
+    buf[0] = '\0';
+    for (const np_unit_key *k = u->keys; k && k->name; k++) {
+        if ((how & NP_UNIT_FMT_NO_SCENE) && (k->flags & NP_UNIT_KEY_SCENE))
+            continue;
+        char v[96];
+        np_unit_key_text(k, cfg, v, sizeof v);
+        put(buf, len, first ? "" : sep, k->name);
+        put(buf, len, "=", v);
+        first = 0;
+    }
+}
+
+void np_unit_cfg_format(const np_unit *u, const void *cfg, char *buf, size_t len)
+{
+    np_unit_cfg_format_opt(u, cfg, 0, buf, len);
+}
+
+enum { MAX_KEYS = 64 };
+
+static int configure(const np_unit *u, void *cfg, const char *spec, int all, char *err, size_t errlen)
+{
+    unsigned char given[MAX_KEYS] = { 0 };
+    size_t n_keys = np_unit_key_count(u);
+    if (n_keys > MAX_KEYS) {
+        snprintf(err, errlen, "unit %s: more than %d configuration keys", u->name, MAX_KEYS);
+        return -1;
+    }
+    np_unit_cfg_default(u, cfg);
     if (spec && *spec) {
         char buf[512];
         if (strlen(spec) >= sizeof buf) {
@@ -42,19 +216,34 @@ int np_unit_configure(const np_unit *u, void *cfg, const char *spec, char *err, 
             return -1;
         }
         strcpy(buf, spec);
-        for (char *save = NULL, *tok = strtok_r(buf, ", ", &save); tok;
-             tok = strtok_r(NULL, ", ", &save)) {
+        for (char *save = NULL, *tok = strtok_r(buf, ", ", &save); tok; tok = strtok_r(NULL, ", ", &save)) {
             char *eq = strchr(tok, '=');
             if (!eq) {
                 snprintf(err, errlen, "'%s': expected key=value", tok);
                 return -1;
             }
             *eq = '\0';
-            if (u->cfg_set(cfg, tok, eq + 1, err, errlen) != 0)
+            if (np_unit_cfg_set(u, cfg, tok, eq + 1, err, errlen) != 0)
                 return -1;
+            size_t i = (size_t)(np_unit_key_find(u, tok) - u->keys);
+            if (given[i]) {
+                snprintf(err, errlen, "key %s given twice", tok);
+                return -1;
+            }
+            given[i] = 1;
         }
     }
-    const char *why = u->cfg_check(cfg);
+    for (size_t i = 0; i < n_keys; i++) {
+        const np_unit_key *k = &u->keys[i];
+        if (all && !given[i]) {
+            snprintf(err, errlen, "key %s missing (a '# config' line gives every key of unit %s once)", k->name,
+                     u->name);
+            return -1;
+        }
+        if (k->derive && !given[i])
+            np_unit_key_put(k, cfg, k->derive(cfg));
+    }
+    const char *why = u->cfg_check ? u->cfg_check(cfg) : NULL;
     if (why) {
         snprintf(err, errlen, "%s", why);
         return -1;
@@ -62,14 +251,14 @@ int np_unit_configure(const np_unit *u, void *cfg, const char *spec, char *err, 
     return 0;
 }
 
-int np_unit_parse_uint(const char *v, unsigned lo, unsigned hi, unsigned *out)
+int np_unit_configure(const np_unit *u, void *cfg, const char *spec, char *err, size_t errlen)
 {
-    char *end;
-    unsigned long n = strtoul(v, &end, 10);
-    if (*v == '\0' || *end != '\0' || *v == '-' || n < lo || n > hi)
-        return -1;
-    *out = (unsigned)n;
-    return 0;
+    return configure(u, cfg, spec, 0, err, errlen);
+}
+
+int np_unit_configure_all(const np_unit *u, void *cfg, const char *spec, char *err, size_t errlen)
+{
+    return configure(u, cfg, spec, 1, err, errlen);
 }
 
 void np_unit_set_field(np_field *f, const char *name, unsigned bits, int sgn, unsigned frac,

@@ -71,7 +71,7 @@ typedef struct np_vec_header {
     const np_unit *unit;
     np_unit_cfg cfg;
     np_unit_fields fields;
-    char cfg_text[256];  /* unit->cfg_format(): every key, fixed order */
+    char cfg_text[256];  /* np_unit_cfg_format(): every key, in the table's order */
     uint64_t seed;       /* generator seed (valid when has_seed) */
     int has_seed;
     unsigned level;      /* 1 or 2; 0 when the file does not say */

@@ -73,16 +73,21 @@ void np_vec_compute(const np_vec_header *h, const uint64_t *in, uint64_t *out, u
         ref[k] = np_vec_ref_bits(r[k]);
 }
 
-int np_vec_header_init(np_vec_header *h, const np_unit *u, const char *spec, char *err,
-                       size_t errlen)
+/* np_vec_header_init; all: spec gives every key exactly once (a '# config' line, np_unit_configure_all). */
+static int header_init(np_vec_header *h, const np_unit *u, const char *spec, int all, char *err, size_t errlen)
 {
     memset(h, 0, sizeof *h);
     h->unit = u;
-    if (np_unit_configure(u, &h->cfg, spec, err, errlen) != 0)
+    if ((all ? np_unit_configure_all : np_unit_configure)(u, &h->cfg, spec, err, errlen) != 0)
         return -1;
-    u->cfg_format(&h->cfg, h->cfg_text, sizeof h->cfg_text);
+    np_unit_cfg_format(u, &h->cfg, h->cfg_text, sizeof h->cfg_text);
     u->fields(&h->cfg, &h->fields);
     return 0;
+}
+
+int np_vec_header_init(np_vec_header *h, const np_unit *u, const char *spec, char *err, size_t errlen)
+{
+    return header_init(h, u, spec, 0, err, errlen);
 }
 
 unsigned np_vec_columns(const np_vec_header *h, unsigned mask, np_vec_col *cols)
@@ -486,7 +491,7 @@ static int header_finish(np_vec_reader *r, const hdr_state *hs, uint64_t at)
     }
     if (!hs->config.line)
         return hdr_err(r, at, "missing header line '# config KEY=VALUE ...'");
-    if (np_vec_header_init(&r->h, u, hs->config.text, err, sizeof err) != 0)
+    if (header_init(&r->h, u, hs->config.text, 1, err, sizeof err) != 0)
         return hdr_err(r, hs->config.line, "bad config '%s' for unit %s: %s", hs->config.text, u->name, err);
     if (!hs->count.line)
         return hdr_err(r, at, "missing header line '# count N'");

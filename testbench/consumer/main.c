@@ -55,7 +55,7 @@ int main(void)
     check(u != NULL, "the registry has classic3");
     np_unit_cfg ucfg;
     if (u)
-        u->cfg_default(ucfg.bytes);
+        np_unit_cfg_default(u, ucfg.bytes);
     for (unsigned i = 0; i < N_IN; i++) {
         want[i] = np_classic_eval(&cfg, in[i][0], in[i][1], in[i][2]);
         double ref = np_ref_classic3_q88(in[i][0], in[i][1], in[i][2]);

@@ -52,7 +52,7 @@ int main()
     check(u != nullptr, "the registry has classic3");
     if (u) {
         np_unit_cfg ucfg;
-        u->cfg_default(ucfg.bytes);
+        np_unit_cfg_default(u, ucfg.bytes);
         uint64_t w[3] = { in[0].x, in[0].y, in[0].z }, out = 0;
         u->eval(ucfg.bytes, w, &out);
         check(out == (static_cast<uint64_t>(static_cast<int64_t>(want[0])) & NP_MASK(8)),
