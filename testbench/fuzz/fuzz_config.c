@@ -33,9 +33,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         np_fuzz_assert(err[0] != '\0');
         return 0;
     }
-    u->cfg_format(cfg.bytes, text, sizeof text);
+    np_unit_cfg_format(u, cfg.bytes, text, sizeof text);
     np_fuzz_assert(np_unit_configure(u, again.bytes, text, err, sizeof err) == 0);
-    u->cfg_format(again.bytes, text2, sizeof text2);
+    np_unit_cfg_format(u, again.bytes, text2, sizeof text2);
     np_fuzz_assert(strcmp(text, text2) == 0);
 
     np_unit_fields f;

@@ -31,16 +31,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         np_render_frame fr;
         if (np_render_prepare(&sc, &fr, err, sizeof err) == 0) {
             if (np_render_reference(&fr) == 0) {
-                np_fdiff_cfg fc;
-                np_texel_cfg tc;
+                np_fdiff_cfg fc = np_fdiff_cfg_default();
+                np_texel_cfg tc = np_texel_cfg_default();
                 np_render_run run;
-                if (np_render_fdiff_cfg_parse(&fc, "", err, sizeof err) == 0 &&
-                    np_render_fdiff(&fr, &fc, 1, &run) == 0) {
+                if (np_render_fdiff(&fr, &fc, 1, &run) == 0) {
                     np_fuzz_assert(run.cycle_mismatch == 0);
                     np_render_run_free(&run);
                 }
-                if (np_render_texel_cfg_parse(&tc, "", err, sizeof err) == 0 &&
-                    np_render_texel(&fr, &tc, 1, &run) == 0) {
+                if (np_render_texel(&fr, &tc, 1, &run) == 0) {
                     np_fuzz_assert(run.cycle_mismatch == 0);
                     np_render_run_free(&run);
                 }
