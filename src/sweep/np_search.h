@@ -123,6 +123,9 @@ typedef struct np_search_result {
     double seconds;
 } np_search_result;
 
+/* The same statistics, bit for bit (doubles compared as bit patterns). */
+int np_search_stats_equal(const np_search_stats *a, const np_search_stats *b);
+
 /* NULL when the search can run unit u (inputs x, y, z of 16 bits), else why not. */
 const char *np_search_unit_check(const np_unit *u, const void *cfg);
 

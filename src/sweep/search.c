@@ -190,6 +190,25 @@ static void stats_merge(np_search_stats *into, const np_search_stats *from)
         worst_insert(into, &from->worst[i]);
 }
 
+static int same_pt(const np_search_pt *a, const np_search_pt *b)
+{
+    return memcmp(a->in, b->in, sizeof a->in) == 0 && memcmp(&a->err, &b->err, sizeof a->err) == 0;
+}
+
+int np_search_stats_equal(const np_search_stats *a, const np_search_stats *b)
+{
+    if (a->n != b->n || a->over != b->over || a->cr != b->cr || a->n_out != b->n_out || a->n_worst != b->n_worst ||
+        memcmp(a->cls_n, b->cls_n, sizeof a->cls_n) != 0 || memcmp(a->cls_max, b->cls_max, sizeof a->cls_max) != 0)
+        return 0;
+    for (unsigned k = 0; k < a->n_out; k++)
+        if (!same_pt(&a->fmax[k], &b->fmax[k]) || a->fover[k] != b->fover[k])
+            return 0;
+    for (unsigned i = 0; i < a->n_worst; i++)
+        if (!same_pt(&a->worst[i], &b->worst[i]))
+            return 0;
+    return 1;
+}
+
 /* ---------------------------------------------------------------- the classes */
 
 /* Per-axis words of the extremes class: input ends and the cell wrap at 256. */
