@@ -45,6 +45,8 @@ static int resolve_axis(const np_unit *u, const np_dse_axis *a, np_dse_axis *out
     return 0;
 }
 
+enum { CHECK_WAVE = NP_SEARCH_WAVE * NP_SEARCH_CHUNK };
+
 /* The search of one configuration, into p. 0, or -1 with err. */
 static int search_point(const np_unit *u, const void *cfg, uint64_t n, uint64_t seed, np_dse_point *p, char *err,
                         size_t errlen)
@@ -54,7 +56,8 @@ static int search_point(const np_unit *u, const void *cfg, uint64_t n, uint64_t 
     memset(&o, 0, sizeof o);
     o.unit = u;
     o.cfg = cfg;
-    o.n = n;
+    /* A configuration proved faithful by its bound gets one wave: a check of the argument, not its evidence. */
+    o.n = u->error_bound_lsb(cfg) <= 1.0 && n > CHECK_WAVE ? CHECK_WAVE : n;
     o.seed = seed;
     o.stop_early = 1;
     if (np_search_run(&o, &r, err, errlen) != 0)
@@ -349,7 +352,8 @@ void np_dse_write_md(FILE *f, const np_dse_result *r, const char *svg_name)
                "search of [search.md](search.md) (extremes, lattice and cell faces, equal offsets and the "
                "unit's faces, the inputs where its roundings are worst, random inputs and a hill-climb) with a "
                "budget of %llu inputs, seed %llu, stopped at the first wave of %u inputs that holds a "
-               "counterexample. Each configuration gets one of three verdicts: **faithful (proved)** when "
+               "counterexample; a configuration whose bound proves it faithful gets one wave, as a check of the "
+               "argument. Each configuration gets one of three verdicts: **faithful (proved)** when "
                "its error bound (the unit's argument, valid for every input) is ≤ 1 LSB; **no counterexample "
                "in N adversarial inputs** when the bound is larger and the search found no input over 1 LSB "
                "(not a proof); **not faithful** with the counterexample's input. *Max error* and *correctly "
@@ -376,15 +380,16 @@ void np_dse_write_md(FILE *f, const np_dse_result *r, const char *svg_name)
     memcpy(sorted, r->pts, r->n * sizeof *sorted);
     qsort(sorted, r->n, sizeof *sorted, by_gates);
     fprintf(f, "## All configurations, cheapest first\n\n");
-    fprintf(f, "| configuration | gates | latency | path (levels) | max error (LSB) | bound (LSB) | correctly rounded | "
-               "Pareto | verdict |\n");
-    fprintf(f, "| --- | ---: | ---: | ---: | ---: | ---: | ---: | :---: | --- |\n");
+    fprintf(f, "| configuration | gates | latency | path (levels) | inputs tried | max error (LSB) | bound (LSB) | "
+               "correctly rounded | Pareto | verdict |\n");
+    fprintf(f, "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | :---: | --- |\n");
     for (size_t i = 0; i < r->n; i++) {
         const np_dse_point *p = &sorted[i];
         char v[128];
         verdict_text(p, v, sizeof v);
-        fprintf(f, "| `%s` | %.0f | %u | %.0f | %.4f | %.4f | %.2f %% | %s | %s |\n", p->cfg, p->gates, p->latency,
-                p->crit, p->max_err, p->bound, p->cr_pct, p->pareto ? "●" : "", v);
+        fprintf(f, "| `%s` | %.0f | %u | %.0f | %llu | %.4f | %.4f | %.2f %% | %s | %s |\n", p->cfg, p->gates,
+                p->latency, p->crit, (unsigned long long)p->tried, p->max_err, p->bound, p->cr_pct,
+                p->pareto ? "●" : "", v);
     }
     fprintf(f, "\n");
     if (count_verdict(r, NP_SEARCH_COUNTEREXAMPLE))

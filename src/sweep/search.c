@@ -603,6 +603,14 @@ static int journal_open(search_run *run, char *err, size_t errlen)
 
 /* ---------------------------------------------------------------- threads */
 
+/* n more inputs done (the caller holds the lock). */
+static void count_done(search_run *run, uint64_t n)
+{
+    run->done += n;
+    if (run->o->progress)
+        np_progress_update(&run->prog, run->done);
+}
+
 static void *chunk_worker(void *arg)
 {
     search_run *run = arg;
@@ -613,22 +621,18 @@ static void *chunk_worker(void *arg)
             continue;
         pthread_mutex_unlock(&run->mu);
         np_search_stats s;
+        char line[JLINE_MAX];
         chunk_run(run, k, &s);
+        size_t len = run->jf ? chunk_line(line, k, &s) : 0;
         pthread_mutex_lock(&run->mu);
         run->chunk[k] = s;
         run->have[k] = 1;
-        run->done += s.n;
-        if (run->jf) {
-            char line[JLINE_MAX];
-            size_t n = chunk_line(line, k, &s);
-            if (fwrite(line, 1, n, run->jf) != n || fflush(run->jf) != 0) {
-                run->failed = 1;
-                snprintf(run->err, sizeof run->err, "cannot write journal %s: %s", run->o->journal,
-                         strerror(errno));
-            }
+        /* The line goes out whole before the next chunk is taken: a kill leaves at most a torn last line. */
+        if (len && (fwrite(line, 1, len, run->jf) != len || fflush(run->jf) != 0) && !run->failed) {
+            run->failed = 1;
+            snprintf(run->err, sizeof run->err, "cannot write journal %s: %s", run->o->journal, strerror(errno));
         }
-        if (run->o->progress)
-            np_progress_update(&run->prog, run->done);
+        count_done(run, s.n);
     }
     pthread_mutex_unlock(&run->mu);
     return NULL;
@@ -645,9 +649,7 @@ static void *climb_worker(void *arg)
         climb_run(run, &run->starts[i], run->climb_budget[i], (uint64_t)run->round * NP_SEARCH_WORST + i, &s);
         pthread_mutex_lock(&run->mu);
         run->climb[i] = s;
-        run->done += s.n;
-        if (run->o->progress)
-            np_progress_update(&run->prog, run->done);
+        count_done(run, s.n);
     }
     pthread_mutex_unlock(&run->mu);
     return NULL;

@@ -192,32 +192,20 @@ static size_t boundary(const void *cfg, uint64_t (*in)[NP_UNIT_MAX_FIELDS], size
 
 enum { ADV_CANDIDATES = 16 }; /* candidates drawn per worst-rounding input */
 
-/* The exact front end of one input (np_simplex_eval's, no rounding): per corner D, G, G.D and T. */
-typedef struct adv_front {
-    int32_t d[4][3], gd[4];
-    np_grad g[4];
-    uint32_t t[4];
-} adv_front;
+/*
+ * The exact front end of one input: the pipeline's first four stages (SK,
+ * RK, CH, KT: skew, rank, corners, G.D, R2, T), no rounding in any of them.
+ */
+enum { ADV_FRONT_STAGES = 4 };
 
-static void adv_front_of(const uint16_t in[3], adv_front *fr)
+static void adv_front_of(const np_simplex_cfg *c, const uint16_t in[3], np_simplex_sig *sig)
 {
-    uint32_t cell[3];
-    int32_t off[3];
-    for (unsigned a = 0; a < 3; a++)
-        cell[a] = np_simplex_cell(np_simplex_skew(in[a], in[(a + 1u) % 3u], in[(a + 2u) % 3u]));
-    uint32_t n = cell[0] + cell[1] + cell[2];
-    for (unsigned a = 0; a < 3; a++)
-        off[a] = np_simplex_offset(in[a], cell[a], n);
-    uint8_t hi, lo;
-    np_simplex_rank(off[0], off[1], off[2], &hi, &lo);
-    for (unsigned c = 0; c < 4; c++) {
-        unsigned mask = np_simplex_corner_mask(hi, lo, c);
-        for (unsigned a = 0; a < 3; a++)
-            fr->d[c][a] = np_simplex_corner_d(off[a], mask >> a & 1u, c);
-        fr->g[c] = np_grad_decode(np_simplex_corner_hash(cell, mask));
-        fr->gd[c] = np_simplex_gdot(fr->g[c], fr->d[c]);
-        fr->t[c] = np_simplex_kernel_t(np_simplex_r2(fr->d[c]));
-    }
+    memset(sig, 0, sizeof *sig);
+    sig->x = in[0];
+    sig->y = in[1];
+    sig->z = in[2];
+    for (unsigned k = 0; k < ADV_FRONT_STAGES; k++)
+        np_simplex_stage_table(c)[k].fn(c, sig);
 }
 
 /* v / 2^k - round_half_up(v / 2^k), negated: the rounding's signed error in result LSB. */
@@ -235,7 +223,7 @@ static double adv_round_err(uint64_t v, unsigned k)
  * outputs. Exact integer front end; the products' and constants' roundings
  * (WP, WK) are left out: they do not depend on where the input is.
  */
-static double adv_power_score(const np_simplex_cfg *c, const adv_front *fr)
+static double adv_power_score(const np_simplex_cfg *c, const np_simplex_sig *fr)
 {
     unsigned wt = c->t_frac;
     double lsb = ldexp(1.0, -(int)wt), sf = 0.0, sd[3] = { 0.0, 0.0, 0.0 };
@@ -282,10 +270,10 @@ static size_t adversarial(const void *cfgv, unsigned cls, np_rng *r, uint64_t (*
         if (cls == NP_ADV_ROUNDING) {
             double top = -1.0;
             for (unsigned k = 0; k < ADV_CANDIDATES; k++) {
-                adv_front fr;
+                np_simplex_sig fr;
                 for (unsigned a = 0; a < 3; a++)
                     w[a] = adv_word(r);
-                adv_front_of(w, &fr);
+                adv_front_of(c, w, &fr);
                 double sc = adv_power_score(c, &fr);
                 if (sc > top) {
                     top = sc;
@@ -311,12 +299,9 @@ static size_t adversarial(const void *cfgv, unsigned cls, np_rng *r, uint64_t (*
                     w[axis] = adv_word(r);
                     w[b] = (uint16_t)(w[axis] + 256 * ((int)np_rng_below(r, 5) - 2));
                     w[e] = adv_word(r);
-                    uint32_t cell[3];
-                    for (unsigned a = 0; a < 3; a++)
-                        cell[a] = np_simplex_cell(np_simplex_skew(w[a], w[(a + 1u) % 3u], w[(a + 2u) % 3u]));
-                    uint32_t nn = cell[0] + cell[1] + cell[2];
-                    if (np_simplex_offset(w[axis], cell[axis], nn) == np_simplex_offset(w[b], cell[b], nn) ||
-                        tries > 16)
+                    np_simplex_sig fr;
+                    adv_front_of(c, w, &fr);
+                    if (fr.off[axis] == fr.off[b] || tries > 16)
                         break;
                 }
             }
