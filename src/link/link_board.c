@@ -11,7 +11,7 @@
  * What the emulator chooses where the document leaves a choice:
  *   - It offers every unit of the registry in every valid configuration
  *     (INFO n_slots = 0) unless slots are given; a configuration must be in
- *     canonical form (the unit's cfg_format), compared byte for byte.
+ *     canonical form (np_unit_cfg_format), compared byte for byte.
  *   - It runs each DATA frame's records through the unit's np_pipe, one input
  *     per clock with the output always ready, and drains the pipe at the end
  *     of the frame (a real board may overlap frames: the protocol does not

@@ -242,7 +242,7 @@ void np_unit_key_range(const np_unit_key *k, char *buf, size_t len);
 /* The value text of key k in cfg (a number, or an enumeration's word). */
 void np_unit_key_text(const np_unit_key *k, const void *cfg, char *buf, size_t len);
 
-/* Every key at its default (derived keys from the others). */
+/* Every key at its default (derived keys from the others); cfg is an np_unit_cfg (all of it is cleared first). */
 void np_unit_cfg_default(const np_unit *u, void *cfg);
 /*
  * Set one key from its text, no other key changes (a derived key is not
