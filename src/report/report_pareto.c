@@ -64,7 +64,7 @@ static int search_point(const np_unit *u, const void *cfg, uint64_t n, uint64_t 
         return -1;
     np_unit_fields f;
     u->fields(cfg, &f);
-    p->verdict = r.verdict;
+    p->verdict = (int)r.verdict;
     p->tried = r.total.n;
     p->max_err = r.worst.err;
     p->cr_pct = 100.0 * (double)r.total.cr / ((double)r.total.n * f.n_out);
