@@ -98,7 +98,7 @@ add_test(NAME sweep.cli_usage COMMAND ${CMAKE_COMMAND} -DCHECK=usage ${np_sweep_
 np_test_program(test_search test_search.c)
 np_add_cases(test_search search
   classic3_s8_l9_counterexample classic3_s9_l8_counterexample simplex3_t19_p19_counterexample
-  defaults_faithful classes threads journal_resume)
+  simplex3_t19_p21_pinned defaults_faithful classes threads journal_resume)
 # The command: a counterexample is exit 1 with the verdict; bad usage is exit 2.
 add_test(NAME search.cli_counterexample COMMAND ${CMAKE_COMMAND} -DCHECK=exit
   "-DARGS=search|--unit|classic3|--config|s_frac=4,lerp_frac=6|-n|4096"
