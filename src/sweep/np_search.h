@@ -4,12 +4,15 @@
  * model against the float reference on the inputs most likely to break the
  * 1 LSB contract, for a unit with inputs x, y, z (u16 each), on all cores.
  *
- * Input classes, each a share of the budget N:
+ * Input classes, each a share of the budget N (after the extremes, of every
+ * 16 chunks 6 random, 6 rounding, 2 faces, 2 lattice; the last quarter of N
+ * is the climb):
  *   extremes     every combination of 12 per-axis words (0, 1, 0xff, 0x100,
  *                0x7fff, 0x8000, ..., 0xffff: the cell wrap at 256 and the
  *                input ends), then the unit's boundary table (np_unit.boundary);
- *   lattice      random cells with every axis on a lattice point or 1 LSB
- *                beside it (fraction 0xff, 0x00 or 0x01);
+ *   lattice      random cells; each axis on a lattice point or 1 LSB beside
+ *                it (fraction 0xff, 0x00 or 0x01) with probability 1/2 (a
+ *                cell face), all three 1 time in 8, the others random;
  *   faces        offsets equal in pairs or all three (x = y, y = z, x = z,
  *                x = y = z, then 1 or 2 LSB off), and the unit's own faces
  *                (np_unit.adversarial, NP_ADV_FACES: the skew boundaries of
@@ -24,7 +27,7 @@
  *                combination of -2..+2 over the three axes), moved while the
  *                objective grows, a random kick (+-16 per axis around the
  *                best point) when none does, in rounds from the new W worst
- *                until the climb's share (N / 8) is spent.
+ *                until the climb's share (N / 4) is spent.
  *
  * The climb's objective, which also ranks the W worst: the datapath's error
  * before the output rounding, when the unit gives a finer-output

@@ -734,7 +734,7 @@ int np_search_run(const np_search_opts *o, np_search_result *res, char *err, siz
     run->o = o;
     search_unit_init(&run->su, o->unit, o->cfg);
     stats_init(&res->total, run->su.f.n_out);
-    /* Phase 1: 7/8 of the budget in whole chunks; the climbs take the rest. */
+    /* Phase 1: 3/4 of the budget in whole chunks; the climbs take the rest. */
     run->n_chunks = (o->n - o->n / 4u) / NP_SEARCH_CHUNK;
     if (run->n_chunks == 0)
         run->n_chunks = 1;
