@@ -655,15 +655,17 @@ static void *climb_worker(void *arg)
     return NULL;
 }
 
+enum { MAX_THREADS = 64 };
+
 static unsigned online_cpus(void)
 {
     long n = sysconf(_SC_NPROCESSORS_ONLN);
-    return n < 1 ? 1u : n > 64 ? 64u : (unsigned)n;
+    return n < 1 ? 1u : n > MAX_THREADS ? MAX_THREADS : (unsigned)n;
 }
 
 static void run_threads(void *(*fn)(void *), search_run *run, unsigned nt)
 {
-    pthread_t tid[64];
+    pthread_t tid[MAX_THREADS];
     unsigned started = 0;
     for (; started < nt; started++)
         if (pthread_create(&tid[started], NULL, fn, run) != 0)
@@ -750,7 +752,7 @@ int np_search_run(const np_search_opts *o, np_search_result *res, char *err, siz
         return -1;
     }
     neigh_init();
-    unsigned nt = o->threads ? o->threads : online_cpus();
+    unsigned nt = o->threads ? (o->threads < MAX_THREADS ? o->threads : MAX_THREADS) : online_cpus();
     res->threads = nt;
     res->chunks = run->n_chunks;
     for (uint64_t k = 0; k < run->n_chunks; k++)
