@@ -32,6 +32,25 @@ static int J_shuffle(int i, int j, int k)
            J_b(k, i, j, 5) + J_b(i, j, k, 6) + J_b(j, k, i, 7);
 }
 
+/* Appendix B's gradient term of K(): p + q + r or p + q or p + r, by the bits of h. */
+static double J_grad(int h, double x, double y, double z)
+{
+    int b5 = h >> 5 & 1, b4 = h >> 4 & 1, b3 = h >> 3 & 1, b2 = h >> 2 & 1, b = h & 3;
+    double p = b == 1 ? x : b == 2 ? y : z, q = b == 1 ? y : b == 2 ? z : x, r = b == 1 ? z : b == 2 ? x : y;
+    p = (b5 == b3 ? -p : p);
+    q = (b5 == b4 ? -q : q);
+    r = (b5 != (b4 ^ b3) ? -r : r);
+    return p + (b == 0 ? q + r : b2 == 0 ? q : r);
+}
+
+/*
+ * Not in Appendix B (which returns the value only): the analytic derivative
+ * of K(), d/dp 8 t^4 g = 8 t^4 G - 64 t^3 g d, from the transcription's own
+ * terms (G_a = J_grad at the unit vector a), written left to right as a
+ * reader of Appendix B would; summed over the four K() calls in their order.
+ */
+double J_dK[3];
+
 static double J_K(int a)
 {
     double s = (J_A[0] + J_A[1] + J_A[2]) / 6.;
@@ -40,13 +59,11 @@ static double J_K(int a)
     J_A[a]++;
     if (t < 0)
         return 0;
-    int b5 = h >> 5 & 1, b4 = h >> 4 & 1, b3 = h >> 3 & 1, b2 = h >> 2 & 1, b = h & 3;
-    double p = b == 1 ? x : b == 2 ? y : z, q = b == 1 ? y : b == 2 ? z : x, r = b == 1 ? z : b == 2 ? x : y;
-    p = (b5 == b3 ? -p : p);
-    q = (b5 == b4 ? -q : q);
-    r = (b5 != (b4 ^ b3) ? -r : r);
+    double g = J_grad(h, x, y, z), d[3] = { x, y, z };
+    for (int e = 0; e < 3; e++)
+        J_dK[e] += 8 * t * t * t * t * J_grad(h, e == 0, e == 1, e == 2) - 64 * t * t * t * g * d[e];
     t *= t;
-    return 8 * t * t * (p + (b == 0 ? q + r : b2 == 0 ? q : r));
+    return 8 * t * t * g;
 }
 
 double J_noise(double x, double y, double z)
@@ -60,6 +77,7 @@ double J_noise(double x, double y, double z)
     J_v = y - J_j + s;
     J_w = z - J_k + s;
     J_A[0] = J_A[1] = J_A[2] = 0;
+    J_dK[0] = J_dK[1] = J_dK[2] = 0;
     int hi = J_u >= J_w ? J_u >= J_v ? 0 : 1 : J_v >= J_w ? 1 : 2;
     int lo = J_u < J_w ? J_u < J_v ? 0 : 1 : J_v < J_w ? 1 : 2;
     double k0 = J_K(hi);

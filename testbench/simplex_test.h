@@ -27,6 +27,8 @@ extern const np_unit np_unit_simplex3;
 
 /* Appendix B's noise(x, y, z), transcribed (simplex_common.c says how). */
 double J_noise(double x, double y, double z);
+/* The derivative of the last J_noise() from the transcription's own terms (not in Appendix B). */
+extern double J_dK[3];
 
 static inline uint16_t rnd16(np_rng *r) { return (uint16_t)(np_rng_next(r) >> 48); }
 static inline double rnd01(np_rng *r) { return (double)(np_rng_next(r) >> 11) * 0x1p-53; }

@@ -60,6 +60,13 @@ if(CMAKE_SCRIPT_MODE_FILE)
     endforeach()
     np_run("sweep|--help" 0 out)
     np_run("bench|--help" 0 out)
+  elseif(CHECK STREQUAL "search_usage")
+    foreach(bad "search" "search|--unit|nosuch" "search|--unit|classic3|-n|4095" "search|--unit|classic3|-n|x"
+            "search|--unit|classic3|--config|bogus=1" "search|--unit|classic3|--resume" "search|--unit|classic3|--threads|0"
+            "search|--unit|fdiff" "search|--unit|classic3|--frobnicate|1" "search|--unit")
+      np_run("${bad}" 2 out)
+    endforeach()
+    np_run("search|--help" 0 out)
   else()
     message(FATAL_ERROR "sweep.cmake: unknown CHECK '${CHECK}'")
   endif()
@@ -86,3 +93,16 @@ add_test(NAME sweep.cli_cheap_fails COMMAND ${CMAKE_COMMAND} -DCHECK=exit
 add_test(NAME sweep.cli_resume COMMAND ${CMAKE_COMMAND} -DCHECK=resume
   -DJOURNAL=${CMAKE_CURRENT_BINARY_DIR}/sweep_cli.journal ${np_sweep_script})
 add_test(NAME sweep.cli_usage COMMAND ${CMAKE_COMMAND} -DCHECK=usage ${np_sweep_script})
+
+# The adversarial search (src/sweep/search.c, `noisepipe search`, docs/search.md).
+np_test_program(test_search test_search.c)
+np_add_cases(test_search search
+  classic3_s8_l9_counterexample classic3_s9_l8_counterexample simplex3_t19_p19_counterexample
+  simplex3_t19_p21_pinned defaults_faithful classes threads journal_resume)
+# The command: a counterexample is exit 1 with the verdict; bad usage is exit 2.
+add_test(NAME search.cli_counterexample COMMAND ${CMAKE_COMMAND} -DCHECK=exit
+  "-DARGS=search|--unit|classic3|--config|s_frac=4,lerp_frac=6|-n|4096"
+  -DEXPECT=1 "-DMATCH=verdict: not faithful, counterexample \\(0x" ${np_sweep_script})
+add_test(NAME search.cli_proved COMMAND ${CMAKE_COMMAND} -DCHECK=exit
+  "-DARGS=search|--unit|classic3|-n|8192" -DEXPECT=0 "-DMATCH=verdict: faithful \\(proved\\)" ${np_sweep_script})
+add_test(NAME search.cli_usage COMMAND ${CMAKE_COMMAND} -DCHECK=search_usage ${np_sweep_script})

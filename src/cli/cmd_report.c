@@ -31,9 +31,11 @@ static const char usage_text[] =
     "  octaves, transforms and colour table), which outputs it reads, how many units and passes,\n"
     "  the cycles per frame from each unit's cycle-accurate model; the units it does not use are\n"
     "  listed as left out. With -o, DIR/scene-NAME-gates.md and .json.\n"
-    "pareto: the design-space sweep of a unit's internal widths: measured max error and\n"
-    "  correctly-rounded share against gates and latency; DIR/pareto-UNIT.{md,json,svg}.\n"
-    "  --samples random inputs (default 100000) besides the boundary table; --seed (default 1).\n"
+    "pareto: the design-space sweep of a unit's internal widths: each configuration's verdict\n"
+    "  (faithful (proved), no counterexample in N adversarial inputs, not faithful with the\n"
+    "  counterexample) and the adversarial search's max error against gates and latency;\n"
+    "  DIR/pareto-UNIT.{md,json,svg}. --samples: the search's budget per configuration\n"
+    "  (default 262144, docs/search.md); --seed (default 1).\n"
     "runtime: error against run time: every unit that renders the scene (default: the seed scenes\n"
     "  wood and marble), over each of the unit's sweeps (guard bits, re-set-up interval, set-up\n"
     "  multipliers, weight bits): max error against the float reference, cycles per frame, model\n"
@@ -386,8 +388,9 @@ static int write_pareto(const char *dir, const np_unit *only, uint64_t samples, 
             rc |= commit(f, tmp, fin);
         } else
             rc = -1;
-        printf("pareto %s: %zu configurations, %zu inputs each, %.1f s; wrote %s/pareto-%s.{md,json,svg}\n",
-               sp->unit, r.n, r.inputs, np_now() - t0, d, sp->unit);
+        printf("pareto %s: %zu configurations, a search of up to %llu inputs each, %.1f s; wrote "
+               "%s/pareto-%s.{md,json,svg}\n",
+               sp->unit, r.n, (unsigned long long)r.samples, np_now() - t0, d, sp->unit);
         np_dse_free(&r);
         if (rc)
             return NP_EXIT_USAGE;
@@ -407,7 +410,7 @@ int np_cmd_report(int argc, char **argv)
     }
     const char *what = argv[1], *dir = NULL, *spec = NULL, *scene = NULL;
     const np_unit *unit = NULL;
-    uint64_t samples = 100000, seed = 1, repeat = 3;
+    uint64_t samples = 262144, seed = 1, repeat = 3;
     for (int i = 2; i < argc; i++) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -432,8 +435,8 @@ int np_cmd_report(int argc, char **argv)
                 return NP_EXIT_USAGE;
             }
         } else if (strcmp(a, "--samples") == 0) {
-            if (np_parse_u64(v, 0, 1000000000u, &samples) != 0) {
-                np_err("report", "--samples %s: expected 0..1000000000", v);
+            if (np_parse_u64(v, 4096, 1000000000u, &samples) != 0) {
+                np_err("report", "--samples %s: expected 4096..1000000000", v);
                 return NP_EXIT_USAGE;
             }
         } else if (strcmp(a, "--repeat") == 0) {

@@ -16,6 +16,7 @@ static const np_cmd commands[] = {
     { "verify", np_cmd_verify, "check vectors on the cycle-accurate model, or a device's results" },
     { "device", np_cmd_device, "act as a device: read vector lines, append the cycle model's results" },
     { "sweep", np_cmd_sweep, "exhaustive error sweep of one z slice (2^32 inputs) on all cores" },
+    { "search", np_cmd_search, "adversarial error search: worst roundings, faces, extremes, hill-climb; the verdict" },
     { "bench", np_cmd_bench, "benchmark the models and the sweep, print the figures" },
     { "render", np_cmd_render, "render a scene with the float reference and the texture units (EXR + PNG)" },
     { "report", np_cmd_report, "write reports: gate and latency estimates, error against run time" },

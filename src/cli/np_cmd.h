@@ -17,6 +17,7 @@ int np_cmd_vectors(int argc, char **argv);
 int np_cmd_verify(int argc, char **argv);
 int np_cmd_device(int argc, char **argv);
 int np_cmd_sweep(int argc, char **argv);
+int np_cmd_search(int argc, char **argv);
 int np_cmd_bench(int argc, char **argv);
 int np_cmd_render(int argc, char **argv);
 int np_cmd_report(int argc, char **argv);

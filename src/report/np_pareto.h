@@ -34,24 +34,31 @@ extern const np_dse_space np_dse_spaces[]; /* terminated by unit == NULL */
 typedef struct np_dse_point {
     unsigned v1, v2;
     char cfg[128];
-    double gates, crit, max_err, cr_pct, bound;
+    double gates, crit, bound;
+    double max_err, cr_pct;  /* the search's: largest output error (LSB), correctly rounded share */
     unsigned latency;
     int pareto;
+    int verdict;             /* np_search_verdict */
+    uint64_t tried;          /* inputs the search evaluated */
+    uint16_t cex[3];         /* the input of max_err: the counterexample when not faithful */
+    char cex_field[16];      /* its worst output field, */
+    double cex_out, cex_true; /* the model's output and the true value there, in that field's LSB */
 } np_dse_point;
 
 typedef struct np_dse_result {
     const np_dse_space *space;
     const np_unit *unit;
     np_dse_axis axis[2]; /* the ranges swept: the space's, or the key table's */
-    uint64_t samples, seed;
-    size_t inputs;
+    uint64_t samples, seed; /* the search's budget and seed for every configuration */
     size_t n;
     np_dse_point *pts;
 } np_dse_result;
 
 /*
- * Run the sweep: samples random inputs (plus the boundary table). 0, or -1
- * with err (an unknown unit or key, a range outside the key's).
+ * Run the sweep: an adversarial search (np_search.h) of samples inputs
+ * (at least NP_SEARCH_CHUNK) per configuration, stopped at the first wave
+ * holding a counterexample. 0, or -1 with err (an unknown unit or key, a
+ * range outside the key's).
  */
 int np_dse_run(const np_dse_space *sp, uint64_t samples, uint64_t seed, np_dse_result *res, char *err,
                size_t errlen);

@@ -1,9 +1,11 @@
 /* SPDX-License-Identifier: MIT */
 /*
  * Error against cost: a design-space sweep over two internal widths of a
- * unit. Each configuration's error is measured by running its bit-exact model
- * against the float reference on the same seeded inputs (the unit's boundary
- * table plus random inputs); its cost is the gate report's estimate.
+ * unit. Each configuration's error is the adversarial search's
+ * (np_search.h, docs/search.md) with the same budget and seed, and its
+ * verdict one of the three of PRODUCT.md's Claims: faithful (proved), no
+ * counterexample in N adversarial inputs, not faithful with the input;
+ * its cost is the gate report's estimate.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -12,7 +14,7 @@
 #include "np_cli.h"
 #include "np_pareto.h"
 #include "np_plot.h"
-#include "np_rng.h"
+#include "np_search.h"
 
 /* The design spaces swept for `noisepipe report pareto` (docs/pareto-*.md). */
 const np_dse_space np_dse_spaces[] = {
@@ -43,62 +45,46 @@ static int resolve_axis(const np_unit *u, const np_dse_axis *a, np_dse_axis *out
     return 0;
 }
 
-/* The inputs every configuration is measured on, with their reference values. */
-typedef struct sample_set {
-    size_t n;
-    unsigned n_in, n_out;
-    uint64_t *in;  /* n * n_in */
-    double *ref;   /* n * n_out */
-} sample_set;
+enum { CHECK_WAVE = NP_SEARCH_WAVE * NP_SEARCH_CHUNK };
 
-static int make_samples(const np_unit *u, const void *cfg, uint64_t count, uint64_t seed, sample_set *s)
+/* The search of one configuration, into p. 0, or -1 with err. */
+static int search_point(const np_unit *u, const void *cfg, uint64_t n, uint64_t seed, np_dse_point *p, char *err,
+                        size_t errlen)
 {
-    np_unit_fields f;
-    u->fields(cfg, &f);
-    size_t nb = u->boundary(cfg, NULL, 0);
-    s->n = nb + (size_t)count;
-    s->n_in = f.n_in;
-    s->n_out = f.n_out;
-    s->in = malloc(s->n * f.n_in * sizeof *s->in);
-    s->ref = malloc(s->n * f.n_out * sizeof *s->ref);
-    uint64_t (*b)[NP_UNIT_MAX_FIELDS] = malloc((nb ? nb : 1) * sizeof *b);
-    if (!s->in || !s->ref || !b) {
-        free(b);
+    np_search_opts o;
+    np_search_result r;
+    memset(&o, 0, sizeof o);
+    o.unit = u;
+    o.cfg = cfg;
+    /* A configuration proved faithful by its bound gets one wave: a check of the argument, not its evidence. */
+    o.n = u->error_bound_lsb(cfg) <= 1.0 && n > CHECK_WAVE ? CHECK_WAVE : n;
+    o.seed = seed;
+    o.stop_early = 1;
+    if (np_search_run(&o, &r, err, errlen) != 0)
         return -1;
-    }
-    u->boundary(cfg, b, nb);
-    np_rng r;
-    np_rng_seed(&r, seed);
-    for (size_t i = 0; i < s->n; i++) {
-        uint64_t *in = &s->in[i * f.n_in];
-        for (unsigned k = 0; k < f.n_in; k++)
-            in[k] = i < nb ? b[i][k] : np_rng_next(&r) >> (64u - f.in[k].bits);
-        u->ref(cfg, in, &s->ref[i * f.n_out]);
-    }
-    free(b);
-    return 0;
-}
-
-/* Max error (LSB) and correctly rounded share of one configuration. */
-static void measure(const np_unit *u, const void *cfg, const sample_set *s, double *max_err, double *cr_pct)
-{
     np_unit_fields f;
     u->fields(cfg, &f);
-    uint64_t out[NP_UNIT_MAX_FIELDS];
-    double worst = 0.0;
-    uint64_t cr = 0;
-    for (size_t i = 0; i < s->n; i++) {
-        u->eval(cfg, &s->in[i * s->n_in], out);
-        for (unsigned k = 0; k < s->n_out; k++) {
-            double scale = ldexp(1.0, (int)f.out[k].frac);
-            double got = np_unit_field_value(&f.out[k], out[k]) * scale;
-            double want = s->ref[i * s->n_out + k] * scale;
-            worst = fmax(worst, fabs(got - want));
-            cr += got == floor(want + 0.5);
+    p->verdict = (int)r.verdict;
+    p->tried = r.total.n;
+    p->max_err = r.worst.err;
+    p->cr_pct = 100.0 * (double)r.total.cr / ((double)r.total.n * f.n_out);
+    memcpy(p->cex, r.worst.in, sizeof p->cex);
+    /* The counterexample's worst field, its output and true value in that field's LSB. */
+    uint64_t in[NP_UNIT_MAX_FIELDS] = { r.worst.in[0], r.worst.in[1], r.worst.in[2] }, out[NP_UNIT_MAX_FIELDS];
+    double ref[NP_UNIT_MAX_FIELDS];
+    u->eval(cfg, in, out);
+    u->ref(cfg, in, ref);
+    double top = -1.0;
+    for (unsigned k = 0; k < f.n_out; k++) {
+        double sc = ldexp(1.0, (int)f.out[k].frac), got = np_unit_field_value(&f.out[k], out[k]) * sc;
+        if (fabs(got - ref[k] * sc) > top) {
+            top = fabs(got - ref[k] * sc);
+            snprintf(p->cex_field, sizeof p->cex_field, "%s", f.out[k].name);
+            p->cex_out = got;
+            p->cex_true = ref[k] * sc;
         }
     }
-    *max_err = worst;
-    *cr_pct = 100.0 * (double)cr / ((double)s->n * s->n_out);
+    return 0;
 }
 
 int np_dse_run(const np_dse_space *sp, uint64_t samples, uint64_t seed, np_dse_result *res, char *err,
@@ -121,17 +107,11 @@ int np_dse_run(const np_dse_space *sp, uint64_t samples, uint64_t seed, np_dse_r
     np_unit_cfg cfg;
     if (np_unit_configure(u, &cfg, sp->base, err, errlen) != 0)
         return -1;
-    sample_set s;
-    if (make_samples(u, &cfg, samples, seed, &s) != 0) {
-        snprintf(err, errlen, "out of memory");
-        return -1;
-    }
-    res->inputs = s.n;
+    if (samples < NP_SEARCH_CHUNK)
+        res->samples = samples = NP_SEARCH_CHUNK;
     size_t total = (size_t)(a1->hi - a1->lo + 1) * (size_t)(a2->hi - a2->lo + 1);
     res->pts = calloc(total, sizeof *res->pts);
     if (!res->pts) {
-        free(s.in);
-        free(s.ref);
         snprintf(err, errlen, "out of memory");
         return -1;
     }
@@ -145,11 +125,8 @@ int np_dse_run(const np_dse_space *sp, uint64_t samples, uint64_t seed, np_dse_r
             if (np_unit_configure(u, &cfg, spec, e2, sizeof e2) != 0)
                 continue; /* outside the unit's valid range */
             np_unit_cost c;
-            if (np_unit_cost_compute(u, &cfg, &np_cost_default, &c, err, errlen) != 0) {
-                free(s.in);
-                free(s.ref);
+            if (np_unit_cost_compute(u, &cfg, &np_cost_default, &c, err, errlen) != 0)
                 return -1;
-            }
             p->v1 = a;
             p->v2 = b;
             np_unit_cfg_format(u, &cfg, p->cfg, sizeof p->cfg);
@@ -157,13 +134,12 @@ int np_dse_run(const np_dse_space *sp, uint64_t samples, uint64_t seed, np_dse_r
             p->latency = c.latency;
             p->crit = c.crit;
             p->bound = u->error_bound_lsb(&cfg);
-            measure(u, &cfg, &s, &p->max_err, &p->cr_pct);
+            if (search_point(u, &cfg, samples, seed, p, err, errlen) != 0)
+                return -1;
             res->n++;
             np_progress_update(&pr, res->n);
         }
     np_progress_end(&pr);
-    free(s.in);
-    free(s.ref);
     /* Pareto front on (gates, max error): no other point is at most as costly and as wrong, and better in one. */
     for (size_t i = 0; i < res->n; i++) {
         np_dse_point *p = &res->pts[i];
@@ -199,17 +175,35 @@ static double min_gates(const np_dse_result *r)
     return g;
 }
 
-/* The cheapest point meeting a predicate on (max error, bound). */
-static const np_dse_point *cheapest(const np_dse_result *r, int by_argument)
+/* The cheapest point with verdict v (np_search_verdict), or NULL. */
+static const np_dse_point *cheapest(const np_dse_result *r, int v)
 {
     const np_dse_point *best = NULL;
     for (size_t i = 0; i < r->n; i++) {
         const np_dse_point *p = &r->pts[i];
-        int ok = by_argument ? p->bound <= 1.0 : p->max_err <= 1.0;
-        if (ok && (!best || p->gates < best->gates))
+        if (p->verdict == v && (!best || p->gates < best->gates))
             best = p;
     }
     return best;
+}
+
+static size_t count_verdict(const np_dse_result *r, int v)
+{
+    size_t n = 0;
+    for (size_t i = 0; i < r->n; i++)
+        n += r->pts[i].verdict == v;
+    return n;
+}
+
+/* A point's verdict in the project's words (np_search_verdict_text's). */
+static void verdict_text(const np_dse_point *p, char *buf, size_t len)
+{
+    np_search_result r;
+    memset(&r, 0, sizeof r);
+    r.verdict = (np_search_verdict)p->verdict;
+    r.total.n = p->tried;
+    memcpy(r.worst.in, p->cex, sizeof p->cex);
+    np_search_verdict_text(&r, buf, len);
 }
 
 /* The sweep's point with the base configuration's own widths (the unit's default), or NULL. */
@@ -226,32 +220,58 @@ static const np_dse_point *base_point(const np_dse_result *r)
     return NULL;
 }
 
+/* One summary line for a point: "`cfg`, **G gates**, max error E LSB in N inputs, bound B LSB". */
+static void point_line(FILE *f, const char *what, const np_dse_point *p, const np_dse_point *d)
+{
+    fprintf(f, "- %s: `%s`, **%.0f gates**, max error %.4f LSB in %llu adversarial inputs, %.2f %% correctly "
+               "rounded, bound %.4f LSB",
+            what, p->cfg, p->gates, p->max_err, (unsigned long long)p->tried, p->cr_pct, p->bound);
+    if (d && d != p && d->gates > 0.0)
+        fprintf(f, " (%.1f %% fewer gates than the default)", 100.0 * (1.0 - p->gates / d->gates));
+    fprintf(f, ".\n");
+}
+
+/* The cheapest proved and searched configurations, and the counterexamples' count. */
+static void verdict_lines(FILE *f, const np_dse_result *r, const np_dse_point *d)
+{
+    const np_dse_point *a = cheapest(r, NP_SEARCH_PROVED), *m = cheapest(r, NP_SEARCH_NO_COUNTER);
+    if (a)
+        point_line(f, "Cheapest configuration **faithful (proved)** (bound ≤ 1 LSB for every input)", a, d);
+    else
+        fprintf(f, "- No configuration of this space is faithful by proof.\n");
+    if (m && (!a || m->gates < a->gates))
+        point_line(f, "Cheapest configuration with **no counterexample in its adversarial inputs** (bound > 1 LSB: "
+                      "not proved faithful)", m, d);
+    fprintf(f, "- Not faithful, with a counterexample (listed below): **%zu** of %zu configurations; no "
+               "counterexample but no proof: %zu; faithful (proved): %zu.\n",
+            count_verdict(r, NP_SEARCH_COUNTEREXAMPLE), r->n, count_verdict(r, NP_SEARCH_NO_COUNTER),
+            count_verdict(r, NP_SEARCH_PROVED));
+}
+
 /* Perlin's "under 10K gates" claim for the classic unit (np_dse_space.claim_10k). */
-static void write_claim_10k(FILE *f, const np_dse_result *r, const np_dse_point *m, const np_dse_point *a)
+static void write_claim_10k(FILE *f, const np_dse_result *r)
 {
     fprintf(f, "## Perlin's claim\n\n");
     fprintf(f, "The seed claims the classic unit in *under 10K gates* with *about twenty clocks* of latency, "
                "one result per clock, 8-bit output. Every configuration here has latency %u clocks and one "
                "result per clock.\n\n", r->n ? r->pts[0].latency : 0);
+    verdict_lines(f, r, NULL);
     size_t meet = 0;
     for (size_t i = 0; i < r->n; i++)
-        meet += r->pts[i].gates < 10000.0 && r->pts[i].max_err <= 1.0;
-    if (m)
-        fprintf(f, "- Cheapest configuration measured faithful (max error ≤ 1 LSB on these inputs): `%s`, "
-                   "**%.0f gates**, max error %.4f LSB, %.2f %% correctly rounded, bound %.4f LSB.\n",
-                m->cfg, m->gates, m->max_err, m->cr_pct, m->bound);
-    if (a)
-        fprintf(f, "- Cheapest configuration faithful by argument (bound ≤ 1 LSB for every input): `%s`, "
-                   "**%.0f gates**, measured %.4f LSB, %.2f %% correctly rounded.\n",
-                a->cfg, a->gates, a->max_err, a->cr_pct);
-    fprintf(f, "- Configurations under 10,000 gates that are measured faithful: **%zu**.\n\n", meet);
+        meet += r->pts[i].gates < 10000.0 && r->pts[i].verdict != NP_SEARCH_COUNTEREXAMPLE;
+    fprintf(f, "- Configurations under 10,000 gates without a counterexample: **%zu**.\n\n", meet);
+    /* The cheapest configuration not shown unfaithful: a lower bound on what a faithful one costs. */
+    const np_dse_point *m = NULL;
+    for (size_t i = 0; i < r->n; i++)
+        if (r->pts[i].verdict != NP_SEARCH_COUNTEREXAMPLE && (!m || r->pts[i].gates < m->gates))
+            m = &r->pts[i];
     if (meet == 0 && m) {
-        /* Where the gates of the cheapest faithful configuration go. */
+        /* Where its gates go. */
         np_unit_cfg cfg;
         np_unit_cost c;
         char e[256];
-        fprintf(f, "**Verdict:** no configuration of this datapath meets the claim: the cheapest faithful one "
-                   "costs %.0f NAND2 equivalents, %.1f× the claimed 10K.", m->gates, m->gates / 10000.0);
+        fprintf(f, "**Verdict:** no configuration of this datapath meets the claim: the cheapest one without a "
+                   "counterexample costs %.0f NAND2 equivalents, %.1f× the claimed 10K.", m->gates, m->gates / 10000.0);
         if (np_unit_configure(r->unit, &cfg, m->cfg, e, sizeof e) == 0 &&
             np_unit_cost_compute(r->unit, &cfg, &np_cost_default, &c, e, sizeof e) == 0) {
             fprintf(f, " Its gates by stage:");
@@ -266,11 +286,11 @@ static void write_claim_10k(FILE *f, const np_dse_result *r, const np_dse_point 
                 min_gates(r));
     }
     else if (meet > 0)
-        fprintf(f, "**Verdict:** the claim is met by the configurations above marked ✓ in the last column.\n\n");
+        fprintf(f, "**Verdict:** configurations under 10K gates have no counterexample: see the last column.\n\n");
 }
 
 /* Any other unit: the cheapest faithful configurations against the default widths. */
-static void write_summary(FILE *f, const np_dse_result *r, const np_dse_point *m, const np_dse_point *a)
+static void write_summary(FILE *f, const np_dse_result *r)
 {
     unsigned lo = 0, hi = 0;
     size_t front = 0;
@@ -287,32 +307,33 @@ static void write_summary(FILE *f, const np_dse_result *r, const np_dse_point *m
     else
         fprintf(f, "Latency %u to %u clocks, one result per clock.\n\n", lo, hi);
     const np_dse_point *d = base_point(r);
-    if (d)
-        fprintf(f, "- Default widths: `%s`, **%.0f gates**, max error %.4f LSB, %.2f %% correctly rounded, "
-                   "bound %.4f LSB.\n", d->cfg, d->gates, d->max_err, d->cr_pct, d->bound);
-    if (m) {
-        fprintf(f, "- Cheapest configuration measured faithful (max error ≤ 1 LSB on these inputs): `%s`, "
-                   "**%.0f gates**, max error %.4f LSB, %.2f %% correctly rounded, bound %.4f LSB",
-                m->cfg, m->gates, m->max_err, m->cr_pct, m->bound);
-        if (d && d->gates > 0.0)
-            fprintf(f, " (%.1f %% fewer gates than the default)", 100.0 * (1.0 - m->gates / d->gates));
-        fprintf(f, ".\n");
+    if (d) {
+        char v[128];
+        verdict_text(d, v, sizeof v);
+        point_line(f, "Default widths", d, NULL);
+        fprintf(f, "  Verdict: %s.\n", v);
     }
-    if (a) {
-        fprintf(f, "- Cheapest configuration faithful by argument (bound ≤ 1 LSB for every input): `%s`, "
-                   "**%.0f gates**, measured %.4f LSB, %.2f %% correctly rounded",
-                a->cfg, a->gates, a->max_err, a->cr_pct);
-        if (d && d->gates > 0.0)
-            fprintf(f, " (%.1f %% fewer gates than the default)", 100.0 * (1.0 - a->gates / d->gates));
-        fprintf(f, ".\n");
-    }
-    if (!m)
-        fprintf(f, "- No configuration of this space is measured faithful.\n");
+    verdict_lines(f, r, d);
     fprintf(f, "- Pareto front (no other point as cheap and as accurate, and better in one): **%zu** of %zu "
                "configurations, marked ● below.\n\n", front, r->n);
-    if (m && a && m != a)
-        fprintf(f, "The measured-faithful configurations below the one faithful by argument are faithful on "
-                   "these inputs only: the bound, not the measurement, guarantees every input.\n\n");
+}
+
+/* Every counterexample, cheapest configuration first (sorted: the points by gates). */
+static void write_counterexamples(FILE *f, const np_dse_point *sorted, size_t n)
+{
+    fprintf(f, "## Counterexamples\n\n");
+    fprintf(f, "Each configuration below is not faithful: at the input shown its output is more than 1 LSB from "
+               "the float reference (`noisepipe search --unit U --config ...` reproduces it).\n\n");
+    fprintf(f, "| configuration | input (x, y, z) | output | model (LSB) | true value (LSB) | error (LSB) |\n");
+    fprintf(f, "| --- | --- | --- | ---: | ---: | ---: |\n");
+    for (size_t i = 0; i < n; i++) {
+        const np_dse_point *p = &sorted[i];
+        if (p->verdict != NP_SEARCH_COUNTEREXAMPLE)
+            continue;
+        fprintf(f, "| `%s` | (0x%04x, 0x%04x, 0x%04x) | %s | %.0f | %.4f | %.4f |\n", p->cfg, p->cex[0], p->cex[1],
+                p->cex[2], p->cex_field, p->cex_out, p->cex_true, p->max_err);
+    }
+    fprintf(f, "\n");
 }
 
 void np_dse_write_md(FILE *f, const np_dse_result *r, const char *svg_name)
@@ -327,12 +348,19 @@ void np_dse_write_md(FILE *f, const np_dse_result *r, const char *svg_name)
     fprintf(f, "# Error against cost: %s\n\n", sp->unit);
     fprintf(f, "Generated by `noisepipe report pareto`; do not edit (the test `report.docs_fresh` fails when "
                "this copy is stale). Design space: `%s` with `%s` = %u..%u and `%s` = %u..%u. Each "
-               "configuration's bit-exact model runs on the same %zu inputs (the unit's boundary table and "
-               "%llu seeded random inputs, seed %llu) against the float reference; gates are the estimate of "
-               "[gates.md](gates.md) ([cost-model.md](cost-model.md)). *Bound* is the unit's error argument "
-               "(valid for every input); *measured* holds for the inputs tried.",
-            sp->base, r->axis[0].key, r->axis[0].lo, r->axis[0].hi, r->axis[1].key, r->axis[1].lo, r->axis[1].hi, r->inputs,
-            (unsigned long long)r->samples, (unsigned long long)r->seed);
+               "configuration's bit-exact model is checked against the float reference by the adversarial "
+               "search of [search.md](search.md) (extremes, lattice and cell faces, equal offsets and the "
+               "unit's faces, the inputs where its roundings are worst, random inputs and a hill-climb) with a "
+               "budget of %llu inputs, seed %llu, stopped at the first wave of %u inputs that holds a "
+               "counterexample; a configuration whose bound proves it faithful gets one wave, as a check of the "
+               "argument. Each configuration gets one of three verdicts: **faithful (proved)** when "
+               "its error bound (the unit's argument, valid for every input) is ≤ 1 LSB; **no counterexample "
+               "in N adversarial inputs** when the bound is larger and the search found no input over 1 LSB "
+               "(not a proof); **not faithful** with the counterexample's input. *Max error* and *correctly "
+               "rounded* are over the inputs the search tried. Gates are the estimate of "
+               "[gates.md](gates.md) ([cost-model.md](cost-model.md)).",
+            sp->base, r->axis[0].key, r->axis[0].lo, r->axis[0].hi, r->axis[1].key, r->axis[1].lo, r->axis[1].hi,
+            (unsigned long long)r->samples, (unsigned long long)r->seed, NP_SEARCH_WAVE * NP_SEARCH_CHUNK);
     if (uf.n_out > 1) {
         fprintf(f, " The unit has %u outputs (", uf.n_out);
         for (unsigned k = 0; k < uf.n_out; k++)
@@ -342,56 +370,60 @@ void np_dse_write_md(FILE *f, const np_dse_result *r, const char *svg_name)
     }
     fprintf(f, "\n\n");
     fprintf(f, "![error against gates](%s)\n\n", svg_name);
-    const np_dse_point *m = cheapest(r, 0), *a = cheapest(r, 1);
     if (sp->claim_10k)
-        write_claim_10k(f, r, m, a);
+        write_claim_10k(f, r);
     else
-        write_summary(f, r, m, a);
-    fprintf(f, "## All configurations, cheapest first\n\n");
-    if (sp->claim_10k) {
-        fprintf(f, "| configuration | gates | latency | path (levels) | max error (LSB) | bound (LSB) | correctly rounded | Pareto | < 10K and faithful |\n");
-        fprintf(f, "| --- | ---: | ---: | ---: | ---: | ---: | ---: | :---: | :---: |\n");
-    } else {
-        fprintf(f, "| configuration | gates | latency | path (levels) | max error (LSB) | bound (LSB) | correctly rounded | Pareto | faithful |\n");
-        fprintf(f, "| --- | ---: | ---: | ---: | ---: | ---: | ---: | :---: | :---: |\n");
-    }
-    np_dse_point *sorted = malloc(r->n * sizeof *sorted);
+        write_summary(f, r);
+    np_dse_point *sorted = malloc((r->n ? r->n : 1) * sizeof *sorted);
     if (!sorted)
         return;
     memcpy(sorted, r->pts, r->n * sizeof *sorted);
     qsort(sorted, r->n, sizeof *sorted, by_gates);
+    fprintf(f, "## All configurations, cheapest first\n\n");
+    fprintf(f, "| configuration | gates | latency | path (levels) | inputs tried | max error (LSB) | bound (LSB) | "
+               "correctly rounded | Pareto | verdict |\n");
+    fprintf(f, "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | :---: | --- |\n");
     for (size_t i = 0; i < r->n; i++) {
         const np_dse_point *p = &sorted[i];
-        int mark = sp->claim_10k ? p->gates < 10000.0 && p->max_err <= 1.0 : p->max_err <= 1.0;
-        fprintf(f, "| `%s` | %.0f | %u | %.0f | %.4f | %.4f | %.2f %% | %s | %s |\n", p->cfg, p->gates, p->latency,
-                p->crit, p->max_err, p->bound, p->cr_pct, p->pareto ? "●" : "", mark ? "✓" : "");
+        char v[128];
+        verdict_text(p, v, sizeof v);
+        fprintf(f, "| `%s` | %.0f | %u | %.0f | %llu | %.4f | %.4f | %.2f %% | %s | %s |\n", p->cfg, p->gates,
+                p->latency, p->crit, (unsigned long long)p->tried, p->max_err, p->bound, p->cr_pct,
+                p->pareto ? "●" : "", v);
     }
+    fprintf(f, "\n");
+    if (count_verdict(r, NP_SEARCH_COUNTEREXAMPLE))
+        write_counterexamples(f, sorted, r->n);
     free(sorted);
 }
 
 void np_dse_write_json(FILE *f, const np_dse_result *r)
 {
+    static const char *const vname[3] = { "faithful (proved)", "no counterexample", "not faithful" };
     const np_dse_space *sp = r->space;
     fprintf(f, "{\n  \"generator\": \"noisepipe report pareto\",\n  \"unit\": \"%s\",\n  \"base\": \"%s\",\n"
-               "  \"inputs\": %zu,\n  \"seed\": %llu,\n  \"points\": [\n",
-            sp->unit, sp->base, r->inputs, (unsigned long long)r->seed);
+               "  \"search_inputs\": %llu,\n  \"seed\": %llu,\n  \"points\": [\n",
+            sp->unit, sp->base, (unsigned long long)r->samples, (unsigned long long)r->seed);
     for (size_t i = 0; i < r->n; i++) {
         const np_dse_point *p = &r->pts[i];
         fprintf(f, "    { \"config\": \"%s\", \"gates\": %.1f, \"latency\": %u, \"path_levels\": %.1f, "
-                   "\"max_error_lsb\": %.6f, \"bound_lsb\": %.6f, \"correctly_rounded_pct\": %.4f, \"pareto\": %s }%s\n",
+                   "\"max_error_lsb\": %.6f, \"bound_lsb\": %.6f, \"correctly_rounded_pct\": %.4f, \"pareto\": %s, "
+                   "\"verdict\": \"%s\", \"inputs_tried\": %llu, \"worst_input\": [%u, %u, %u] }%s\n",
                 p->cfg, p->gates, p->latency, p->crit, p->max_err, p->bound, p->cr_pct,
-                p->pareto ? "true" : "false", i + 1 < r->n ? "," : "");
+                p->pareto ? "true" : "false", vname[p->verdict], (unsigned long long)p->tried, p->cex[0], p->cex[1],
+                p->cex[2], i + 1 < r->n ? "," : "");
     }
     fprintf(f, "  ]\n}\n");
 }
 
 void np_dse_write_svg(FILE *f, const np_dse_result *r)
 {
-    size_t n = r->n, nf = 0, nu = 0, np = 0;
-    double *buf = malloc(6 * (n ? n : 1) * sizeof *buf);
+    size_t n = r->n, cnt[3] = { 0, 0, 0 }, np = 0;
+    double *buf = malloc(8 * (n ? n : 1) * sizeof *buf);
     if (!buf)
         return;
-    double *fx = buf, *fy = buf + n, *ux = buf + 2 * n, *uy = buf + 3 * n, *px = buf + 4 * n, *py = buf + 5 * n;
+    double *xs[3] = { buf, buf + 2 * n, buf + 4 * n }, *ys[3] = { buf + n, buf + 3 * n, buf + 5 * n };
+    double *px = buf + 6 * n, *py = buf + 7 * n;
     np_dse_point *sorted = malloc((n ? n : 1) * sizeof *sorted);
     if (!sorted) {
         free(buf);
@@ -402,13 +434,9 @@ void np_dse_write_svg(FILE *f, const np_dse_result *r)
     for (size_t i = 0; i < n; i++) {
         const np_dse_point *p = &sorted[i];
         double e = fmax(p->max_err, 0.1);
-        if (p->max_err <= 1.0) {
-            fx[nf] = p->gates;
-            fy[nf++] = e;
-        } else {
-            ux[nu] = p->gates;
-            uy[nu++] = e;
-        }
+        unsigned v = (unsigned)p->verdict;
+        xs[v][cnt[v]] = p->gates;
+        ys[v][cnt[v]++] = e;
         if (p->pareto) {
             px[np] = p->gates;
             py[np++] = e;
@@ -419,12 +447,15 @@ void np_dse_write_svg(FILE *f, const np_dse_result *r)
     np_plot pl = { title, "estimated gates (NAND2 equivalents)", "max error (output LSB, log)", 0, 0, 0, 0, 1,
                    r->space->claim_10k ? 10000.0 : (double)NAN, 1.0, r->space->claim_10k ? "Perlin: 10K gates" : NULL,
                    "1 LSB" };
-    np_plot_series s[3] = {
-        { "faithful (max error <= 1 LSB)", "#1a7f37", fx, fy, nf, 0, 1 },
-        { "not faithful", "#999999", ux, uy, nu, 0, 1 },
+    np_plot_series s[4] = {
+        { "faithful (proved)", "#1a7f37", xs[NP_SEARCH_PROVED], ys[NP_SEARCH_PROVED], cnt[NP_SEARCH_PROVED], 0, 1 },
+        { "no counterexample (searched)", "#bf8700", xs[NP_SEARCH_NO_COUNTER], ys[NP_SEARCH_NO_COUNTER],
+          cnt[NP_SEARCH_NO_COUNTER], 0, 1 },
+        { "not faithful (counterexample)", "#999999", xs[NP_SEARCH_COUNTEREXAMPLE], ys[NP_SEARCH_COUNTEREXAMPLE],
+          cnt[NP_SEARCH_COUNTEREXAMPLE], 0, 1 },
         { "Pareto front", "#0550ae", px, py, np, 1, 0 },
     };
-    np_plot_svg(f, &pl, s, 3);
+    np_plot_svg(f, &pl, s, 4);
     free(sorted);
     free(buf);
 }

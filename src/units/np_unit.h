@@ -27,6 +27,7 @@ extern "C" {
 #endif
 
 struct np_scene;
+struct np_rng;
 struct np_unit_timing;
 struct np_span_engine;
 
@@ -68,6 +69,9 @@ static inline const void *np_unit_span_cfg(const np_unit_span *s, const void *cf
 }
 
 enum { NP_UNIT_MAX_FIELDS = 8, NP_UNIT_CFG_MAX = 256 };
+
+/* np_unit.adversarial's classes. */
+enum { NP_ADV_ROUNDING = 1, NP_ADV_FACES = 2 };
 
 /* Storage for any unit's configuration block (aligned for any struct). */
 typedef union np_unit_cfg {
@@ -183,6 +187,26 @@ typedef struct np_unit {
      */
     void (*sweep_rows)(const void *cfg, uint16_t x0, uint16_t y0, uint16_t z, unsigned rows,
                        unsigned what, int32_t *code, double *ref);
+    /*
+     * Optional (NULL: the adversarial search (np_search.h) has no classes of
+     * the unit's own): n inputs of class cls for a unit with inputs x, y, z,
+     * drawn with rng (the same rng state gives the same inputs), into in:
+     *   NP_ADV_ROUNDING  where the datapath's internal roundings are worst,
+     *                    derived from cfg's formats (not guessed);
+     *   NP_ADV_FACES     the unit's own faces and boundaries, beyond the
+     *                    equal-offset and lattice faces the search makes.
+     * Returns n, or 0 when the unit has no inputs of that class.
+     */
+    size_t (*adversarial)(const void *cfg, unsigned cls, struct np_rng *rng,
+                          uint64_t (*in)[NP_UNIT_MAX_FIELDS], size_t n);
+    /*
+     * Optional (NULL: the search climbs on the output's error): write to fine
+     * a configuration of the same datapath whose outputs keep more fraction
+     * bits (every internal width unchanged, only the last rounding finer), so
+     * that its error against the reference is the datapath's error before
+     * the output rounding: the smooth objective of the search's hill-climb.
+     */
+    void (*fine_cfg)(const void *cfg, void *fine);
     /*
      * Optional (NULL: not in the gate report): the datapath declaration of
      * np_datapath.h for cfg; writes up to max ops, returns the full count.

@@ -1,11 +1,13 @@
 /* SPDX-License-Identifier: MIT */
 /* The classic noise unit (rtl_model/np_classic.h) in the unit registry. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "np_classic.h"
 #include "np_ref.h"
+#include "np_rng.h"
 #include "np_sweep.h"
 #include "np_unit.h"
 
@@ -303,6 +305,121 @@ static void sweep_rows(const void *cfgv, uint16_t x0, uint16_t y0, uint16_t z, u
         ref_rows(i, j, k, v0, w, rows, ref);
 }
 
+/* --- The adversarial search's classes (np_unit.adversarial, docs/search.md) --- */
+
+enum { ADV_FRACS = 256, ADV_TOP = 16, ADV_D_MAX = 2 * 768 }; /* |g1 - g0| <= 1536 in Q.8 LSB */
+
+/*
+ * The s-curve rounding's error at fraction u, in s LSB (2^-WS): the exact
+ * u24 numerator u^2 (768 - 2u) rounded half up to WS bits; 0 when WS = 24.
+ */
+static double adv_scurve_err(const np_classic_cfg *c, unsigned u)
+{
+    uint32_t num = (uint32_t)u * u * (768u - 2u * u);
+    unsigned k = NP_CLASSIC_SNUM_BITS - c->s_frac;
+    return ((double)np_classic_scurve(c, (uint8_t)u) * ldexp(1.0, (int)k) - (double)num) / ldexp(1.0, (int)k);
+}
+
+/*
+ * The largest level-1 error at fraction u, in output LSB: over every
+ * difference d = b - a of two gradient contributions (Q.8, |d| <= 1536) and
+ * every value of a's bits that the rounding sees (a's low 8 - WL bits when
+ * WL < 8; none otherwise), |lerp'(s', a, a + d) - (a + s d)|: the s-curve's
+ * rounding times d plus the interpolator's rounding to WL bits, exactly as
+ * np_classic_lerp does it.
+ */
+static double adv_lerp_loss(const np_classic_cfg *c, unsigned u)
+{
+    uint32_t sq = np_classic_scurve(c, (uint8_t)u);
+    double s_exact = (double)((uint32_t)u * u * (768u - 2u * u)) / 16777216.0;
+    int f = (int)np_classic_out_frac(c);
+    int64_t a_n = c->lerp_frac < NP_CLASSIC_FRAC_IN ? (int64_t)1 << (NP_CLASSIC_FRAC_IN - c->lerp_frac) : 1;
+    double worst = 0.0;
+    for (int64_t a = 0; a < a_n; a++)
+        for (int64_t d = -ADV_D_MAX; d <= ADV_D_MAX; d++) {
+            int64_t l = np_classic_lerp(c, sq, a, a + d, NP_CLASSIC_FRAC_IN);
+            double exact = ((double)a + s_exact * (double)d) / 256.0;
+            double e = fabs(ldexp((double)l, -(int)c->lerp_frac) - exact) * ldexp(1.0, f);
+            worst = e > worst ? e : worst;
+        }
+    return worst;
+}
+
+/* Fractions ranked by a score, largest first (ties: the smaller fraction). */
+static void adv_rank(const double *score, uint8_t *top)
+{
+    unsigned char used[ADV_FRACS] = { 0 };
+    for (unsigned k = 0; k < ADV_TOP; k++) {
+        unsigned best = 0;
+        int have = 0;
+        for (unsigned u = 0; u < ADV_FRACS; u++)
+            if (!used[u] && (!have || score[u] > score[best])) {
+                best = u;
+                have = 1;
+            }
+        used[best] = 1;
+        top[k] = (uint8_t)best;
+    }
+}
+
+/*
+ * The worst-rounding fractions of a configuration: the ADV_TOP fractions
+ * whose s-curve rounding is closest to 1/2 LSB and the ADV_TOP whose level-1
+ * interpolation loses most. Kept per thread for the last configuration (the
+ * lerp ranking costs 256 * 3073 interpolations).
+ */
+typedef struct adv_fracs {
+    np_classic_cfg c;
+    int valid;
+    uint8_t top[2 * ADV_TOP];
+} adv_fracs;
+
+static const uint8_t *adv_worst_fracs(const np_classic_cfg *c)
+{
+    static _Thread_local adv_fracs cache;
+    if (cache.valid && cache.c.out_bits == c->out_bits && cache.c.s_frac == c->s_frac &&
+        cache.c.lerp_frac == c->lerp_frac)
+        return cache.top;
+    double sc[ADV_FRACS], lc[ADV_FRACS];
+    for (unsigned u = 0; u < ADV_FRACS; u++) {
+        sc[u] = fabs(adv_scurve_err(c, u));
+        lc[u] = adv_lerp_loss(c, u);
+    }
+    adv_rank(sc, cache.top);
+    adv_rank(lc, cache.top + ADV_TOP);
+    cache.c = *c;
+    cache.valid = 1;
+    return cache.top;
+}
+
+/*
+ * NP_ADV_ROUNDING: each axis's fraction from the worst-rounding list (the
+ * s-curve's or the interpolator's), its cell random (the cells pick the
+ * gradients, hence the differences the roundings are multiplied by).
+ * NP_ADV_FACES: none beyond the search's lattice faces (the cell faces are
+ * fraction 0).
+ */
+static size_t adversarial(const void *cfgv, unsigned cls, np_rng *r, uint64_t (*in)[NP_UNIT_MAX_FIELDS], size_t n)
+{
+    if (cls != NP_ADV_ROUNDING)
+        return 0;
+    const uint8_t *top = adv_worst_fracs(&((const classic_cfg *)cfgv)->c);
+    for (size_t i = 0; i < n; i++)
+        for (unsigned a = 0; a < 3; a++) {
+            uint64_t w = np_rng_next(r);
+            in[i][a] = (w >> 56 << 8) | top[(w >> 8) % (2u * ADV_TOP)];
+        }
+    return n;
+}
+
+/* The output rounded to WL bits (out_bits = WL + 2), or to 14 when WL > 14: the error before O's rounding. */
+static void fine_cfg(const void *cfg, void *fine)
+{
+    classic_cfg *k = fine;
+    *k = *(const classic_cfg *)cfg;
+    k->c.out_bits = k->c.lerp_frac + 2u < NP_CLASSIC_OUT_MAX ? k->c.lerp_frac + 2u : NP_CLASSIC_OUT_MAX;
+}
+
 const np_unit np_unit_classic3 = {
     .name = "classic3",
     .summary = "classic 3-D gradient noise, 8.8 inputs, L/H/S/I pipeline (Perlin, Noise Hardware)",
@@ -321,4 +438,6 @@ const np_unit np_unit_classic3 = {
     .sweep_rows = sweep_rows,
     .trace = trace,
     .conformance_configs = conformance_configs,
+    .adversarial = adversarial,
+    .fine_cfg = fine_cfg,
 };

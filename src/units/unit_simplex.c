@@ -1,10 +1,12 @@
 /* SPDX-License-Identifier: MIT */
 /* The simplex noise unit (rtl_model/np_simplex.h) in the unit registry. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "np_ref.h"
+#include "np_rng.h"
 #include "np_simplex.h"
 #include "np_unit.h"
 
@@ -195,6 +197,142 @@ static size_t boundary(const void *cfg, uint64_t (*in)[NP_UNIT_MAX_FIELDS], size
     return N_TABLE;
 }
 
+/* --- The adversarial search's classes (np_unit.adversarial, docs/search.md) --- */
+
+enum { ADV_CANDIDATES = 16 }; /* candidates drawn per worst-rounding input */
+
+/*
+ * The exact front end of one input: the pipeline's first four stages (SK,
+ * RK, CH, KT: skew, rank, corners, G.D, R2, T), no rounding in any of them.
+ */
+enum { ADV_FRONT_STAGES = 4 };
+
+static void adv_front_of(const np_simplex_cfg *c, const uint16_t in[3], np_simplex_sig *sig)
+{
+    memset(sig, 0, sizeof *sig);
+    sig->x = in[0];
+    sig->y = in[1];
+    sig->z = in[2];
+    for (unsigned k = 0; k < ADV_FRONT_STAGES; k++)
+        np_simplex_stage_table(c)[k].fn(c, sig);
+}
+
+/* v / 2^k - round_half_up(v / 2^k), negated: the rounding's signed error in result LSB. */
+static double adv_round_err(uint64_t v, unsigned k)
+{
+    return k == 0 ? 0.0 : (double)np_shr_round_half_up_u(v, k) - ldexp((double)v, -(int)k);
+}
+
+/*
+ * How much the kernel powers' roundings at WT (tau2, tau4, tau3) move the
+ * outputs, to first order, in output LSB: per corner the errors e2, e4, e3
+ * of the three roundings (in 2^-WT) give tau^4 an error 2 tau^2 e2 + e4 and
+ * tau^3 an error tau e2 + e3; f moves by Kf 2^N sum_c (.) G.d', each df_a
+ * by Kd 2^(ND-2) sum_c ((.) G_a - 5/4 (.) G.d' d'_a). The largest over the
+ * outputs. Exact integer front end; the products' and constants' roundings
+ * (WP, WK) are left out: they do not depend on where the input is.
+ */
+static double adv_power_score(const np_simplex_cfg *c, const np_simplex_sig *fr)
+{
+    unsigned wt = c->t_frac;
+    double lsb = ldexp(1.0, -(int)wt), sf = 0.0, sd[3] = { 0.0, 0.0, 0.0 };
+    for (unsigned k = 0; k < 4; k++) {
+        uint32_t t = fr->t[k];
+        if (t == 0)
+            continue;
+        uint32_t tau2 = np_simplex_tau2(c, t);
+        double tau = ldexp((double)t, -NP_SIMPLEX_T_BITS), t2 = ldexp((double)tau2, -(int)wt);
+        double e2 = adv_round_err((uint64_t)t * t, 2u * NP_SIMPLEX_T_BITS - wt);
+        double e4 = adv_round_err((uint64_t)tau2 * tau2, wt);
+        double e3 = adv_round_err((uint64_t)tau2 * t, NP_SIMPLEX_T_BITS);
+        double d4 = (2.0 * t2 * e2 + e4) * lsb, d3 = (tau * e2 + e3) * lsb;
+        double gd = ldexp((double)fr->gd[k], -NP_SIMPLEX_GD_FRAC);
+        const int coef[3] = { fr->g[k].cx, fr->g[k].cy, fr->g[k].cz };
+        sf += d4 * gd;
+        for (unsigned a = 0; a < 3; a++)
+            sd[a] += d4 * coef[a] - 1.25 * d3 * gd * ldexp((double)fr->d[k][a], -NP_SIMPLEX_GD_FRAC);
+    }
+    double kf = (double)NP_SIMPLEX_KF_NUM / NP_SIMPLEX_KF_DEN, kd = (double)NP_SIMPLEX_KF_NUM / NP_SIMPLEX_KD_DEN;
+    double score = fabs(sf) * kf * ldexp(1.0, (int)np_simplex_f_frac(c));
+    for (unsigned a = 0; c->deriv && a < 3; a++) {
+        double v = fabs(sd[a]) * kd * ldexp(1.0, (int)np_simplex_d_frac(c));
+        score = v > score ? v : score;
+    }
+    return score;
+}
+
+static uint16_t adv_word(np_rng *r) { return (uint16_t)(np_rng_next(r) >> 48); }
+
+/*
+ * NP_ADV_ROUNDING: of ADV_CANDIDATES random inputs, the one whose power
+ * roundings move the outputs most (adv_power_score, from the formats).
+ * NP_ADV_FACES: the exact skew boundaries (4x + y + z a multiple of 768 on
+ * one axis: the skewed cell changes there), and rank ties across cells
+ * (x - y a multiple of 256, kept when the offsets tie exactly), each 0 or
+ * 1 LSB off on one axis.
+ */
+static size_t adversarial(const void *cfgv, unsigned cls, np_rng *r, uint64_t (*in)[NP_UNIT_MAX_FIELDS], size_t n)
+{
+    const np_simplex_cfg *c = &((const simplex_cfg *)cfgv)->c;
+    for (size_t i = 0; i < n; i++) {
+        uint16_t best[3] = { 0, 0, 0 }, w[3];
+        if (cls == NP_ADV_ROUNDING) {
+            double top = -1.0;
+            for (unsigned k = 0; k < ADV_CANDIDATES; k++) {
+                np_simplex_sig fr;
+                for (unsigned a = 0; a < 3; a++)
+                    w[a] = adv_word(r);
+                adv_front_of(c, w, &fr);
+                double sc = adv_power_score(c, &fr);
+                if (sc > top) {
+                    top = sc;
+                    memcpy(best, w, sizeof best);
+                }
+            }
+        } else if (cls == NP_ADV_FACES) {
+            unsigned axis = (unsigned)np_rng_below(r, 3), b = (axis + 1u) % 3u, e = (axis + 2u) % 3u;
+            if (np_rng_next(r) & 1u) { /* skew boundary of axis: 4 w[axis] + w[b] + w[e] = 768 m */
+                for (;;) {
+                    w[b] = adv_word(r);
+                    w[e] = (uint16_t)(adv_word(r) & ~3u);
+                    w[e] = (uint16_t)(w[e] + ((4u - ((unsigned)w[b] + w[e]) % 4u) % 4u));
+                    uint32_t m = (uint32_t)np_rng_below(r, 512), sum = (uint32_t)w[b] + w[e];
+                    uint32_t sx = m * NP_SIMPLEX_SKEW_CELL;
+                    if (sx >= sum && (sx - sum) % 4u == 0 && (sx - sum) / 4u <= 0xffffu) {
+                        w[axis] = (uint16_t)((sx - sum) / 4u);
+                        break;
+                    }
+                }
+            } else { /* offsets tied across cells: w[b] = w[axis] + 256 k */
+                for (unsigned tries = 0;; tries++) {
+                    w[axis] = adv_word(r);
+                    w[b] = (uint16_t)(w[axis] + 256 * ((int)np_rng_below(r, 5) - 2));
+                    w[e] = adv_word(r);
+                    np_simplex_sig fr;
+                    adv_front_of(c, w, &fr);
+                    if (fr.off[axis] == fr.off[b] || tries > 16)
+                        break;
+                }
+            }
+            w[np_rng_below(r, 3)] += (uint16_t)(np_rng_below(r, 3) == 0 ? 1u : 0u);
+            memcpy(best, w, sizeof best);
+        } else
+            return 0;
+        for (unsigned a = 0; a < 3; a++)
+            in[i][a] = best[a];
+    }
+    return n;
+}
+
+/* f and the derivative rounded to 20 fraction bits (the widest outputs): the error before O's rounding, to 1/16 LSB. */
+static void fine_cfg(const void *cfg, void *fine)
+{
+    simplex_cfg *k = fine;
+    *k = *(const simplex_cfg *)cfg;
+    k->c.out_bits = NP_SIMPLEX_OUT_MAX;
+    k->c.dout_bits = NP_SIMPLEX_OUT_MAX;
+}
+
 const np_unit np_unit_simplex3 = {
     .name = "simplex3",
     .summary = "3-D simplex noise with analytic derivative, 8.8 inputs, exact skew/rank "
@@ -213,4 +351,6 @@ const np_unit np_unit_simplex3 = {
     .datapath = datapath,
     .trace = trace,
     .conformance_configs = conformance_configs,
+    .adversarial = adversarial,
+    .fine_cfg = fine_cfg,
 };

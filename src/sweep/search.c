@@ -1,0 +1,837 @@
+/* SPDX-License-Identifier: MIT */
+/* The adversarial error search (np_search.h): input classes, hill-climb, threads, journal. */
+#include "np_search.h"
+
+#include <errno.h>
+#include <inttypes.h>
+#include <math.h>
+#include <pthread.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "np_cli.h"
+#include "np_fixed.h"
+#include "np_rng.h"
+#include "np_sweep.h"
+
+const char *const np_search_class_name[NP_SEARCH_CLASSES] = {
+    "extremes", "lattice and cell faces", "equal-offset and unit faces", "worst rounding", "random",
+    "hill-climb",
+};
+
+/* ---------------------------------------------------------------- the unit */
+
+const char *np_search_unit_check(const np_unit *u, const void *cfg) { return np_sweep_unit_check(u, cfg); }
+
+typedef struct search_unit {
+    const np_unit *u;
+    const void *cfg;
+    np_unit_fields f;
+    double scale[NP_UNIT_MAX_FIELDS]; /* 2^F per output field */
+    double tol;
+    int have_fine;                    /* the unit's fine_cfg: the climb's objective */
+    np_unit_cfg fine;
+    np_unit_fields ff;
+} search_unit;
+
+static void search_unit_init(search_unit *su, const np_unit *u, const void *cfg)
+{
+    su->u = u;
+    su->cfg = cfg;
+    u->fields(cfg, &su->f);
+    for (unsigned k = 0; k < su->f.n_out; k++)
+        su->scale[k] = ldexp(1.0, (int)su->f.out[k].frac);
+    su->tol = u->tolerance_lsb;
+    su->have_fine = u->fine_cfg != NULL;
+    if (su->have_fine) {
+        u->fine_cfg(cfg, &su->fine);
+        u->fields(&su->fine, &su->ff);
+    }
+}
+
+/*
+ * Errors of one input per field (e[k], output LSB); returns the objective
+ * the worst list and the climb rank by: the largest field error before the
+ * output rounding (the fine configuration's, in the same output LSB) when
+ * the unit has one, else the largest field error. A NaN wins.
+ */
+static double eval_input(const search_unit *su, const uint16_t in16[3], double *e, unsigned *n_cr)
+{
+    uint64_t in[NP_UNIT_MAX_FIELDS] = { in16[0], in16[1], in16[2] }, out[NP_UNIT_MAX_FIELDS];
+    double ref[NP_UNIT_MAX_FIELDS];
+    su->u->eval(su->cfg, in, out);
+    su->u->ref(su->cfg, in, ref);
+    double m = -1.0;
+    for (unsigned k = 0; k < su->f.n_out; k++) {
+        const np_field *fd = &su->f.out[k];
+        int32_t code = (int32_t)(fd->is_signed ? np_sext(out[k], fd->bits) : (int64_t)out[k]);
+        unsigned char cr;
+        e[k] = np_sweep_error(code, ref[k], su->scale[k], &cr);
+        *n_cr += cr;
+        m = e[k] <= m ? m : e[k];
+    }
+    if (!su->have_fine)
+        return m;
+    su->u->eval(&su->fine, in, out);
+    m = -1.0;
+    for (unsigned k = 0; k < su->f.n_out; k++) {
+        double d = fabs(np_unit_field_value(&su->ff.out[k], out[k]) - ref[k]) * su->scale[k];
+        m = d <= m ? m : d;
+    }
+    return m;
+}
+
+/* ---------------------------------------------------------------- statistics */
+
+/* Is a before b in the order that ranks equal errors: smaller x, then y, then z? */
+static int in_before(const uint16_t *a, const uint16_t *b)
+{
+    for (unsigned k = 0; k < 3; k++)
+        if (a[k] != b[k])
+            return a[k] < b[k];
+    return 0;
+}
+
+/* Does point a rank above b (larger error, a NaN above everything, then the smaller input)? */
+static int pt_above(const np_search_pt *a, const np_search_pt *b)
+{
+    int an = isnan(a->err), bn = isnan(b->err);
+    if (an != bn)
+        return an;
+    if (!an && a->err != b->err)
+        return a->err > b->err;
+    return in_before(a->in, b->in);
+}
+
+static void stats_init(np_search_stats *s, unsigned n_out)
+{
+    memset(s, 0, sizeof *s);
+    s->n_out = n_out;
+    for (unsigned k = 0; k < NP_UNIT_MAX_FIELDS; k++)
+        s->fmax[k].err = -1.0;
+    for (unsigned c = 0; c < NP_SEARCH_CLASSES; c++)
+        s->cls_max[c] = -1.0;
+}
+
+static void take_pt(np_search_pt *into, const np_search_pt *p)
+{
+    if (into->err < 0.0 || pt_above(p, into))
+        *into = *p;
+}
+
+/* Insert p into the worst list (distinct inputs, ranked by pt_above). */
+static void worst_insert(np_search_stats *s, const np_search_pt *p)
+{
+    for (unsigned i = 0; i < s->n_worst; i++)
+        if (memcmp(s->worst[i].in, p->in, sizeof p->in) == 0)
+            return;
+    unsigned i = s->n_worst < NP_SEARCH_WORST ? s->n_worst++ : NP_SEARCH_WORST;
+    if (i == NP_SEARCH_WORST) {
+        if (!pt_above(p, &s->worst[NP_SEARCH_WORST - 1]))
+            return;
+        i = NP_SEARCH_WORST - 1;
+    }
+    while (i > 0 && pt_above(p, &s->worst[i - 1])) {
+        s->worst[i] = s->worst[i - 1];
+        i--;
+    }
+    s->worst[i] = *p;
+}
+
+static double add_input(np_search_stats *s, const search_unit *su, const uint16_t in[3], unsigned cls)
+{
+    double e[NP_UNIT_MAX_FIELDS];
+    np_search_pt p;
+    memcpy(p.in, in, sizeof p.in);
+    unsigned n_cr = 0;
+    p.err = eval_input(su, in, e, &n_cr);
+    double worst = -1.0;
+    s->cr += n_cr;
+    s->n++;
+    s->cls_n[cls]++;
+    int over = 0;
+    for (unsigned k = 0; k < su->f.n_out; k++) {
+        np_search_pt q = p;
+        q.err = e[k];
+        take_pt(&s->fmax[k], &q);
+        if (!(e[k] <= su->tol)) {
+            s->fover[k]++;
+            over = 1;
+        }
+        worst = e[k] <= worst ? worst : e[k];
+    }
+    s->over += (uint64_t)over;
+    if (!(worst <= s->cls_max[cls]))
+        s->cls_max[cls] = worst;
+    worst_insert(s, &p);
+    return p.err;
+}
+
+/* into += from. Every part is independent of the order of merges. */
+static void stats_merge(np_search_stats *into, const np_search_stats *from)
+{
+    into->n += from->n;
+    into->over += from->over;
+    into->cr += from->cr;
+    for (unsigned k = 0; k < into->n_out; k++) {
+        if (from->fmax[k].err >= 0.0 || isnan(from->fmax[k].err))
+            take_pt(&into->fmax[k], &from->fmax[k]);
+        into->fover[k] += from->fover[k];
+    }
+    for (unsigned c = 0; c < NP_SEARCH_CLASSES; c++) {
+        into->cls_n[c] += from->cls_n[c];
+        if (!(from->cls_max[c] <= into->cls_max[c]))
+            into->cls_max[c] = from->cls_max[c];
+    }
+    for (unsigned i = 0; i < from->n_worst; i++)
+        worst_insert(into, &from->worst[i]);
+}
+
+static int same_pt(const np_search_pt *a, const np_search_pt *b)
+{
+    return memcmp(a->in, b->in, sizeof a->in) == 0 && memcmp(&a->err, &b->err, sizeof a->err) == 0;
+}
+
+int np_search_stats_equal(const np_search_stats *a, const np_search_stats *b)
+{
+    if (a->n != b->n || a->over != b->over || a->cr != b->cr || a->n_out != b->n_out || a->n_worst != b->n_worst ||
+        memcmp(a->cls_n, b->cls_n, sizeof a->cls_n) != 0 || memcmp(a->cls_max, b->cls_max, sizeof a->cls_max) != 0)
+        return 0;
+    for (unsigned k = 0; k < a->n_out; k++)
+        if (!same_pt(&a->fmax[k], &b->fmax[k]) || a->fover[k] != b->fover[k])
+            return 0;
+    for (unsigned i = 0; i < a->n_worst; i++)
+        if (!same_pt(&a->worst[i], &b->worst[i]))
+            return 0;
+    return 1;
+}
+
+/* ---------------------------------------------------------------- the classes */
+
+/* Per-axis words of the extremes class: input ends and the cell wrap at 256. */
+static const uint16_t extreme_axis[] = {
+    0x0000, 0x0001, 0x00ff, 0x0100, 0x0101, 0x7fff, 0x8000, 0x8001, 0xfeff, 0xff00, 0xff01, 0xffff,
+};
+enum { N_EXTREME_AXIS = sizeof extreme_axis / sizeof extreme_axis[0] };
+
+static uint16_t rnd16(np_rng *r) { return (uint16_t)(np_rng_next(r) >> 48); }
+
+/* Lattice: each axis on a lattice point or 1 LSB beside it, or (a cell face) a random word. */
+static void gen_lattice(np_rng *r, uint16_t in[3])
+{
+    static const uint8_t frac[3] = { 0xff, 0x00, 0x01 };
+    uint64_t bits = np_rng_next(r);
+    for (unsigned a = 0; a < 3; a++) {
+        uint16_t w = rnd16(r);
+        if ((bits >> a & 1u) || (bits >> 3 & 7u) == 0) /* every axis on the lattice 1 time in 8 */
+            w = (uint16_t)((w & 0xff00u) | frac[np_rng_below(r, 3)]);
+        in[a] = w;
+    }
+}
+
+/* Equal offsets: x = y, y = z, x = z or x = y = z, then 0, 1 or 2 LSB off on one axis. */
+static void gen_face(np_rng *r, uint16_t in[3])
+{
+    static const int delta[6] = { 0, 0, 1, -1, 2, -2 };
+    for (unsigned a = 0; a < 3; a++)
+        in[a] = rnd16(r);
+    unsigned kind = (unsigned)np_rng_below(r, 4);
+    if (kind == 3)
+        in[1] = in[2] = in[0];
+    else
+        in[(kind + 1u) % 3u] = in[kind];
+    unsigned axis = (unsigned)np_rng_below(r, 3);
+    in[axis] = (uint16_t)(in[axis] + delta[np_rng_below(r, 6)]);
+}
+
+/* Fill in[0..n) with class cls from the unit's own generator; falls back to random. */
+static void gen_unit(const search_unit *su, unsigned cls, np_rng *r, uint16_t (*in)[3], size_t n)
+{
+    uint64_t (*buf)[NP_UNIT_MAX_FIELDS] = malloc(n * sizeof *buf);
+    size_t got = buf && su->u->adversarial ? su->u->adversarial(su->cfg, cls, r, buf, n) : 0;
+    for (size_t i = 0; i < n; i++)
+        for (unsigned a = 0; a < 3; a++)
+            in[i][a] = got == n ? (uint16_t)buf[i][a] : rnd16(r);
+    free(buf);
+}
+
+/* The run: what every chunk and climb needs. */
+typedef struct search_run {
+    const np_search_opts *o;
+    search_unit su;
+    uint16_t (*ext)[3]; /* the extremes list */
+    size_t n_ext;
+    uint64_t n_chunks;  /* phase 1 */
+    np_search_stats *chunk;
+    unsigned char *have;
+    uint64_t next, wave_end, done;
+    pthread_mutex_t mu;
+    FILE *jf;
+    int failed;
+    char err[512];
+    np_progress prog;
+    /* the climbs of one round */
+    np_search_stats *climb;
+    const np_search_pt *starts;
+    unsigned n_starts, next_climb;
+    uint64_t *climb_budget;
+    unsigned round;
+} search_run;
+
+static np_rng chunk_rng(uint64_t seed, uint64_t k, uint64_t stream)
+{
+    uint64_t st = seed ^ (k * 0xd1342543de82ef95u) ^ (stream * 0x9e3779b97f4a7c15u);
+    np_rng r;
+    np_rng_seed(&r, np_splitmix64(&st));
+    return r;
+}
+
+/*
+ * The class schedule of the chunks after the extremes: of every 16, 6
+ * random, 6 worst-rounding, 2 faces (half equal offsets, half the unit's
+ * own), 2 lattice.
+ */
+static unsigned chunk_class(uint64_t j)
+{
+    unsigned m = (unsigned)(j % 16u);
+    return m < 6 ? NP_SC_RANDOM : m < 12 ? NP_SC_ROUNDING : m < 14 ? NP_SC_FACE : NP_SC_LATTICE;
+}
+
+static void chunk_run(const search_run *run, uint64_t k, np_search_stats *s)
+{
+    const search_unit *su = &run->su;
+    uint16_t in[NP_SEARCH_CHUNK][3];
+    unsigned char cls[NP_SEARCH_CHUNK];
+    np_rng r = chunk_rng(run->o->seed, k, 0);
+    uint64_t n_ext_chunks = (run->n_ext + NP_SEARCH_CHUNK - 1) / NP_SEARCH_CHUNK;
+    if (k < n_ext_chunks) {
+        for (size_t i = 0; i < NP_SEARCH_CHUNK; i++) {
+            size_t j = (size_t)k * NP_SEARCH_CHUNK + i;
+            if (j < run->n_ext) {
+                memcpy(in[i], run->ext[j], sizeof in[i]);
+                cls[i] = NP_SC_EXTREME;
+            } else {
+                gen_lattice(&r, in[i]);
+                cls[i] = NP_SC_LATTICE;
+            }
+        }
+    } else {
+        unsigned c = chunk_class(k - n_ext_chunks);
+        if (c == NP_SC_ROUNDING || (c == NP_SC_FACE && (k & 16u)))
+            gen_unit(su, c == NP_SC_ROUNDING ? NP_ADV_ROUNDING : NP_ADV_FACES, &r, in, NP_SEARCH_CHUNK);
+        for (size_t i = 0; i < NP_SEARCH_CHUNK; i++) {
+            if (c == NP_SC_RANDOM)
+                for (unsigned a = 0; a < 3; a++)
+                    in[i][a] = rnd16(&r);
+            else if (c == NP_SC_LATTICE)
+                gen_lattice(&r, in[i]);
+            else if (c == NP_SC_FACE && !(k & 16u))
+                gen_face(&r, in[i]);
+            cls[i] = (unsigned char)c;
+        }
+    }
+    stats_init(s, su->f.n_out);
+    for (size_t i = 0; i < NP_SEARCH_CHUNK; i++)
+        add_input(s, su, in[i], cls[i]);
+}
+
+/* ---------------------------------------------------------------- the hill-climb */
+
+/* The neighbour offsets, in the order tried: each axis alone by +-1..+-256, then every combination of -2..+2. */
+enum { N_STEPS = 12, N_NEIGH = 3 * 2 * N_STEPS + 124 };
+static int16_t neigh[N_NEIGH][3];
+
+static void neigh_init(void)
+{
+    static const int16_t step[N_STEPS] = { 1, 2, 3, 4, 6, 8, 12, 16, 32, 64, 128, 256 };
+    unsigned n = 0;
+    for (unsigned a = 0; a < 3; a++)
+        for (unsigned k = 0; k < N_STEPS; k++)
+            for (int sg = -1; sg <= 1; sg += 2) {
+                memset(neigh[n], 0, sizeof neigh[n]);
+                neigh[n++][a] = (int16_t)(sg * step[k]);
+            }
+    for (int dx = -2; dx <= 2; dx++)
+        for (int dy = -2; dy <= 2; dy++)
+            for (int dz = -2; dz <= 2; dz++)
+                if (dx || dy || dz) {
+                    neigh[n][0] = (int16_t)dx;
+                    neigh[n][1] = (int16_t)dy;
+                    neigh[n++][2] = (int16_t)dz;
+                }
+}
+
+/*
+ * One climb of `budget` inputs from start: steepest ascent over the
+ * neighbours; when no neighbour is worse than the current point, a random
+ * kick within +-16 per axis of the best point, and on.
+ */
+static void climb_run(const search_run *run, const np_search_pt *start, uint64_t budget, uint64_t id,
+                      np_search_stats *s)
+{
+    const search_unit *su = &run->su;
+    np_rng r = chunk_rng(run->o->seed, id, 1);
+    stats_init(s, su->f.n_out);
+    np_search_pt cur = *start, best = *start;
+    while (s->n < budget) {
+        np_search_pt top = cur;
+        for (unsigned k = 0; k < N_NEIGH && s->n < budget; k++) {
+            np_search_pt p;
+            for (unsigned a = 0; a < 3; a++)
+                p.in[a] = (uint16_t)(cur.in[a] + neigh[k][a]);
+            p.err = add_input(s, su, p.in, NP_SC_CLIMB);
+            if (p.err > top.err)
+                top = p;
+        }
+        if (top.err > cur.err) {
+            cur = top;
+            if (cur.err > best.err)
+                best = cur;
+        } else if (s->n < budget) {
+            np_search_pt p;
+            for (unsigned a = 0; a < 3; a++)
+                p.in[a] = (uint16_t)(best.in[a] + (int)np_rng_below(&r, 33) - 16);
+            p.err = add_input(s, su, p.in, NP_SC_CLIMB);
+            cur = p;
+        }
+    }
+}
+
+/* ---------------------------------------------------------------- journal */
+
+/*
+ * Text: four header lines, then one line per completed phase-1 chunk (in
+ * completion order) with its statistics (counts decimal, doubles C99 hex)
+ * and an FNV-1a checksum of the line. The climbs are not journalled: a
+ * resumed run climbs again from the same worst list, so the same bits.
+ */
+#define JOURNAL_MAGIC "noisepipe-search-journal 1"
+enum { HEADER_LINES = 4, JLINE_MAX = 4096 };
+
+static uint32_t fnv1a(const char *s, size_t n)
+{
+    uint32_t h = 2166136261u;
+    for (size_t i = 0; i < n; i++)
+        h = (h ^ (uint32_t)(uint8_t)s[i]) * 16777619u;
+    return h;
+}
+
+static void journal_header(const search_run *run, char lines[HEADER_LINES][JLINE_MAX])
+{
+    char cfgtext[JLINE_MAX - 16];
+    np_unit_cfg_format(run->su.u, run->su.cfg, cfgtext, sizeof cfgtext);
+    snprintf(lines[0], JLINE_MAX, "%s", JOURNAL_MAGIC);
+    snprintf(lines[1], JLINE_MAX, "unit %s", run->su.u->name);
+    snprintf(lines[2], JLINE_MAX, "config %s", cfgtext);
+    snprintf(lines[3], JLINE_MAX, "seed %" PRIu64 " n %" PRIu64, run->o->seed, run->o->n);
+}
+
+static size_t put(char *buf, size_t len, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+static size_t put(char *buf, size_t len, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    int n = len < JLINE_MAX ? vsnprintf(buf + len, JLINE_MAX - len, fmt, ap) : 0;
+    va_end(ap);
+    return len + (n > 0 ? (size_t)n : 0u);
+}
+
+static size_t chunk_line(char *buf, uint64_t k, const np_search_stats *s)
+{
+    size_t len = put(buf, 0, "chunk %" PRIu64 " %" PRIu64 " %" PRIu64 " %" PRIu64 " %u", k, s->n, s->over, s->cr,
+                     s->n_out);
+    for (unsigned f = 0; f < s->n_out; f++)
+        len = put(buf, len, " %u %u %u %a %" PRIu64, s->fmax[f].in[0], s->fmax[f].in[1], s->fmax[f].in[2],
+                  s->fmax[f].err, s->fover[f]);
+    for (unsigned c = 0; c < NP_SEARCH_CLASSES; c++)
+        len = put(buf, len, " %" PRIu64 " %a", s->cls_n[c], s->cls_max[c]);
+    len = put(buf, len, " %u", s->n_worst);
+    for (unsigned i = 0; i < s->n_worst; i++)
+        len = put(buf, len, " %u %u %u %a", s->worst[i].in[0], s->worst[i].in[1], s->worst[i].in[2],
+                  s->worst[i].err);
+    return put(buf, len, " check=%08" PRIx32 "\n", fnv1a(buf, len));
+}
+
+/* Read the next whitespace-separated number of *p: 0, or -1. */
+static int rd_u(const char **p, uint64_t max, uint64_t *v)
+{
+    char *end;
+    while (**p == ' ')
+        (*p)++;
+    if (**p < '0' || **p > '9')
+        return -1;
+    errno = 0;
+    *v = strtoull(*p, &end, 10);
+    if (errno || *v > max || (*end != ' ' && *end != '\0'))
+        return -1;
+    *p = end;
+    return 0;
+}
+
+static int rd_d(const char **p, double *v)
+{
+    char *end;
+    while (**p == ' ')
+        (*p)++;
+    *v = strtod(*p, &end);
+    if (end == *p || (*end != ' ' && *end != '\0'))
+        return -1;
+    *p = end;
+    return 0;
+}
+
+static int rd_pt(const char **p, np_search_pt *pt)
+{
+    uint64_t v[3];
+    for (unsigned a = 0; a < 3; a++) {
+        if (rd_u(p, 0xffff, &v[a]) != 0)
+            return -1;
+        pt->in[a] = (uint16_t)v[a];
+    }
+    return rd_d(p, &pt->err);
+}
+
+static int parse_chunk(const char *line, unsigned n_out, uint64_t *k, np_search_stats *s)
+{
+    const char *ck = strstr(line, " check=");
+    char *end;
+    if (!ck || strlen(ck) != 15 || strncmp(line, "chunk ", 6) != 0)
+        return -1;
+    unsigned long want = strtoul(ck + 7, &end, 16);
+    if (*end != '\0')
+        return -1;
+    size_t body = (size_t)(ck - line);
+    char tmp[JLINE_MAX];
+    if (body + 1 >= sizeof tmp)
+        return -1;
+    memcpy(tmp, line, body);
+    tmp[body] = '\0';
+    if ((uint32_t)want != fnv1a(tmp, body))
+        return -1;
+    const char *p = tmp + 6;
+    uint64_t v;
+    stats_init(s, n_out);
+    if (rd_u(&p, UINT64_MAX, k) || rd_u(&p, UINT64_MAX, &s->n) || rd_u(&p, UINT64_MAX, &s->over) ||
+        rd_u(&p, UINT64_MAX, &s->cr) || rd_u(&p, NP_UNIT_MAX_FIELDS, &v) || v != n_out)
+        return -1;
+    for (unsigned f = 0; f < n_out; f++)
+        if (rd_pt(&p, &s->fmax[f]) || rd_u(&p, UINT64_MAX, &s->fover[f]))
+            return -1;
+    for (unsigned c = 0; c < NP_SEARCH_CLASSES; c++)
+        if (rd_u(&p, UINT64_MAX, &s->cls_n[c]) || rd_d(&p, &s->cls_max[c]))
+            return -1;
+    if (rd_u(&p, NP_SEARCH_WORST, &v))
+        return -1;
+    s->n_worst = (unsigned)v;
+    for (unsigned i = 0; i < s->n_worst; i++)
+        if (rd_pt(&p, &s->worst[i]))
+            return -1;
+    return *p == '\0' && s->n == NP_SEARCH_CHUNK ? 0 : -1;
+}
+
+static int journal_open(search_run *run, char *err, size_t errlen)
+{
+    const char *path = run->o->journal;
+    char hdr[HEADER_LINES][JLINE_MAX];
+    journal_header(run, hdr);
+    FILE *f = run->o->resume ? fopen(path, "rb") : NULL;
+    if (!f && run->o->resume && errno != ENOENT) {
+        snprintf(err, errlen, "cannot read journal %s: %s", path, strerror(errno));
+        return -1;
+    }
+    if (f) {
+        static char line[JLINE_MAX + 2];
+        unsigned lineno = 0;
+        long keep = 0;
+        int rc = 0;
+        while (rc == 0 && fgets(line, sizeof line, f)) {
+            size_t n = strlen(line);
+            if (n == 0 || line[n - 1] != '\n')
+                break; /* a torn last line: cut off below */
+            line[n - 1] = '\0';
+            lineno++;
+            if (lineno <= HEADER_LINES) {
+                if (strcmp(line, hdr[lineno - 1]) != 0) {
+                    snprintf(err, errlen, "journal %s was written for '%.200s', this run is '%.200s': not resuming",
+                             path, line, hdr[lineno - 1]);
+                    rc = -1;
+                }
+            } else {
+                uint64_t k;
+                np_search_stats s;
+                if (parse_chunk(line, run->su.f.n_out, &k, &s) != 0 || k >= run->n_chunks) {
+                    snprintf(err, errlen, "journal %s, line %u: malformed chunk line", path, lineno);
+                    rc = -1;
+                } else {
+                    run->chunk[k] = s;
+                    run->have[k] = 1;
+                }
+            }
+            keep = ftell(f);
+        }
+        fclose(f);
+        if (rc != 0)
+            return -1;
+        if (lineno < HEADER_LINES) {
+            snprintf(err, errlen, "journal %s: incomplete header", path);
+            return -1;
+        }
+        if (truncate(path, (off_t)keep) != 0) {
+            snprintf(err, errlen, "cannot truncate journal %s: %s", path, strerror(errno));
+            return -1;
+        }
+        run->jf = fopen(path, "ab");
+    } else {
+        run->jf = fopen(path, "wbx");
+        if (!run->jf && errno == EEXIST) {
+            snprintf(err, errlen, "journal %s exists: pass --resume to continue it, or remove it", path);
+            return -1;
+        }
+        if (run->jf)
+            for (unsigned k = 0; k < HEADER_LINES; k++)
+                fprintf(run->jf, "%s\n", hdr[k]);
+    }
+    if (!run->jf || fflush(run->jf) != 0) {
+        snprintf(err, errlen, "cannot write journal %s: %s", path, strerror(errno));
+        return -1;
+    }
+    return 0;
+}
+
+/* ---------------------------------------------------------------- threads */
+
+/* n more inputs done (the caller holds the lock). */
+static void count_done(search_run *run, uint64_t n)
+{
+    run->done += n;
+    if (run->o->progress)
+        np_progress_update(&run->prog, run->done);
+}
+
+static void *chunk_worker(void *arg)
+{
+    search_run *run = arg;
+    pthread_mutex_lock(&run->mu);
+    while (!run->failed && run->next < run->wave_end) {
+        uint64_t k = run->next++;
+        if (run->have[k])
+            continue;
+        pthread_mutex_unlock(&run->mu);
+        np_search_stats s;
+        char line[JLINE_MAX];
+        chunk_run(run, k, &s);
+        size_t len = run->jf ? chunk_line(line, k, &s) : 0;
+        pthread_mutex_lock(&run->mu);
+        run->chunk[k] = s;
+        run->have[k] = 1;
+        /* The line goes out whole before the next chunk is taken: a kill leaves at most a torn last line. */
+        if (len && (fwrite(line, 1, len, run->jf) != len || fflush(run->jf) != 0) && !run->failed) {
+            run->failed = 1;
+            snprintf(run->err, sizeof run->err, "cannot write journal %s: %s", run->o->journal, strerror(errno));
+        }
+        count_done(run, s.n);
+    }
+    pthread_mutex_unlock(&run->mu);
+    return NULL;
+}
+
+static void *climb_worker(void *arg)
+{
+    search_run *run = arg;
+    pthread_mutex_lock(&run->mu);
+    while (run->next_climb < run->n_starts) {
+        unsigned i = run->next_climb++;
+        pthread_mutex_unlock(&run->mu);
+        np_search_stats s;
+        climb_run(run, &run->starts[i], run->climb_budget[i], (uint64_t)run->round * NP_SEARCH_WORST + i, &s);
+        pthread_mutex_lock(&run->mu);
+        run->climb[i] = s;
+        count_done(run, s.n);
+    }
+    pthread_mutex_unlock(&run->mu);
+    return NULL;
+}
+
+enum { MAX_THREADS = 64 };
+
+static unsigned online_cpus(void)
+{
+    long n = sysconf(_SC_NPROCESSORS_ONLN);
+    return n < 1 ? 1u : n > MAX_THREADS ? MAX_THREADS : (unsigned)n;
+}
+
+static void run_threads(void *(*fn)(void *), search_run *run, unsigned nt)
+{
+    pthread_t tid[MAX_THREADS];
+    unsigned started = 0;
+    for (; started < nt; started++)
+        if (pthread_create(&tid[started], NULL, fn, run) != 0)
+            break;
+    if (started == 0)
+        fn(run);
+    for (unsigned k = 0; k < started; k++)
+        pthread_join(tid[k], NULL);
+}
+
+/* The extremes list: every combination of extreme_axis, then the unit's boundary table. */
+static int make_extremes(search_run *run)
+{
+    const np_unit *u = run->su.u;
+    size_t nb = u->boundary ? u->boundary(run->su.cfg, NULL, 0) : 0;
+    size_t n = (size_t)N_EXTREME_AXIS * N_EXTREME_AXIS * N_EXTREME_AXIS;
+    uint64_t (*b)[NP_UNIT_MAX_FIELDS] = malloc((nb ? nb : 1) * sizeof *b);
+    run->ext = malloc((n + nb) * sizeof *run->ext);
+    if (!b || !run->ext) {
+        free(b);
+        return -1;
+    }
+    size_t k = 0;
+    for (unsigned a = 0; a < N_EXTREME_AXIS; a++)
+        for (unsigned c = 0; c < N_EXTREME_AXIS; c++)
+            for (unsigned d = 0; d < N_EXTREME_AXIS; d++, k++) {
+                run->ext[k][0] = extreme_axis[a];
+                run->ext[k][1] = extreme_axis[c];
+                run->ext[k][2] = extreme_axis[d];
+            }
+    if (nb)
+        u->boundary(run->su.cfg, b, nb);
+    for (size_t i = 0; i < nb; i++, k++)
+        for (unsigned a = 0; a < 3; a++)
+            run->ext[k][a] = (uint16_t)b[i][a];
+    run->n_ext = k;
+    free(b);
+    return 0;
+}
+
+static void free_run(search_run *run)
+{
+    if (run->jf)
+        fclose(run->jf);
+    free(run->ext);
+    free(run->chunk);
+    free(run->have);
+    free(run);
+}
+
+int np_search_run(const np_search_opts *o, np_search_result *res, char *err, size_t errlen)
+{
+    memset(res, 0, sizeof *res);
+    const char *why = np_search_unit_check(o->unit, o->cfg);
+    if (why) {
+        snprintf(err, errlen, "unit %s: %s", o->unit->name, why);
+        return -1;
+    }
+    if (o->n < NP_SEARCH_CHUNK) {
+        snprintf(err, errlen, "a search needs at least %u inputs", NP_SEARCH_CHUNK);
+        return -1;
+    }
+    search_run *run = calloc(1, sizeof *run);
+    if (!run) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    run->o = o;
+    search_unit_init(&run->su, o->unit, o->cfg);
+    stats_init(&res->total, run->su.f.n_out);
+    /* Phase 1: 3/4 of the budget in whole chunks; the climbs take the rest. */
+    run->n_chunks = (o->n - o->n / 4u) / NP_SEARCH_CHUNK;
+    if (run->n_chunks == 0)
+        run->n_chunks = 1;
+    run->chunk = malloc(run->n_chunks * sizeof *run->chunk);
+    run->have = calloc(run->n_chunks, 1);
+    if (!run->chunk || !run->have || make_extremes(run) != 0) {
+        free_run(run);
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    if (o->journal && journal_open(run, err, errlen) != 0) {
+        free_run(run);
+        return -1;
+    }
+    neigh_init();
+    unsigned nt = o->threads ? (o->threads < MAX_THREADS ? o->threads : MAX_THREADS) : online_cpus();
+    res->threads = nt;
+    res->chunks = run->n_chunks;
+    for (uint64_t k = 0; k < run->n_chunks; k++)
+        res->chunks_resumed += run->have[k];
+    double t0 = np_now();
+    if (o->progress)
+        np_progress_start(&run->prog, "search", o->n);
+    pthread_mutex_init(&run->mu, NULL);
+    uint64_t ck = 0;
+    while (ck < run->n_chunks && !run->failed) {
+        run->next = ck;
+        run->wave_end = ck + NP_SEARCH_WAVE < run->n_chunks ? ck + NP_SEARCH_WAVE : run->n_chunks;
+        run_threads(chunk_worker, run, nt);
+        for (; ck < run->wave_end && !run->failed; ck++)
+            stats_merge(&res->total, &run->chunk[ck]);
+        if (o->stop_early && res->total.over)
+            break;
+    }
+
+    /* Phase 2: rounds of climbs from the current worst list until the budget is spent. */
+    uint64_t left = o->n > res->total.n && !(o->stop_early && res->total.over) ? o->n - res->total.n : 0;
+    uint64_t per_round = left / 4u + 1u;
+    np_search_stats climbs[NP_SEARCH_WORST];
+    uint64_t budget[NP_SEARCH_WORST];
+    np_search_pt starts[NP_SEARCH_WORST];
+    while (left > 0 && !run->failed && res->total.n_worst > 0) {
+        uint64_t r = per_round < left ? per_round : left;
+        unsigned ns = res->total.n_worst;
+        memcpy(starts, res->total.worst, ns * sizeof *starts);
+        for (unsigned i = 0; i < ns; i++)
+            budget[i] = r / ns + (i < r % ns ? 1u : 0u);
+        run->climb = climbs;
+        run->starts = starts;
+        run->n_starts = ns;
+        run->next_climb = 0;
+        run->climb_budget = budget;
+        run_threads(climb_worker, run, nt < ns ? nt : ns);
+        for (unsigned i = 0; i < ns; i++)
+            stats_merge(&res->total, &climbs[i]);
+        left -= r;
+        run->round++;
+    }
+    pthread_mutex_destroy(&run->mu);
+    if (o->progress)
+        np_progress_end(&run->prog);
+    res->seconds = np_now() - t0;
+    if (run->jf && fclose(run->jf) != 0 && !run->failed) {
+        run->failed = 1;
+        snprintf(run->err, sizeof run->err, "cannot close journal %s", o->journal);
+    }
+    run->jf = NULL;
+    int failed = run->failed;
+    if (failed)
+        snprintf(err, errlen, "%s", run->err);
+    free_run(run);
+    if (failed)
+        return -1;
+    res->bound = o->unit->error_bound_lsb(o->cfg);
+    res->worst = res->total.fmax[0];
+    for (unsigned k = 1; k < res->total.n_out; k++)
+        if (pt_above(&res->total.fmax[k], &res->worst))
+            res->worst = res->total.fmax[k];
+    res->verdict = res->total.over ? NP_SEARCH_COUNTEREXAMPLE
+                   : res->bound <= 1.0 ? NP_SEARCH_PROVED : NP_SEARCH_NO_COUNTER;
+    return 0;
+}
+
+void np_search_verdict_text(const np_search_result *res, char *buf, size_t len)
+{
+    switch (res->verdict) {
+    case NP_SEARCH_PROVED:
+        snprintf(buf, len, "faithful (proved)");
+        break;
+    case NP_SEARCH_NO_COUNTER:
+        snprintf(buf, len, "no counterexample in %" PRIu64 " adversarial inputs", res->total.n);
+        break;
+    default:
+        snprintf(buf, len, "not faithful, counterexample (0x%04x, 0x%04x, 0x%04x)", res->worst.in[0],
+                 res->worst.in[1], res->worst.in[2]);
+        break;
+    }
+}
