@@ -75,6 +75,7 @@ typedef struct dev {
     unsigned clear_halts_after_stall;
     volatile pid_t child;
     uint64_t submits, reaps, discards;
+    char serial[32]; /* string descriptor 3 (iSerialNumber), "NP-0001" unless a test swaps boards */
 } dev;
 
 static struct usbdevfs_urb *urb_of(const urb_rec *r) { return (struct usbdevfs_urb *)r->urb->data; }
@@ -138,6 +139,39 @@ static void pump(dev *d)
             progress = 1;
         }
     }
+}
+
+/* A control URB on endpoint 0: GET_DESCRIPTOR(STRING) answered (the serial number); others stall. */
+static void control_urb(dev *d, urb_rec *r)
+{
+    struct usbdevfs_urb *u = urb_of(r);
+    const uint8_t *setup = r->buf ? (const uint8_t *)r->buf->data : NULL;
+    if (!setup || u->buffer_length < 8 || setup[0] != 0x80 || setup[1] != 6 || setup[3] != 3) {
+        finish(d, r, -EPIPE, 0);
+        return;
+    }
+    uint8_t desc[2 + 2 * 64];
+    unsigned n = 0;
+    const char *text = setup[2] == 1 ? "noisepipe" : setup[2] == 2 ? "board emulator" : d->serial;
+    if (setup[2] == 0) { /* the language IDs: US English */
+        desc[2] = 0x09;
+        desc[3] = 0x04;
+        n = 4;
+    } else {
+        for (n = 2; *text && n + 2 <= sizeof desc; text++, n += 2) {
+            desc[n] = (uint8_t)*text;
+            desc[n + 1] = 0;
+        }
+    }
+    desc[0] = (uint8_t)n;
+    desc[1] = 3;
+    unsigned want = (unsigned)setup[6] | (unsigned)setup[7] << 8;
+    if (n > want)
+        n = want;
+    if (n > (unsigned)u->buffer_length - 8u)
+        n = (unsigned)u->buffer_length - 8u;
+    memcpy((uint8_t *)r->buf->data + 8, desc, n);
+    finish(d, r, 0, (int)n);
 }
 
 static gboolean remove_rec(GQueue *q, gulong addr, urb_rec **out)
@@ -214,7 +248,9 @@ static gboolean on_ioctl(UMockdevIoctlBase *base, UMockdevIoctlClient *c, gpoint
             r->buf = umockdev_ioctl_data_resolve(r->urb, G_STRUCT_OFFSET(struct usbdevfs_urb, buffer),
                                                  (gsize)u->buffer_length, NULL);
         d->submits++;
-        if (u->type != USBDEVFS_URB_TYPE_BULK || (u->endpoint != 0x01 && u->endpoint != 0x81)) {
+        if (u->type == USBDEVFS_URB_TYPE_CONTROL && u->endpoint == 0) {
+            control_urb(d, r);
+        } else if (u->type != USBDEVFS_URB_TYPE_BULK || (u->endpoint != 0x01 && u->endpoint != 0x81)) {
             fprintf(stderr, "test_link_usb: unexpected URB type %u endpoint 0x%02x\n", u->type, u->endpoint);
             finish(d, r, -EINVAL, 0);
         } else if (u->endpoint & 0x80) {
@@ -297,6 +333,7 @@ static void dev_board(dev *d, const np_board_opts *bo)
 static dev *dev_new(const np_board_opts *bo)
 {
     dev *d = g_new0(dev, 1);
+    snprintf(d->serial, sizeof d->serial, "NP-0001");
     g_mutex_init(&d->lock);
     g_queue_init(&d->pend_out);
     g_queue_init(&d->pend_in);
