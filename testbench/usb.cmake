@@ -43,7 +43,8 @@ if(NP_HAVE_USB)
       NP_CLI="$<TARGET_FILE:noisepipe>")
     add_dependencies(test_link_usb noisepipe)
     set(np_usb_cases enumerate stream wrong_bit not_found config_refused disappear timeout stall
-      corrupt short kill_resume timeout_out stream_1e6)
+      corrupt short kill_resume timeout_out stream_1e6 journal_target interrupt hello_bad_version
+      min_payload)
     foreach(c ${np_usb_cases})
       add_test(NAME usb.${c} COMMAND ${UMOCKDEV_WRAPPER} $<TARGET_FILE:test_link_usb> ${c})
       # The preload library comes before the sanitizer runtime: tell ASan that is fine.

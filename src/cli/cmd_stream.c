@@ -701,6 +701,8 @@ int np_cmd_stream(int argc, char **argv)
                 printf("The journal %s keeps the %llu verified vectors: run again with --resume to send the other %llu.\n",
                        journal, (unsigned long long)checked, (unsigned long long)(j.n - checked));
         }
+        if (usage && journal && !a.resume && checked == 0)
+            unlink(journal); /* this run's own new journal, holding nothing: not left to block the next run */
         if (usage || fault == NP_FAULT_JOURNAL)
             status = NP_EXIT_USAGE;
         else if (fault != NP_FAULT_NONE || errors || checked != j.n)
