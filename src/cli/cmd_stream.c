@@ -54,7 +54,9 @@ static const char usage_text[] =
     "\n"
     "Exit status: 0 every vector verified; 1 a result differed, or the link failed\n"
     "before the end (what was verified stays in the journal: rerun with --resume);\n"
-    "2 bad usage or input, board not found, or the board does not run the unit.\n";
+    "2 bad usage or input (also a journal of other vectors or another target, or an\n"
+    "existing journal without --resume/--force), board not found, or the board does\n"
+    "not run the unit or does not speak this protocol (docs/usb-protocol.md).\n";
 
 typedef struct stream_args {
     const char *vectors, *unit, *config, *device, *journal, *inject;
