@@ -15,6 +15,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "np_child.h"
 #include "np_cli.h"
 #include "np_link.h"
 #include "np_rng.h"
@@ -1264,15 +1265,7 @@ static void cli(cli_run *r, int sig, const char *jpath, ...)
     char out[128], err[128];
     tmp_path(out, sizeof out, "cli.out");
     tmp_path(err, sizeof err, "cli.err");
-    fflush(NULL);
-    pid_t pid = fork();
-    if (pid == 0) {
-        int fo = open(out, O_WRONLY | O_CREAT | O_TRUNC, 0644), fe = open(err, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        dup2(fo, 1);
-        dup2(fe, 2);
-        execv(argv[0], argv);
-        _exit(127);
-    }
+    pid_t pid = np_child_start(argv, out, err);
     if (sig) {
         double t0 = np_now();
         while (r_lines(jpath) < 1 && np_now() - t0 < 60) {

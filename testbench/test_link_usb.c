@@ -33,6 +33,7 @@
 #include <linux/usbdevice_fs.h>
 #include <umockdev.h>
 
+#include "np_child.h"
 #include "np_cli.h"
 #include "np_link.h"
 #include "np_rng.h"
@@ -412,15 +413,7 @@ static void run_argv(dev *d, run *r, char **argv, int n)
     char out[64], err[64];
     snprintf(out, sizeof out, "usb.%ld.out", (long)getpid());
     snprintf(err, sizeof err, "usb.%ld.err", (long)getpid());
-    fflush(NULL);
-    pid_t pid = fork();
-    if (pid == 0) {
-        int fo = open(out, O_WRONLY | O_CREAT | O_TRUNC, 0644), fe = open(err, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        dup2(fo, 1);
-        dup2(fe, 2);
-        execv(argv[0], argv);
-        _exit(127);
-    }
+    pid_t pid = np_child_start(argv, out, err);
     d->child = pid;
     int st;
     while (waitpid(pid, &st, 0) < 0 && errno == EINTR)

@@ -447,6 +447,8 @@ size_t np_board_tx(np_board *b, uint8_t *p, size_t cap)
     size_t n = b->tx_len - b->tx_start;
     if (n > cap)
         n = cap;
+    if (n == 0)
+        return 0; /* (b->tx is NULL until the board first sends) */
     memcpy(p, b->tx + b->tx_start, n);
     b->tx_start += n;
     b->st.tx_bytes += n;
