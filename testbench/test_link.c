@@ -5,7 +5,9 @@
  * document, and whole sessions host <-> emulator in process, with every
  * fault the emulator can inject, the journal, and kill-and-resume.
  */
+#include <fcntl.h>
 #include <signal.h>
+#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -13,6 +15,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "np_child.h"
 #include "np_cli.h"
 #include "np_link.h"
 #include "np_rng.h"
@@ -481,6 +484,195 @@ static int t_board_errors(void)
         printf("%-22s -> ERROR %s: %s\n", cases[k].what, np_link_errcode_name(last->code), last->msg);
         chat_close(&c);
     }
+    return 0;
+}
+
+/* Section 4.2 and 6: a refused CONFIG halts the board: a second CONFIG is not heard until HELLO. */
+static int t_config_refused_halts(void)
+{
+    static chat c;
+    np_board_opts o;
+    memset(&o, 0, sizeof o);
+    o.n_slots = 1;
+    snprintf(o.slot[0].unit, sizeof o.slot[0].unit, "classic3");
+    snprintf(o.slot[0].cfg, sizeof o.slot[0].cfg, "out_bits=8 s_frac=12 lerp_frac=11");
+    uint8_t p[NP_LINK_MAX_PAYLOAD];
+    np_link_rx_ev ev;
+    unsigned len;
+    chat_open(&c, &o);
+    chat_send(&c, NP_LINK_HELLO, 7, 0, NULL, 0);
+    chat_recv(&c, &ev, p);
+    config_payload(classic(), "out_bits=10", p, &len);
+    chat_send(&c, NP_LINK_CONFIG, 0, 0, p, len);
+    NP_CHECK(chat_recv(&c, &ev, p) == NP_RX_FRAME && ev.h.type == NP_LINK_ERROR, "refused");
+    NP_CHECK(np_board_last_error(c.b)->code == NP_LINK_E_NO_SUCH_CONFIG, "NO_SUCH_CONFIG");
+    config_payload(classic(), NULL, p, &len); /* the slot's own, next seq: still not heard */
+    chat_send(&c, NP_LINK_CONFIG, 0, 0, p, len);
+    NP_CHECK(chat_recv(&c, &ev, p) == NP_RX_MORE, "a board halted by a refused CONFIG stays silent");
+    c.seq = 0;
+    chat_send(&c, NP_LINK_HELLO, 8, 0, NULL, 0);
+    NP_CHECK(chat_recv(&c, &ev, p) == NP_RX_FRAME && ev.h.type == NP_LINK_INFO && ev.h.tag == 8, "HELLO reopens");
+    chat_close(&c);
+    return 0;
+}
+
+/*
+ * Section 2 and 3: the state before the first HELLO (halted, hunting), and
+ * what a hunting receiver does with a header whose CRC is right but whose
+ * len or ver is out of range: discards its first byte and hunts on, silently
+ * (no ERROR), except a HELLO of another version, which is answered with
+ * ERROR BAD_VERSION (section 10).
+ */
+static int t_hunting(void)
+{
+    static chat c;
+    np_board_opts o;
+    memset(&o, 0, sizeof o);
+    uint8_t p[NP_LINK_MAX_PAYLOAD];
+    np_link_rx_ev ev;
+    unsigned len;
+    chat_open(&c, &o);
+    /* Hunting from power-on: a header with len above the board's max_payload, one with len not a multiple of 4, a ver 9 DATA. */
+    uint8_t f[NP_LINK_HDR_BYTES];
+    np_link_hdr bad[3] = { { 1, NP_LINK_DATA, 5, 0, 1, 65532 }, { 1, NP_LINK_DATA, 5, 0, 1, 6 },
+                           { 9, NP_LINK_DATA, 5, 0, 1, 8 } };
+    for (unsigned k = 0; k < 3; k++) {
+        np_link_seal(c.f, &bad[k]);
+        memcpy(f, c.f, sizeof f); /* the header alone: its payload never comes */
+        np_board_rx(c.b, f, sizeof f);
+    }
+    NP_CHECK(chat_recv(&c, &ev, p) == NP_RX_MORE, "out-of-range headers while hunting: no ERROR");
+    /* Before any HELLO: a CONFIG and a DATA frame are not heard. */
+    config_payload(classic(), NULL, p, &len);
+    chat_send(&c, NP_LINK_CONFIG, 0, 0, p, len);
+    memset(p, 0, 8);
+    chat_send(&c, NP_LINK_DATA, 0, 1, p, 8);
+    NP_CHECK(chat_recv(&c, &ev, p) == NP_RX_MORE, "a board before its first HELLO is silent");
+    NP_CHECK(np_board_get_stats(c.b)->errors_sent == 0, "no ERROR sent");
+    c.seq = 0;
+    chat_send(&c, NP_LINK_HELLO, 0x1234, 0, NULL, 0);
+    NP_CHECK(chat_recv(&c, &ev, p) == NP_RX_FRAME && ev.h.type == NP_LINK_INFO && ev.h.tag == 0x1234,
+             "the HELLO after them is found and answered");
+    /* A HELLO of version 2 to this version-1 board, in a session: ERROR BAD_VERSION, seq 0, the nonce. */
+    np_link_hdr h2 = { 2, NP_LINK_HELLO, 0, 0xabcdef, 0, 0 };
+    size_t n = np_link_seal(c.f, &h2);
+    np_board_rx(c.b, c.f, n);
+    NP_CHECK(chat_recv(&c, &ev, p) == NP_RX_FRAME && ev.h.type == NP_LINK_ERROR && ev.h.seq == 0 &&
+                 ev.h.tag == 0xabcdef && ev.h.version == 1,
+             "foreign HELLO: ERROR seq %u tag %llx", (unsigned)ev.h.seq, (unsigned long long)ev.h.tag);
+    np_link_error e;
+    NP_CHECK(np_link_error_decode(p, ev.h.len, &e) == 0 && e.code == NP_LINK_E_BAD_VERSION && e.detail == 1,
+             "BAD_VERSION, detail 1");
+    printf("version-2 HELLO -> ERROR %s detail %u: %s\n", np_link_errcode_name(e.code), (unsigned)e.detail, e.msg);
+    chat_close(&c);
+    return 0;
+}
+
+/* One session of job j against a board made with bo; the host's fault (NONE when done). */
+static np_link_fault session_with(const np_link_job *j, const np_board_opts *bo, char *msg, size_t msglen)
+{
+    np_journal jn;
+    char err[256];
+    np_journal_open(&jn, NULL, j, 0, err, sizeof err);
+    np_host_opts ho;
+    memset(&ho, 0, sizeof ho);
+    np_host *h = np_host_new(j, &jn, &ho);
+    np_board *b = np_board_new(bo);
+    np_loop_opts lo;
+    memset(&lo, 0, sizeof lo);
+    lo.timeout = 0.5;
+    np_link_loopback(h, b, &lo);
+    np_link_fault f = np_host_get_fault(h);
+    snprintf(msg, msglen, "%s", f == NP_FAULT_NONE && !(np_host_done(h) && jn.n_checked == j->n)
+                                    ? "not done" : np_host_fault_msg(h));
+    if (f == NP_FAULT_NONE && !(np_host_done(h) && jn.n_checked == j->n))
+        f = NP_FAULT_USB;
+    np_host_free(h);
+    np_board_free(b);
+    np_journal_close(&jn);
+    return f;
+}
+
+/* Section 10: a board that answers HELLO with ERROR BAD_VERSION (it speaks version 2). */
+static int t_hello_bad_version(void)
+{
+    np_link_job j;
+    np_unit_cfg cfg;
+    cfg_of(classic(), &cfg, NULL);
+    np_link_job_random(&j, classic(), &cfg, 1000, 17);
+    np_board_opts bo;
+    memset(&bo, 0, sizeof bo);
+    bo.version = 2;
+    char msg[1024];
+    np_link_fault f = session_with(&j, &bo, msg, sizeof msg);
+    NP_CHECK(f == NP_FAULT_INCOMPATIBLE, "fault %s: %s", np_link_fault_name(f), msg);
+    NP_CHECK(strstr(msg, "refused HELLO: ERROR BAD_VERSION") && strstr(msg, "speaks protocol version 2"), "%s", msg);
+    NP_CHECK(!strstr(msg, "sent nothing"), "not a time-out: %s", msg);
+    printf("%s\n", msg);
+    np_link_job_free(&j);
+    return 0;
+}
+
+/*
+ * Section 4.1: the smallest max_payload the document allows (292) works; a
+ * board announcing less (64, and 288: more than classic3's 72-byte CONFIG,
+ * still below the minimum) is refused with the documented message.
+ */
+static int t_min_payload(void)
+{
+    np_link_job j;
+    np_unit_cfg cfg;
+    cfg_of(classic(), &cfg, "out_bits=16,s_frac=16,lerp_frac=16");
+    np_link_job_random(&j, classic(), &cfg, 5000, 18);
+    np_board_opts bo;
+    memset(&bo, 0, sizeof bo);
+    bo.max_payload = NP_LINK_MIN_PAYLOAD;
+    char msg[1024];
+    np_link_fault f = session_with(&j, &bo, msg, sizeof msg);
+    NP_CHECK(NP_LINK_MIN_PAYLOAD == 36 + 256, "the minimum is the longest CONFIG payload");
+    NP_CHECK(f == NP_FAULT_NONE, "max_payload 292: %s", msg);
+    unsigned small[] = { 64, 288 };
+    for (unsigned k = 0; k < 2; k++) {
+        bo.max_payload = small[k];
+        f = session_with(&j, &bo, msg, sizeof msg);
+        NP_CHECK(f == NP_FAULT_INCOMPATIBLE && strstr(msg, "less than the 292 the protocol requires"),
+                 "max_payload %u: %s: %s", small[k], np_link_fault_name(f), msg);
+        printf("max_payload %u: %s\n", small[k], msg);
+    }
+    np_link_job_free(&j);
+    return 0;
+}
+
+/* An ERROR left queued by an earlier session (no nonce) is stale: the host skips it and streams. */
+static int t_stale_error(void)
+{
+    np_link_job j;
+    np_unit_cfg cfg;
+    cfg_of(classic(), &cfg, NULL);
+    np_link_job_random(&j, classic(), &cfg, 3000, 19);
+    np_board_opts bo;
+    memset(&bo, 0, sizeof bo);
+    static chat c;
+    memset(&c, 0, sizeof c);
+    c.b = np_board_new(&bo);
+    uint8_t p[8] = { 0 };
+    chat_send(&c, NP_LINK_HELLO, 99, 0, NULL, 0);
+    chat_send(&c, NP_LINK_DATA, 0, 1, p, 8); /* DATA before CONFIG: ERROR NOT_CONFIGURED queued */
+    NP_CHECK(np_board_get_stats(c.b)->errors_sent == 1, "an ERROR is queued");
+    np_journal jn;
+    char err[256];
+    np_journal_open(&jn, NULL, &j, 0, err, sizeof err);
+    np_host_opts ho;
+    memset(&ho, 0, sizeof ho);
+    np_host *h = np_host_new(&j, &jn, &ho);
+    np_loop_opts lo;
+    memset(&lo, 0, sizeof lo);
+    np_link_loopback(h, c.b, &lo);
+    NP_CHECK(np_host_done(h) && jn.n_checked == j.n, "%s", np_host_fault_msg(h));
+    np_host_free(h);
+    np_board_free(c.b);
+    np_journal_close(&jn);
+    np_link_job_free(&j);
     return 0;
 }
 
@@ -1023,6 +1215,194 @@ static int t_kill_resume(void)
     return 0;
 }
 
+/* ------------------------------------------------------------------------- */
+/* The command against the emulator (--emulate): the journal's bindings, --force, the ref column, SIGINT. */
+
+typedef struct cli_run {
+    int status; /* exit status, or 128 + signal */
+    char out[16384], err[16384];
+} cli_run;
+
+static void read_into(const char *path, char *buf, size_t len)
+{
+    FILE *f = fopen(path, "r");
+    size_t n = f ? fread(buf, 1, len - 1, f) : 0;
+    buf[n] = '\0';
+    if (f)
+        fclose(f);
+    unlink(path);
+}
+
+/* Count the complete R lines of a journal (0 when there is none). */
+static unsigned r_lines(const char *path)
+{
+    FILE *f = fopen(path, "r");
+    char line[512];
+    unsigned n = 0;
+    while (f && fgets(line, sizeof line, f))
+        n += line[0] == 'R' && strchr(line, '\n') != NULL;
+    if (f)
+        fclose(f);
+    return n;
+}
+
+/*
+ * noisepipe stream ARGS (NULL-terminated) in a child; with sig, the signal
+ * is sent once the journal at jpath holds a verified range.
+ */
+static void cli(cli_run *r, int sig, const char *jpath, ...)
+{
+    char *argv[32];
+    int n = 0;
+    argv[n++] = (char *)NP_CLI;
+    argv[n++] = (char *)"stream";
+    va_list ap;
+    va_start(ap, jpath);
+    for (char *a; n < 31 && (a = va_arg(ap, char *)) != NULL;)
+        argv[n++] = a;
+    va_end(ap);
+    argv[n] = NULL;
+    char out[128], err[128];
+    tmp_path(out, sizeof out, "cli.out");
+    tmp_path(err, sizeof err, "cli.err");
+    pid_t pid = np_child_start(argv, out, err);
+    if (sig) {
+        double t0 = np_now();
+        while (r_lines(jpath) < 1 && np_now() - t0 < 60) {
+            struct timespec ts = { 0, 200000 };
+            nanosleep(&ts, NULL);
+        }
+        kill(pid, sig);
+    }
+    int st;
+    waitpid(pid, &st, 0);
+    r->status = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+    read_into(out, r->out, sizeof r->out);
+    read_into(err, r->err, sizeof r->err);
+    printf("$ noisepipe");
+    for (int k = 1; k < n; k++)
+        printf(" %s", argv[k]);
+    printf("\n%s%s[exit %d]\n", r->out, r->err, r->status);
+}
+
+/* The file's bytes, for "left exactly as it was". */
+static char *file_bytes(const char *path, size_t *n)
+{
+    FILE *f = fopen(path, "rb");
+    char *b = NULL;
+    *n = 0;
+    if (!f)
+        return NULL;
+    fseek(f, 0, SEEK_END);
+    long len = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    b = malloc((size_t)len + 1u);
+    *n = fread(b, 1, (size_t)len, f);
+    fclose(f);
+    return b;
+}
+
+static int same_bytes(const char *path, const char *was, size_t n)
+{
+    size_t m;
+    char *now = file_bytes(path, &m);
+    int same = now && m == n && memcmp(now, was, n) == 0;
+    free(now);
+    return same;
+}
+
+/*
+ * Item 3 of issue 11 on the emulator path: a journal is never replaced
+ * without --force, is bound to the vector file's size and to the target,
+ * and a vector file whose reference column is wrong is refused.
+ */
+static int t_cli_journal(void)
+{
+    char vec[256], jnl[256], vec2[256];
+    tmp_path(vec, sizeof vec, "cli.vec");
+    tmp_path(jnl, sizeof jnl, "cli.journal");
+    tmp_path(vec2, sizeof vec2, "cli2.vec");
+    char cmd[1024];
+    snprintf(cmd, sizeof cmd, "%s vectors --unit classic3 -n 20000 -o %s", NP_CLI, vec);
+    NP_CHECK(system(cmd) == 0, "%s", cmd);
+    cli_run r;
+    /* A link fault part way: the journal keeps what was verified. */
+    cli(&r, 0, NULL, "--emulate", vec, "--journal", jnl, "--inject", "silent:12000", "--timeout", "0.3", NULL);
+    NP_CHECK(r.status == 1 && strstr(r.out, "INCOMPLETE"), "exit %d", r.status);
+    size_t n0;
+    char *before = file_bytes(jnl, &n0);
+    NP_CHECK(before && strstr(before, "\ntarget=emulator *") && strstr(before, "\nsize="), "bindings: %s",
+             before ? before : "(none)");
+    /* Without --resume: refused, the journal left exactly as it was. */
+    cli(&r, 0, NULL, "--emulate", vec, "--journal", jnl, NULL);
+    NP_CHECK(r.status == 2 && strstr(r.err, "--resume, or start over with --force"), "exit %d", r.status);
+    NP_CHECK(same_bytes(jnl, before, n0), "the journal changed");
+    /* The same records in a file of another size (one comment line more): refused, naming size=. */
+    snprintf(cmd, sizeof cmd, "(head -n 12 %s; echo '# a comment'; tail -n +13 %s) > %s", vec, vec, vec2);
+    NP_CHECK(system(cmd) == 0, "%s", cmd);
+    cli(&r, 0, NULL, "--emulate", vec2, "--journal", jnl, "--resume", NULL);
+    NP_CHECK(r.status == 2 && strstr(r.err, "'size=") && strstr(r.err, "another vector file"), "exit %d", r.status);
+    NP_CHECK(same_bytes(jnl, before, n0), "the journal changed");
+    /* --resume and --force together: usage. */
+    cli(&r, 0, NULL, "--emulate", vec, "--journal", jnl, "--resume", "--force", NULL);
+    NP_CHECK(r.status == 2 && strstr(r.err, "give one of them"), "exit %d", r.status);
+    /* Resumed: complete, every vector once. */
+    cli(&r, 0, NULL, "--emulate", vec, "--journal", jnl, "--resume", NULL);
+    NP_CHECK(r.status == 0 && strstr(r.out, "In 23200 tests, no errors found"), "exit %d", r.status);
+    NP_CHECK(journal_exactly_once(jnl, 23200), "every vector once");
+    /* A finished journal is not replaced either; --force starts over. */
+    free(before);
+    before = file_bytes(jnl, &n0);
+    cli(&r, 0, NULL, "--emulate", vec, "--journal", jnl, NULL);
+    NP_CHECK(r.status == 2 && strstr(r.err, "23200 of 23200 vectors verified") && same_bytes(jnl, before, n0),
+             "exit %d", r.status);
+    cli(&r, 0, NULL, "--emulate", vec, "--journal", jnl, "--force", NULL);
+    NP_CHECK(r.status == 0 && strstr(r.out, "(new, --force)") && journal_exactly_once(jnl, 23200), "exit %d",
+             r.status);
+    free(before);
+    /* The reference column checked as verify does: one f.ref word changed. */
+    snprintf(cmd, sizeof cmd,
+             "awk 'NR==40{ $5 = ($5 == \"3ff0000000000000\" ? \"3fe0000000000000\" : \"3ff0000000000000\") } 1' %s > %s",
+             vec, vec2);
+    NP_CHECK(system(cmd) == 0, "%s", cmd);
+    cli(&r, 0, NULL, "--emulate", vec2, "--journal", jnl, "--force", NULL);
+    NP_CHECK(r.status == 2 && strstr(r.err, ":40: f.ref") && strstr(r.err, "disagrees with the float reference"),
+             "exit %d", r.status);
+    unlink(vec);
+    unlink(vec2);
+    unlink(jnl);
+    return 0;
+}
+
+/* SIGINT and SIGTERM during stream: 130/143, the note says what was kept and how to resume; the resume is exact. */
+static int t_cli_interrupt(void)
+{
+    char jnl[256];
+    tmp_path(jnl, sizeof jnl, "int.journal");
+    int sigs[2] = { SIGINT, SIGTERM };
+    for (unsigned k = 0; k < 2; k++) {
+        unlink(jnl);
+        cli_run r;
+        cli(&r, sigs[k], jnl, "--emulate", "--unit", "classic3", "--random", "2000000", "--journal", jnl, NULL);
+        NP_CHECK(r.status == 128 + sigs[k], "exit %d", r.status);
+        NP_CHECK(strstr(r.err, k ? "interrupted by SIGTERM" : "interrupted by SIGINT") && strstr(r.err, "journal ") &&
+                     strstr(r.err, "vectors verified") && strstr(r.err, "run again with --resume"),
+                 "the note: %s", r.err);
+        unsigned long long kept = 0;
+        const char *at = strstr(r.err, " keeps ");
+        NP_CHECK(at && sscanf(at, " keeps %llu", &kept) == 1, "a count in the note");
+        cli(&r, 0, NULL, "--emulate", "--unit", "classic3", "--random", "2000000", "--journal", jnl, "--resume", NULL);
+        NP_CHECK(r.status == 0 && strstr(r.out, "In 2000000 tests, no errors found"), "resumed: exit %d", r.status);
+        unsigned long long before = 0;
+        at = strstr(r.out, "resumed: ");
+        NP_CHECK(at && sscanf(at, "resumed: %llu", &before) == 1 && before >= kept,
+                 "the journal holds at least what the note said (%llu, %llu)", before, kept);
+        NP_CHECK(journal_exactly_once(jnl, 2000000), "every vector once");
+    }
+    unlink(jnl);
+    return 0;
+}
+
 static const np_test_case cases[] = {
     { "crc_kat", t_crc_kat },
     { "frame_codec", t_frame_codec },
@@ -1032,6 +1412,13 @@ static const np_test_case cases[] = {
     { "payloads", t_payloads },
     { "doc_session", t_doc_session },
     { "board_errors", t_board_errors },
+    { "config_refused_halts", t_config_refused_halts },
+    { "hunting", t_hunting },
+    { "hello_bad_version", t_hello_bad_version },
+    { "min_payload", t_min_payload },
+    { "stale_error", t_stale_error },
+    { "cli_journal", t_cli_journal },
+    { "cli_interrupt", t_cli_interrupt },
     { "board_vs_model", t_board_vs_model },
     { "e2e", t_e2e },
     { "e2e_wrong_bit", t_e2e_wrong_bit },

@@ -33,6 +33,7 @@
 #include <linux/usbdevice_fs.h>
 #include <umockdev.h>
 
+#include "np_child.h"
 #include "np_cli.h"
 #include "np_link.h"
 #include "np_rng.h"
@@ -71,10 +72,12 @@ typedef struct dev {
     GQueue pend_out, pend_in, done;
     /* USB faults, by records the board has taken (0 = never). */
     uint64_t gone_at, stall_at, kill_at, nak_at;
+    int kill_sig; /* the signal kill_at sends; 0: SIGKILL */
     int gone, in_halted, stalled, killed;
     unsigned clear_halts_after_stall;
     volatile pid_t child;
     uint64_t submits, reaps, discards;
+    char serial[32]; /* string descriptor 3 (iSerialNumber), "NP-0001" unless a test swaps boards */
 } dev;
 
 static struct usbdevfs_urb *urb_of(const urb_rec *r) { return (struct usbdevfs_urb *)r->urb->data; }
@@ -99,7 +102,7 @@ static void usb_faults(dev *d)
 {
     uint64_t n = records(d);
     if (d->kill_at && n >= d->kill_at && !d->killed && d->child > 0) {
-        kill(d->child, SIGKILL);
+        kill(d->child, d->kill_sig ? d->kill_sig : SIGKILL);
         d->killed = 1;
     }
     if (d->gone_at && n >= d->gone_at && !d->gone) {
@@ -138,6 +141,39 @@ static void pump(dev *d)
             progress = 1;
         }
     }
+}
+
+/* A control URB on endpoint 0: GET_DESCRIPTOR(STRING) answered (the serial number); others stall. */
+static void control_urb(dev *d, urb_rec *r)
+{
+    struct usbdevfs_urb *u = urb_of(r);
+    const uint8_t *setup = r->buf ? (const uint8_t *)r->buf->data : NULL;
+    if (!setup || u->buffer_length < 8 || setup[0] != 0x80 || setup[1] != 6 || setup[3] != 3) {
+        finish(d, r, -EPIPE, 0);
+        return;
+    }
+    uint8_t desc[2 + 2 * 64];
+    unsigned n = 0;
+    const char *text = setup[2] == 1 ? "noisepipe" : setup[2] == 2 ? "board emulator" : d->serial;
+    if (setup[2] == 0) { /* the language IDs: US English */
+        desc[2] = 0x09;
+        desc[3] = 0x04;
+        n = 4;
+    } else {
+        for (n = 2; *text && n + 2 <= sizeof desc; text++, n += 2) {
+            desc[n] = (uint8_t)*text;
+            desc[n + 1] = 0;
+        }
+    }
+    desc[0] = (uint8_t)n;
+    desc[1] = 3;
+    unsigned want = (unsigned)setup[6] | (unsigned)setup[7] << 8;
+    if (n > want)
+        n = want;
+    if (n > (unsigned)u->buffer_length - 8u)
+        n = (unsigned)u->buffer_length - 8u;
+    memcpy((uint8_t *)r->buf->data + 8, desc, n);
+    finish(d, r, 0, (int)n);
 }
 
 static gboolean remove_rec(GQueue *q, gulong addr, urb_rec **out)
@@ -214,7 +250,9 @@ static gboolean on_ioctl(UMockdevIoctlBase *base, UMockdevIoctlClient *c, gpoint
             r->buf = umockdev_ioctl_data_resolve(r->urb, G_STRUCT_OFFSET(struct usbdevfs_urb, buffer),
                                                  (gsize)u->buffer_length, NULL);
         d->submits++;
-        if (u->type != USBDEVFS_URB_TYPE_BULK || (u->endpoint != 0x01 && u->endpoint != 0x81)) {
+        if (u->type == USBDEVFS_URB_TYPE_CONTROL && u->endpoint == 0) {
+            control_urb(d, r);
+        } else if (u->type != USBDEVFS_URB_TYPE_BULK || (u->endpoint != 0x01 && u->endpoint != 0x81)) {
             fprintf(stderr, "test_link_usb: unexpected URB type %u endpoint 0x%02x\n", u->type, u->endpoint);
             finish(d, r, -EINVAL, 0);
         } else if (u->endpoint & 0x80) {
@@ -290,6 +328,7 @@ static void dev_board(dev *d, const np_board_opts *bo)
     np_board_free(d->board);
     d->board = np_board_new(bo);
     d->gone_at = d->stall_at = d->kill_at = d->nak_at = 0;
+    d->kill_sig = 0;
     d->gone = d->in_halted = d->stalled = d->killed = 0;
     g_mutex_unlock(&d->lock);
 }
@@ -297,6 +336,7 @@ static void dev_board(dev *d, const np_board_opts *bo)
 static dev *dev_new(const np_board_opts *bo)
 {
     dev *d = g_new0(dev, 1);
+    snprintf(d->serial, sizeof d->serial, "NP-0001");
     g_mutex_init(&d->lock);
     g_queue_init(&d->pend_out);
     g_queue_init(&d->pend_in);
@@ -373,15 +413,7 @@ static void run_argv(dev *d, run *r, char **argv, int n)
     char out[64], err[64];
     snprintf(out, sizeof out, "usb.%ld.out", (long)getpid());
     snprintf(err, sizeof err, "usb.%ld.err", (long)getpid());
-    fflush(NULL);
-    pid_t pid = fork();
-    if (pid == 0) {
-        int fo = open(out, O_WRONLY | O_CREAT | O_TRUNC, 0644), fe = open(err, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        dup2(fo, 1);
-        dup2(fe, 2);
-        execv(argv[0], argv);
-        _exit(127);
-    }
+    pid_t pid = np_child_start(argv, out, err);
     d->child = pid;
     int st;
     while (waitpid(pid, &st, 0) < 0 && errno == EINTR)
@@ -634,6 +666,159 @@ static int t_short(void)
     return 0;
 }
 
+/*
+ * Item 3 of issue 11: the journal is bound to its target. An emulator's
+ * journal does not count for a board; one board's (serial NP-0001) not for
+ * another's (NP-0002); a run that cannot open its board never touches the
+ * journal, not even with --force.
+ */
+static int t_journal_target(void)
+{
+    enum { N = 200000 };
+    np_board_opts bo = plain_board();
+    dev *d = dev_new(&bo);
+    char journal[128];
+    journal_name(journal, sizeof journal, "target");
+    run r;
+    char *emu[] = { (char *)NP_CLI, (char *)"stream", (char *)"--emulate", (char *)"--unit", (char *)"classic3",
+                    (char *)"--random", (char *)"200000", (char *)"--journal", journal, NULL };
+    run_argv(d, &r, emu, 9);
+    NP_CHECK(r.status == 0, "emulator run: exit %d", r.status);
+    run_free(&r);
+    gchar *emu_journal = NULL;
+    gsize emu_len = 0;
+    g_file_get_contents(journal, &emu_journal, &emu_len, NULL);
+    run_cli(d, &r, "--unit", "classic3", "--random", "200000", "--journal", journal, "--resume", NULL);
+    NP_CHECK(r.status == 2 && strstr(r.err, "'target=emulator', this run is 'target=usb 1209:0001 serial NP-0001'") &&
+                 strstr(r.err, "another target"),
+             "the emulator's journal for a board: exit %d", r.status);
+    NP_CHECK(r.board_records == 0, "nothing streamed: %llu", (unsigned long long)r.board_records);
+    NP_CHECK(!strstr(r.out, "no errors found"), "no verdict");
+    run_free(&r);
+    /* Without --resume or --force: refused, and the file is as it was. */
+    run_cli(d, &r, "--unit", "classic3", "--random", "200000", "--journal", journal, NULL);
+    NP_CHECK(r.status == 2 && strstr(r.err, "--force"), "exit %d", r.status);
+    run_free(&r);
+    /* --force, but the board is not there: exit 2, the journal untouched. */
+    char *gone[] = { (char *)NP_CLI, (char *)"stream", (char *)"--device", (char *)"1209:9999", (char *)"--unit",
+                     (char *)"classic3", (char *)"--random", (char *)"200000", (char *)"--journal", journal,
+                     (char *)"--force", NULL };
+    run_argv(d, &r, gone, 11);
+    NP_CHECK(r.status == 2 && strstr(r.err, "no USB device 1209:9999"), "exit %d", r.status);
+    gchar *now = NULL;
+    gsize now_len = 0;
+    g_file_get_contents(journal, &now, &now_len, NULL);
+    NP_CHECK(now && emu_journal && now_len == emu_len && memcmp(now, emu_journal, emu_len) == 0,
+             "a run whose board did not open changed the journal");
+    g_free(now);
+    g_free(emu_journal);
+    run_free(&r);
+    /* --force with the board open: a new journal, bound to this board; a fault part way. */
+    bo.fault.kind = NP_BOARD_SILENT;
+    bo.fault.at = 100000;
+    dev_board(d, &bo);
+    run_cli(d, &r, "--unit", "classic3", "--random", "200000", "--journal", journal, "--force", "--timeout", "1", NULL);
+    NP_CHECK(r.status == 1 && strstr(r.out, "target: usb 1209:0001 serial NP-0001"), "exit %d", r.status);
+    int once;
+    uint64_t held = journal_count(journal, N, &once);
+    NP_CHECK(held > 0 && held < N, "held %llu", (unsigned long long)held);
+    run_free(&r);
+    /* Another board (serial NP-0002) may not continue it... */
+    np_board_opts healthy = plain_board();
+    dev_board(d, &healthy);
+    snprintf(d->serial, sizeof d->serial, "NP-0002");
+    run_cli(d, &r, "--unit", "classic3", "--random", "200000", "--journal", journal, "--resume", NULL);
+    NP_CHECK(r.status == 2 && strstr(r.err, "serial NP-0001', this run is 'target=usb 1209:0001 serial NP-0002'"),
+             "another board: exit %d", r.status);
+    NP_CHECK(r.board_records == 0, "nothing streamed");
+    run_free(&r);
+    /* ...the same board does, sending exactly the rest. */
+    snprintf(d->serial, sizeof d->serial, "NP-0001");
+    run_cli(d, &r, "--unit", "classic3", "--random", "200000", "--journal", journal, "--resume", NULL);
+    NP_CHECK(r.status == 0 && strstr(r.out, "In 200000 tests, no errors found"), "exit %d", r.status);
+    NP_CHECK(r.board_records == N - held, "resume sent %llu, journal held %llu", (unsigned long long)r.board_records,
+             (unsigned long long)held);
+    journal_count(journal, N, &once);
+    NP_CHECK(once, "every vector once");
+    run_free(&r);
+    unlink(journal);
+    dev_free(d);
+    return 0;
+}
+
+/* SIGINT mid-stream through USB: exit 130, the note names the journal and --resume; the resume is exact. */
+static int t_interrupt(void)
+{
+    enum { N = 300000 };
+    np_board_opts bo = plain_board();
+    dev *d = dev_new(&bo);
+    char journal[128];
+    journal_name(journal, sizeof journal, "sigint");
+    d->kill_at = 150000;
+    d->kill_sig = SIGINT;
+    run r;
+    run_cli(d, &r, "--unit", "classic3", "--random", "300000", "--journal", journal, NULL);
+    NP_CHECK(r.status == 130, "status %d", r.status);
+    NP_CHECK(strstr(r.err, "interrupted by SIGINT") && strstr(r.err, journal) && strstr(r.err, "--resume"),
+             "the note: %s", r.err);
+    int once;
+    uint64_t held = journal_count(journal, N, &once);
+    run_free(&r);
+    dev_board(d, &bo);
+    run_cli(d, &r, "--unit", "classic3", "--random", "300000", "--journal", journal, "--resume", NULL);
+    NP_CHECK(r.status == 0 && strstr(r.out, "In 300000 tests, no errors found"), "resumed: exit %d", r.status);
+    NP_CHECK(r.board_records == N - held, "resume sent %llu, journal held %llu", (unsigned long long)r.board_records,
+             (unsigned long long)held);
+    journal_count(journal, N, &once);
+    NP_CHECK(once, "every vector once");
+    run_free(&r);
+    unlink(journal);
+    dev_free(d);
+    return 0;
+}
+
+/* Section 10: a board that answers HELLO with ERROR BAD_VERSION: the message, exit 2 (not a time-out). */
+static int t_hello_bad_version(void)
+{
+    np_board_opts bo = plain_board();
+    bo.version = 2;
+    dev *d = dev_new(&bo);
+    run r;
+    char journal[128];
+    journal_name(journal, sizeof journal, "badver");
+    run_cli(d, &r, "--unit", "classic3", "--random", "1000", "--journal", journal, NULL);
+    NP_CHECK(r.status == 2, "exit %d", r.status);
+    NP_CHECK(access(journal, F_OK) != 0, "the new journal, holding nothing, is not left behind");
+    NP_CHECK(strstr(r.err, "the board refused HELLO: ERROR BAD_VERSION") && strstr(r.err, "speaks protocol version 2"),
+             "message: %s", r.err);
+    NP_CHECK(!strstr(r.err, "sent nothing"), "reported as a time-out");
+    run_free(&r);
+    dev_free(d);
+    return 0;
+}
+
+/* Section 4.1: a board at the smallest max_payload (292) works; below it, exit 2 with the documented message. */
+static int t_min_payload(void)
+{
+    np_board_opts bo = plain_board();
+    bo.max_payload = 292;
+    dev *d = dev_new(&bo);
+    run r;
+    run_cli(d, &r, "--unit", "classic3", "--random", "20000", NULL);
+    NP_CHECK(r.status == 0 && strstr(r.out, "max payload 292; 36 vectors per frame") &&
+                 strstr(r.out, "In 20000 tests, no errors found"),
+             "292: exit %d", r.status);
+    run_free(&r);
+    bo.max_payload = 64;
+    dev_board(d, &bo);
+    run_cli(d, &r, "--unit", "classic3", "--random", "20000", NULL);
+    NP_CHECK(r.status == 2 && strstr(r.err, "announces max_payload 64 bytes, less than the 292 the protocol requires"),
+             "64: exit %d", r.status);
+    run_free(&r);
+    dev_free(d);
+    return 0;
+}
+
 static uint64_t test_seed(void)
 {
     const char *s = getenv("NP_TEST_SEED");
@@ -769,6 +954,10 @@ static const np_test_case cases[] = {
     { "corrupt", t_corrupt },
     { "short", t_short },
     { "kill_resume", t_kill_resume },
+    { "journal_target", t_journal_target },
+    { "interrupt", t_interrupt },
+    { "hello_bad_version", t_hello_bad_version },
+    { "min_payload", t_min_payload },
     { NULL, NULL },
 };
 

@@ -8,10 +8,14 @@
 #           transport (NOISEPIPE_USB) and umockdev (Debian: umockdev, libumockdev-dev).
 np_test_program(test_link test_link.c)
 target_link_libraries(test_link PRIVATE np_link)
+# The cli_* cases run `noisepipe stream --emulate` in a child process.
+target_compile_definitions(test_link PRIVATE NP_CLI="$<TARGET_FILE:noisepipe>")
+add_dependencies(test_link noisepipe)
 np_add_cases(test_link link
   crc_kat frame_codec rx_reassembly rx_short records payloads doc_session board_errors
+  config_refused_halts hunting hello_bad_version min_payload stale_error
   board_vs_model e2e e2e_wrong_bit e2e_faults stale_input board_reports config_refused
-  journal kill_resume)
+  journal kill_resume cli_journal cli_interrupt)
 
 # The command itself, in process, against the emulator: exit statuses and messages.
 add_test(NAME link.cli_emulate COMMAND noisepipe stream --emulate --unit classic3 --random 100000)
@@ -39,7 +43,8 @@ if(NP_HAVE_USB)
       NP_CLI="$<TARGET_FILE:noisepipe>")
     add_dependencies(test_link_usb noisepipe)
     set(np_usb_cases enumerate stream wrong_bit not_found config_refused disappear timeout stall
-      corrupt short kill_resume timeout_out stream_1e6)
+      corrupt short kill_resume timeout_out stream_1e6 journal_target interrupt hello_bad_version
+      min_payload)
     foreach(c ${np_usb_cases})
       add_test(NAME usb.${c} COMMAND ${UMOCKDEV_WRAPPER} $<TARGET_FILE:test_link_usb> ${c})
       # The preload library comes before the sanitizer runtime: tell ASan that is fine.

@@ -8,11 +8,13 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "np_cli.h"
 #include "np_cmd.h"
 #include "np_link.h"
+#include "np_outfile.h"
 #include "np_vec.h"
 
 static const char usage_text[] =
@@ -37,7 +39,13 @@ static const char usage_text[] =
     "                      INDEX; F = wrong-bit, corrupt, short, drop, silent\n"
     "  --journal FILE      journal of verified ranges (default VECTORS.journal;\n"
     "                      none with --random unless given)\n"
-    "  --resume            continue the journal: send only what it does not hold\n"
+    "  --resume            continue the journal: send only what it does not hold; it\n"
+    "                      must be of these vectors (unit, configuration, file size\n"
+    "                      and contents) and this target (the emulator, or the same\n"
+    "                      VID:PID and serial number)\n"
+    "  --force             without --resume: replace an existing journal (only once\n"
+    "                      the target is open); without it an existing journal is\n"
+    "                      never overwritten\n"
     "  --errors N          stop after N failing vectors (default 20; 0 = never)\n"
     "  --timeout SEC       a silent board with work outstanding is a fault (default 2)\n"
     "  --frame N           vectors per frame (default: as many as the board takes)\n"
@@ -46,12 +54,14 @@ static const char usage_text[] =
     "\n"
     "Exit status: 0 every vector verified; 1 a result differed, or the link failed\n"
     "before the end (what was verified stays in the journal: rerun with --resume);\n"
-    "2 bad usage or input, board not found, or the board does not run the unit.\n";
+    "2 bad usage or input (also a journal of other vectors or another target, or an\n"
+    "existing journal without --resume/--force), board not found, or the board does\n"
+    "not run the unit or does not speak this protocol (docs/usb-protocol.md).\n";
 
 typedef struct stream_args {
     const char *vectors, *unit, *config, *device, *journal, *inject;
     uint64_t random_n, seed, max_errors, frame, window, in_flight;
-    int have_random, emulate, resume, quiet;
+    int have_random, emulate, resume, force, quiet;
     int interface, ep_out, ep_in;
     double timeout;
 } stream_args;
@@ -112,6 +122,8 @@ static int parse_args(int argc, char **argv, stream_args *a)
             a->emulate = 1;
         } else if (strcmp(arg, "--resume") == 0) {
             a->resume = 1;
+        } else if (strcmp(arg, "--force") == 0) {
+            a->force = 1;
         } else if (strcmp(arg, "--quiet") == 0) {
             a->quiet = 1;
         } else if ((r = opt(argc, argv, &i, "--unit", &v)) != 0) {
@@ -200,6 +212,10 @@ static int parse_args(int argc, char **argv, stream_args *a)
         np_err("stream", "--random needs --unit");
         return -1;
     }
+    if (a->resume && a->force) {
+        np_err("stream", "--resume continues a journal, --force replaces it: give one of them");
+        return -1;
+    }
     return 0;
 }
 
@@ -254,8 +270,12 @@ static int parse_inject(const char *s, np_board_fault *f)
     return 0;
 }
 
-/* Read the vector file into the job, checking every expected output against the model. */
-static int load_file(const stream_args *a, np_link_job *j)
+/*
+ * Read the vector file into the job, checking every expected output against
+ * the model and every reference word against the float reference, as verify
+ * does; size gets the file's size in bytes (the journal binds it).
+ */
+static int load_file(const stream_args *a, np_link_job *j, char *size, size_t sizelen)
 {
     np_vec_reader r;
     if (np_vec_open(&r, a->vectors) != 0) {
@@ -264,6 +284,11 @@ static int load_file(const stream_args *a, np_link_job *j)
         return -1;
     }
     const np_vec_header *h = &r.h;
+    struct stat sb;
+    if (fstat(fileno(r.L.f), &sb) == 0 && S_ISREG(sb.st_mode))
+        snprintf(size, sizelen, "%lld", (long long)sb.st_size);
+    else
+        snprintf(size, sizelen, "pipe");
     if (a->unit && strcmp(a->unit, h->unit->name) != 0) {
         np_err("stream", "%s holds vectors of unit %s, not %s", a->vectors, h->unit->name, a->unit);
         np_vec_close(&r);
@@ -291,11 +316,19 @@ static int load_file(const stream_args *a, np_link_job *j)
         return -1;
     }
     np_vec_rec rec;
-    uint64_t model[NP_UNIT_MAX_FIELDS];
+    uint64_t model[NP_UNIT_MAX_FIELDS], ref[NP_UNIT_MAX_FIELDS];
     int rc;
     while ((rc = np_vec_read(&r, &rec)) == 1) {
-        h->unit->eval(&h->cfg, rec.w[NP_VEC_IN], model);
-        for (unsigned k = 0; k < h->fields.n_out; k++)
+        np_vec_compute(h, rec.w[NP_VEC_IN], model, ref);
+        for (unsigned k = 0; k < h->fields.n_out; k++) {
+            if (ref[k] != rec.w[NP_VEC_REF][k]) {
+                np_err("stream", "%s:%llu: %s.ref %016llx disagrees with the float reference %016llx (%.17g): corrupted vector file",
+                       a->vectors, (unsigned long long)rec.line, h->fields.out[k].name,
+                       (unsigned long long)rec.w[NP_VEC_REF][k], (unsigned long long)ref[k],
+                       np_vec_ref_value(ref[k]));
+                np_vec_close(&r);
+                return -1;
+            }
             if (model[k] != rec.w[NP_VEC_OUT][k]) {
                 np_err("stream", "%s:%llu: expected %s = %llx, but the bit-exact model gives %llx: not a golden file for %s %s",
                        a->vectors, (unsigned long long)rec.line, h->fields.out[k].name,
@@ -304,6 +337,7 @@ static int load_file(const stream_args *a, np_link_job *j)
                 np_vec_close(&r);
                 return -1;
             }
+        }
         np_link_job_set(j, rec.index, rec.w[NP_VEC_IN], rec.w[NP_VEC_OUT]);
         j->line[rec.index] = rec.line;
     }
@@ -321,6 +355,8 @@ static int load_file(const stream_args *a, np_link_job *j)
 
 typedef struct report {
     const np_link_job *j;
+    const char *journal;     /* NULL: none */
+    const np_journal *jn;
     uint64_t printed, limit;
     int quiet;
     /* progress */
@@ -373,9 +409,28 @@ static void print_fail(report *rp, uint64_t index, const uint64_t *got)
 
 static void on_fail(void *ctx, uint64_t index, const uint64_t *got) { print_fail(ctx, index, got); }
 
+/* What an interruption keeps, and how to go on (np_interrupt_note): kept current as results arrive. */
+static void interrupt_note(const report *rp)
+{
+    char note[4600];
+    const np_journal *jn = rp->jn;
+    if (rp->journal)
+        snprintf(note, sizeof note,
+                 "journal %s keeps %llu of %llu vectors verified (%llu errors); run again with --resume (not --force) "
+                 "to send the other %llu",
+                 rp->journal, (unsigned long long)jn->n_checked, (unsigned long long)jn->n,
+                 (unsigned long long)jn->n_errors, (unsigned long long)(jn->n - jn->n_checked));
+    else
+        snprintf(note, sizeof note,
+                 "no journal (--journal FILE keeps one): the %llu vectors verified are not kept",
+                 (unsigned long long)jn->n_checked);
+    np_interrupt_note(note);
+}
+
 static void on_progress(void *ctx, uint64_t verified)
 {
     report *rp = ctx;
+    interrupt_note(rp);
     if (!rp->tty)
         return;
     double t = np_now();
@@ -390,6 +445,16 @@ static void on_progress(void *ctx, uint64_t verified)
             rp->todo ? 100.0 * (double)verified / (double)rp->todo : 100.0, (unsigned long long)verified,
             (unsigned long long)rp->todo, rate, (double)(s->bytes_out + s->bytes_in) / el / 1e6, left);
     fflush(stderr);
+}
+
+static void close_target(np_board *board, np_usb_board *ub)
+{
+    np_board_free(board);
+#ifdef NOISEPIPE_HAVE_USB
+    np_link_usb_close(ub);
+#else
+    (void)ub;
+#endif
 }
 
 static double cpu_seconds(void)
@@ -433,7 +498,7 @@ int np_cmd_stream(int argc, char **argv)
     /* The vectors. */
     np_link_job j;
     memset(&j, 0, sizeof j);
-    char source[4200];
+    char source[4200], size[64] = "generated";
     if (a.have_random) {
         const np_unit *u = np_unit_find(a.unit);
         np_unit_cfg cfg;
@@ -452,30 +517,64 @@ int np_cmd_stream(int argc, char **argv)
         }
         snprintf(source, sizeof source, "random, seed %llu", (unsigned long long)a.seed);
     } else {
-        if (load_file(&a, &j) != 0) {
+        if (load_file(&a, &j, size, sizeof size) != 0) {
             np_link_job_free(&j);
             return NP_EXIT_USAGE;
         }
         snprintf(source, sizeof source, "%s", a.vectors);
     }
 
-    /* The journal. */
     char jpath[4200];
     const char *journal = a.journal;
     if (!journal && a.vectors && strcmp(a.vectors, "-") != 0) {
         snprintf(jpath, sizeof jpath, "%s.journal", a.vectors);
         journal = jpath;
     }
-    if (a.resume && !journal) {
-        np_err("stream", "--resume needs a journal (--journal FILE)");
+    if ((a.resume || a.force) && !journal) {
+        np_err("stream", "%s needs a journal (--journal FILE)", a.resume ? "--resume" : "--force");
         np_link_job_free(&j);
         return NP_EXIT_USAGE;
     }
-    np_journal jn;
+
+    /* The target first: a journal is opened (and, with --force, replaced) only once it is open. */
+    np_link_target tg;
+    memset(&tg, 0, sizeof tg);
+    snprintf(tg.size, sizeof tg.size, "%s", size);
+    np_board *board = NULL;
+    np_usb_board *ub = NULL;
+    np_usb_info ui;
+    memset(&ui, 0, sizeof ui);
     char err[1024];
-    if (np_journal_open(&jn, journal, &j, a.resume, err, sizeof err) != 0) {
+    if (a.emulate) {
+        if (!(board = np_board_new(&bo))) {
+            np_err("stream", "out of memory");
+            np_link_job_free(&j);
+            return NP_EXIT_USAGE;
+        }
+        snprintf(tg.target, sizeof tg.target, "emulator");
+    } else {
+#ifdef NOISEPIPE_HAVE_USB
+        uo.interface = a.interface;
+        uo.ep_out = a.ep_out;
+        uo.ep_in = a.ep_in;
+        uo.in_flight = (unsigned)a.in_flight;
+        uo.timeout = a.timeout;
+        if (np_link_usb_open(&ub, &uo, &ui, err, sizeof err) != 0) {
+            np_err("stream", "%s", err);
+            np_link_job_free(&j);
+            return NP_EXIT_USAGE;
+        }
+#endif
+        snprintf(tg.target, sizeof tg.target, "usb %04x:%04x serial %s", uo.vid, uo.pid,
+                 ui.serial[0] ? ui.serial : "none");
+    }
+
+    /* The journal. */
+    np_journal jn;
+    if (np_journal_open_bound(&jn, journal, &j, &tg, a.resume, a.force, err, sizeof err) != 0) {
         np_err("stream", "%s", err);
         np_journal_close(&jn);
+        close_target(board, ub);
         np_link_job_free(&j);
         return NP_EXIT_USAGE;
     }
@@ -483,6 +582,8 @@ int np_cmd_stream(int argc, char **argv)
     report rp;
     memset(&rp, 0, sizeof rp);
     rp.j = &j;
+    rp.journal = journal;
+    rp.jn = &jn;
     rp.limit = a.max_errors;
     rp.quiet = a.quiet;
     rp.tty = isatty(2);
@@ -490,8 +591,10 @@ int np_cmd_stream(int argc, char **argv)
     printf("stream: %s %s, %llu vectors (%s, %016llx) to %s\n", j.unit->name, j.cfg_text,
            (unsigned long long)j.n, source, (unsigned long long)j.hash,
            a.emulate ? "the board emulator" : a.device);
+    if (!a.emulate)
+        printf("target: %s\n", tg.target);
     if (journal)
-        printf("journal: %s%s\n", journal, a.resume ? "" : " (new)");
+        printf("journal: %s%s\n", journal, a.resume ? "" : a.force ? " (new, --force)" : " (new)");
     if (a.resume) {
         printf("resumed: %llu vectors verified before (%llu errors); %llu to send\n",
                (unsigned long long)jn.prior_checked, (unsigned long long)jn.prior_errors,
@@ -500,6 +603,7 @@ int np_cmd_stream(int argc, char **argv)
             print_fail(&rp, jn.fails[k].index, jn.fails[k].got);
     }
     fflush(stdout);
+    interrupt_note(&rp);
 
     np_host_opts ho;
     memset(&ho, 0, sizeof ho);
@@ -512,7 +616,9 @@ int np_cmd_stream(int argc, char **argv)
     np_host *h = np_host_new(&j, &jn, &ho);
     if (!h) {
         np_err("stream", "out of memory");
+        np_interrupt_note(NULL);
         np_journal_close(&jn);
+        close_target(board, ub);
         np_link_job_free(&j);
         return NP_EXIT_USAGE;
     }
@@ -521,47 +627,29 @@ int np_cmd_stream(int argc, char **argv)
     /* Run the session. */
     double cpu0 = cpu_seconds(), board_cpu = 0;
     rp.t0 = rp.last = np_now();
-    int open_failed = 0;
-    np_usb_info ui;
-    memset(&ui, 0, sizeof ui);
-    if (a.emulate) {
-        np_board *b = np_board_new(&bo);
-        if (!b) {
-            np_err("stream", "out of memory");
-            open_failed = 1;
-        } else {
-            np_loop_opts lo;
-            memset(&lo, 0, sizeof lo);
-            lo.timeout = a.timeout;
-            np_link_loopback(h, b, &lo);
-            board_cpu = lo.board_cpu;
-            np_board_free(b);
-        }
-    } else {
-#ifdef NOISEPIPE_HAVE_USB
-        uo.interface = a.interface;
-        uo.ep_out = a.ep_out;
-        uo.ep_in = a.ep_in;
-        uo.in_flight = (unsigned)a.in_flight;
-        uo.timeout = a.timeout;
-        if (np_link_usb_run(h, &uo, &ui, err, sizeof err) != 0) {
-            np_err("stream", "%s", err);
-            open_failed = 1;
-        }
-#endif
+    if (board) {
+        np_loop_opts lo;
+        memset(&lo, 0, sizeof lo);
+        lo.timeout = a.timeout;
+        np_link_loopback(h, board, &lo);
+        board_cpu = lo.board_cpu;
     }
+#ifdef NOISEPIPE_HAVE_USB
+    if (ub)
+        np_link_usb_stream(ub, h);
+#endif
+    close_target(board, ub);
     double cpu = cpu_seconds() - cpu0 - board_cpu;
     char jerr[512];
     int jsync = np_journal_sync(&jn, jerr, sizeof jerr);
+    np_interrupt_note(NULL); /* from here on the journal is whole and synced */
     if (rp.tty)
         fputs("\r\033[K", stderr);
 
     const np_host_stats *s = np_host_get_stats(h);
     np_link_fault fault = np_host_get_fault(h);
     int status;
-    if (open_failed) {
-        status = NP_EXIT_USAGE;
-    } else {
+    {
         /* Figures. */
         double span = s->t_last_result > s->t_first_data ? s->t_last_result - s->t_first_data : 0.0;
         if (s->verified && span > 0) {
@@ -600,7 +688,8 @@ int np_cmd_stream(int argc, char **argv)
             snprintf(found, sizeof found, "no errors");
         else
             snprintf(found, sizeof found, "%llu error%s", (unsigned long long)errors, errors == 1 ? "" : "s");
-        if (fault == NP_FAULT_CONFIG) {
+        int usage = fault == NP_FAULT_CONFIG || fault == NP_FAULT_INCOMPATIBLE;
+        if (usage) {
             /* a usage error: nothing was tested, no verdict */
         } else if (checked == j.n) {
             printf("In %llu tests, %s found in %s %s.\n", (unsigned long long)checked, found, what, j.cfg_text);
@@ -610,11 +699,13 @@ int np_cmd_stream(int argc, char **argv)
             printf("In %llu tests, %s found in %s %s; INCOMPLETE: %llu of %llu vectors not verified (%s).\n",
                    (unsigned long long)checked, found, what, j.cfg_text,
                    (unsigned long long)(j.n - checked), (unsigned long long)j.n, why);
-            if (journal && fault != NP_FAULT_CONFIG && fault != NP_FAULT_JOURNAL)
+            if (journal && fault != NP_FAULT_JOURNAL)
                 printf("The journal %s keeps the %llu verified vectors: run again with --resume to send the other %llu.\n",
                        journal, (unsigned long long)checked, (unsigned long long)(j.n - checked));
         }
-        if (fault == NP_FAULT_CONFIG || fault == NP_FAULT_JOURNAL)
+        if (usage && journal && !a.resume && checked == 0)
+            unlink(journal); /* this run's own new journal, holding nothing: not left to block the next run */
+        if (usage || fault == NP_FAULT_JOURNAL)
             status = NP_EXIT_USAGE;
         else if (fault != NP_FAULT_NONE || errors || checked != j.n)
             status = NP_EXIT_FAIL;

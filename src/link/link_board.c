@@ -22,6 +22,9 @@
  *     the host ignores everything before the INFO that echoes its nonce).
  *   - Faults for tests (np_board_fault) are applied once, to the RESULT frame
  *     holding record `at`; after a SILENT fault it never sends again.
+ *   - For tests of section 10 it can speak another protocol version
+ *     (np_board_opts.version): then every version-1 frame is foreign to it, and
+ *     it answers a version-1 HELLO with ERROR BAD_VERSION.
  */
 #include "np_link.h"
 
@@ -100,29 +103,50 @@ static void tx_put(np_board *b, const uint8_t *f, size_t n)
 /* Seal the frame in b->frame with this header and queue it; each IN frame takes the next seq. */
 static void send_frame(np_board *b, unsigned type, uint64_t tag, unsigned count, unsigned len)
 {
-    np_link_hdr h = { NP_LINK_VERSION, type, b->tx_seq++, tag, count, len };
+    np_link_hdr h = { b->o.version, type, b->tx_seq++, tag, count, len };
     size_t n = np_link_seal(b->frame, &h);
     tx_put(b, b->frame, n);
     if (!b->silent)
         b->st.frames_out++;
 }
 
-/* Section 6: one ERROR frame, then halted. */
+/* Section 6: one ERROR frame with this tag, then halted. */
+static void verror(np_board *b, uint64_t tag, np_link_errcode code, uint32_t detail, const char *fmt,
+                   va_list ap)
+{
+    np_link_error e = { (uint32_t)code, detail, "" };
+    vsnprintf(e.msg, sizeof e.msg, fmt, ap);
+    b->last_err = e;
+    size_t len = np_link_error_encode(np_link_payload(b->frame), &e);
+    send_frame(b, NP_LINK_ERROR, tag, 0, (unsigned)len);
+    b->st.errors_sent++;
+    b->session.errors++;
+    b->state = B_HALTED;
+}
+
+/* An ERROR of the session: its tag is the OUT seq the board expected next. */
 static void send_error(np_board *b, np_link_errcode code, uint32_t detail, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
 static void send_error(np_board *b, np_link_errcode code, uint32_t detail, const char *fmt, ...)
 {
-    np_link_error e = { (uint32_t)code, detail, "" };
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(e.msg, sizeof e.msg, fmt, ap);
+    verror(b, b->rx_expect, code, detail, fmt, ap);
     va_end(ap);
-    b->last_err = e;
-    size_t len = np_link_error_encode(np_link_payload(b->frame), &e);
-    send_frame(b, NP_LINK_ERROR, b->rx_expect, 0, (unsigned)len);
-    b->st.errors_sent++;
-    b->session.errors++;
-    b->state = B_HALTED;
+}
+
+/* The ERROR that answers a HELLO (section 3): seq 0, the HELLO's nonce as tag. */
+static void refuse_hello(np_board *b, uint64_t nonce, np_link_errcode code, uint32_t detail, const char *fmt, ...)
+    __attribute__((format(printf, 5, 6)));
+static void refuse_hello(np_board *b, uint64_t nonce, np_link_errcode code, uint32_t detail, const char *fmt, ...)
+{
+    va_list ap;
+    b->tx_seq = 0;
+    b->rx_expect = 1;
+    memset(&b->session, 0, sizeof b->session);
+    va_start(ap, fmt);
+    verror(b, nonce, code, detail, fmt, ap);
+    va_end(ap);
 }
 
 /* ------------------------------------------------------------------------- */
@@ -137,7 +161,7 @@ static void on_hello(np_board *b, const np_link_hdr *h)
     b->st.hellos++;
     np_link_info info;
     memset(&info, 0, sizeof info);
-    info.version = NP_LINK_VERSION;
+    info.version = b->o.version;
     info.max_payload = b->o.max_payload;
     info.window = b->o.window;
     info.n_slots = b->o.n_slots;
@@ -308,7 +332,7 @@ static void on_data(np_board *b, const np_link_hdr *h, const uint8_t *in)
     /* A fault for tests: what a broken board or cable would do to this frame. */
     b->fault_done = 1;
     b->st.faults_applied++;
-    np_link_hdr rh = { NP_LINK_VERSION, NP_LINK_RESULT, b->tx_seq++, h->tag, h->count, len };
+    np_link_hdr rh = { b->o.version, NP_LINK_RESULT, b->tx_seq++, h->tag, h->count, len };
     size_t n = np_link_seal(b->frame, &rh);
     switch (f->kind) {
     case NP_BOARD_CORRUPT:
@@ -369,12 +393,18 @@ static void on_frame(np_board *b, const np_link_rx_ev *ev)
 
 static void on_stream_error(np_board *b, np_link_rx_event e, const np_link_rx_ev *ev)
 {
+    if (e == NP_RX_BAD_VERSION && ev->h.type == NP_LINK_HELLO) {
+        /* Section 10: a HELLO of another version, in any state: ERROR BAD_VERSION as its answer. */
+        refuse_hello(b, ev->h.tag, NP_LINK_E_BAD_VERSION, b->o.version, "HELLO version %u, this board speaks %u",
+                     ev->h.version, b->o.version);
+        return;
+    }
     if (b->state == B_HALTED)
         return; /* hunting for HELLO */
     switch (e) {
     case NP_RX_BAD_VERSION:
-        send_error(b, NP_LINK_E_BAD_VERSION, NP_LINK_VERSION, "version %u, this board speaks 1",
-                   ev->h.version);
+        send_error(b, NP_LINK_E_BAD_VERSION, b->o.version, "version %u, this board speaks %u",
+                   ev->h.version, b->o.version);
         break;
     case NP_RX_BAD_LENGTH:
         send_error(b, NP_LINK_E_BAD_LENGTH, b->o.max_payload, "len %u", ev->h.len);
@@ -417,6 +447,8 @@ size_t np_board_tx(np_board *b, uint8_t *p, size_t cap)
     size_t n = b->tx_len - b->tx_start;
     if (n > cap)
         n = cap;
+    if (n == 0)
+        return 0; /* (b->tx is NULL until the board first sends) */
     memcpy(p, b->tx + b->tx_start, n);
     b->tx_start += n;
     b->st.tx_bytes += n;
@@ -433,6 +465,8 @@ np_board *np_board_new(const np_board_opts *o)
     if (!b)
         return NULL;
     b->o = *o;
+    if (!b->o.version)
+        b->o.version = NP_LINK_VERSION;
     if (!b->o.max_payload)
         b->o.max_payload = DEFAULT_MAX_PAYLOAD;
     if (!b->o.window)
@@ -445,6 +479,7 @@ np_board *np_board_new(const np_board_opts *o)
         np_board_free(b);
         return NULL;
     }
+    b->rx.version = b->o.version;
     return b;
 }
 

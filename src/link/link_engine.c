@@ -50,6 +50,9 @@ struct np_host {
     np_host_stats st;
     np_journal_fail *fbuf;
     size_t fbuf_cap;
+    np_link_error stale_err; /* the last ERROR met while waiting for INFO without our nonce (code 0: none) */
+    unsigned stale_err_ver;
+    size_t config_len;       /* payload bytes of our CONFIG frame */
 };
 
 const char *np_link_fault_name(np_link_fault f)
@@ -57,6 +60,7 @@ const char *np_link_fault_name(np_link_fault f)
     static const char *const names[] = {
         "none", "timeout", "device gone", "stalled endpoint", "USB error", "corrupted frame",
         "short frame", "lost or repeated frame", "board error", "configuration refused", "journal",
+        "incompatible board",
     };
     return (unsigned)f < sizeof names / sizeof names[0] ? names[f] : "?";
 }
@@ -141,11 +145,16 @@ static const char *waiting_for(const np_host *h)
 
 void np_host_timeout(np_host *h, double seconds)
 {
-    char outs[128], part[160] = "";
+    char outs[128], part[480] = "";
     np_host_outstanding(h, outs, sizeof outs);
     size_t pend = np_link_rx_pending(&h->rx);
     if (pend)
         snprintf(part, sizeof part, "; %zu bytes of an unfinished frame arrived before the silence (a short frame?)", pend);
+    if (h->state == H_WAIT_INFO && h->stale_err.code)
+        snprintf(part + strlen(part), sizeof part - strlen(part),
+                 "; the board had sent ERROR %s (code %u, version %u frame: %s), not marked as the answer to this HELLO",
+                 np_link_errcode_name(h->stale_err.code), (unsigned)h->stale_err.code, h->stale_err_ver,
+                 h->stale_err.msg[0] ? h->stale_err.msg : "no message");
     np_host_fault(h, NP_FAULT_TIMEOUT,
                   "timeout: the board sent nothing for %.1f s while the host waited for %s; %s%s",
                   seconds, waiting_for(h), outs, part);
@@ -173,6 +182,17 @@ static size_t emit(np_host *h, uint8_t *buf, unsigned type, uint64_t tag, unsign
     return n;
 }
 
+/* The CONFIG payload for job j at p (section 4.2): its length, 0 when it cannot be encoded. */
+static size_t config_encode(const np_link_job *j, uint8_t *p)
+{
+    np_link_config c;
+    memset(&c, 0, sizeof c);
+    snprintf(c.unit, sizeof c.unit, "%s", j->unit->name);
+    snprintf(c.cfg, sizeof c.cfg, "%s", j->cfg_text);
+    c.lay = j->lay;
+    return np_link_config_encode(p, &c);
+}
+
 size_t np_host_pull(np_host *h, uint8_t *buf, size_t cap)
 {
     if (cap < NP_LINK_MAX_FRAME)
@@ -184,16 +204,7 @@ size_t np_host_pull(np_host *h, uint8_t *buf, size_t cap)
         h->state = H_WAIT_INFO;
         return emit(h, buf, NP_LINK_HELLO, h->o.nonce, 0, 0);
     case H_CONFIG: {
-        np_link_config c;
-        memset(&c, 0, sizeof c);
-        snprintf(c.unit, sizeof c.unit, "%s", j->unit->name);
-        snprintf(c.cfg, sizeof c.cfg, "%s", j->cfg_text);
-        c.lay = j->lay;
-        size_t len = np_link_config_encode(np_link_payload(buf), &c);
-        if (!len) {
-            np_host_fault(h, NP_FAULT_CONFIG, "unit name or configuration text too long for CONFIG");
-            return 0;
-        }
+        size_t len = config_encode(j, np_link_payload(buf)); /* fits: checked against INFO */
         h->state = H_WAIT_ACK;
         return emit(h, buf, NP_LINK_CONFIG, 0, 0, (unsigned)len);
     }
@@ -239,8 +250,24 @@ static void on_info(np_host *h, const np_link_rx_ev *ev)
         return;
     }
     if (in->version != NP_LINK_VERSION) {
-        np_host_fault(h, NP_FAULT_CONFIG, "the board speaks protocol version %u; this host speaks %d",
+        np_host_fault(h, NP_FAULT_INCOMPATIBLE, "the board speaks protocol version %u; this host speaks %d",
                       (unsigned)in->version, NP_LINK_VERSION);
+        return;
+    }
+    /* Section 4.1: the board must take the longest CONFIG; this host's own must fit in any case. */
+    uint8_t cp[NP_LINK_CONFIG_FIXED + NP_LINK_CFG_BYTES];
+    h->config_len = config_encode(h->j, cp);
+    if (!h->config_len) {
+        np_host_fault(h, NP_FAULT_CONFIG, "unit name or configuration text too long for CONFIG");
+        return;
+    }
+    if (in->max_payload < NP_LINK_MIN_PAYLOAD || in->max_payload < h->config_len) {
+        np_host_fault(h, NP_FAULT_INCOMPATIBLE,
+                      "the board '%s' announces max_payload %u bytes, less than the %d the protocol requires "
+                      "(docs/usb-protocol.md 4.1: the longest CONFIG payload, 36 + 256 bytes); this host's CONFIG "
+                      "for %s %s alone is %zu bytes",
+                      in->board_id, (unsigned)in->max_payload, NP_LINK_MIN_PAYLOAD, h->j->unit->name,
+                      h->j->cfg_text, h->config_len);
         return;
     }
     const np_link_layout *l = &h->j->lay;
@@ -339,16 +366,55 @@ static void on_result(np_host *h, const np_link_rx_ev *ev)
         h->o.on_progress(h->o.fail_ctx, h->st.verified);
 }
 
+/* The board answered HELLO with ERROR (seq 0, our nonce): it will not open a session. */
+static void hello_refused(np_host *h, const np_link_hdr *hd, const np_link_error *e)
+{
+    if (e->code == NP_LINK_E_BAD_VERSION) {
+        np_host_fault(h, NP_FAULT_INCOMPATIBLE,
+                      "the board refused HELLO: ERROR BAD_VERSION (code 3): it speaks protocol version %u, this host "
+                      "speaks %d (%s); use a noisepipe that speaks version %u, or a board that speaks %d",
+                      (unsigned)e->detail, NP_LINK_VERSION, e->msg[0] ? e->msg : "no message", (unsigned)e->detail,
+                      NP_LINK_VERSION);
+        return;
+    }
+    np_host_fault(h, NP_FAULT_BOARD, "the board refused HELLO: ERROR %s (code %u, detail %u, version %u frame): %s",
+                  np_link_errcode_name(e->code), (unsigned)e->code, (unsigned)e->detail, hd->version,
+                  e->msg[0] ? e->msg : "(no message)");
+}
+
 static void on_frame(np_host *h, const np_link_rx_ev *ev)
 {
     const np_link_hdr *hd = &ev->h;
     if (h->state == H_WAIT_INFO) {
-        if (hd->type == NP_LINK_INFO && hd->tag == h->o.nonce && hd->seq == 0) {
+        if (hd->type == NP_LINK_INFO && hd->tag == h->o.nonce && hd->seq == 0 && hd->version == NP_LINK_VERSION) {
             h->st.frames_in++;
             on_info(h, ev);
+        } else if (hd->type == NP_LINK_ERROR) {
+            np_link_error e;
+            int ok = np_link_error_decode(ev->payload, hd->len, &e) == 0;
+            if (ok && hd->tag == h->o.nonce && hd->seq == 0) {
+                h->st.frames_in++;
+                hello_refused(h, hd, &e); /* section 3: the answer to this HELLO */
+                return;
+            }
+            if (ok) { /* an earlier session's, or a board that does not echo the nonce: named on a time-out */
+                h->stale_err = e;
+                h->stale_err_ver = hd->version;
+            }
+            h->st.stale_bytes += NP_LINK_OVERHEAD + (uint64_t)hd->len;
         } else {
             h->st.stale_bytes += NP_LINK_OVERHEAD + (uint64_t)hd->len; /* an earlier session's */
         }
+        return;
+    }
+    if (hd->version != NP_LINK_VERSION) { /* an ERROR of another version, in a session: as any ERROR */
+        np_link_error e;
+        if (np_link_error_decode(ev->payload, hd->len, &e) != 0)
+            e.code = 0;
+        np_host_fault(h, e.code == NP_LINK_E_BAD_VERSION ? NP_FAULT_INCOMPATIBLE : NP_FAULT_BOARD,
+                      "the board sent a protocol version %u ERROR %s (code %u, detail %u): %s; this host speaks %d",
+                      hd->version, np_link_errcode_name(e.code), (unsigned)e.code, (unsigned)e.detail,
+                      e.msg[0] ? e.msg : "(no message)", NP_LINK_VERSION);
         return;
     }
     h->st.frames_in++;
@@ -436,7 +502,7 @@ static void on_stream_error(np_host *h, np_link_rx_event e, const np_link_rx_ev 
                       (unsigned)ev->crc_want);
         break;
     case NP_RX_BAD_VERSION:
-        np_host_fault(h, NP_FAULT_CONFIG, "the board sent a protocol version %u frame; this host speaks %d",
+        np_host_fault(h, NP_FAULT_INCOMPATIBLE, "the board sent a protocol version %u frame; this host speaks %d",
                       ev->h.version, NP_LINK_VERSION);
         break;
     case NP_RX_BAD_LENGTH:

@@ -14,7 +14,7 @@
 #include "np_cli.h"
 
 static const char journal_magic[] = "# noisepipe stream journal 2";
-enum { BINDINGS = 4 };
+enum { MAX_BINDINGS = 6 };
 
 static void bit_set(uint8_t *bm, uint64_t i) { bm[i >> 3] = (uint8_t)(bm[i >> 3] | 1u << (i & 7u)); }
 
@@ -56,17 +56,24 @@ static int parse_hex_u64(const char **s, uint64_t *v)
 
 /* What a journal of job j is bound to. */
 typedef struct bindings {
-    char text[BINDINGS][NP_JFILE_TEXT_MAX];
-    const char *ptr[BINDINGS];
+    char text[MAX_BINDINGS][NP_JFILE_TEXT_MAX];
+    const char *ptr[MAX_BINDINGS];
+    unsigned n;
 } bindings;
 
-static void bindings_of(const np_link_job *j, bindings *b)
+static void bindings_of(const np_link_job *j, const np_link_target *t, bindings *b)
 {
     snprintf(b->text[0], NP_JFILE_TEXT_MAX, "unit=%s", j->unit->name);
     snprintf(b->text[1], NP_JFILE_TEXT_MAX, "config=%s", j->cfg_text);
     snprintf(b->text[2], NP_JFILE_TEXT_MAX, "count=%llu", (unsigned long long)j->n);
     snprintf(b->text[3], NP_JFILE_TEXT_MAX, "vectors=%016llx", (unsigned long long)j->hash);
-    for (unsigned k = 0; k < BINDINGS; k++)
+    b->n = 4;
+    if (t) {
+        snprintf(b->text[4], NP_JFILE_TEXT_MAX, "size=%s", t->size);
+        snprintf(b->text[5], NP_JFILE_TEXT_MAX, "target=%s", t->target);
+        b->n = 6;
+    }
+    for (unsigned k = 0; k < b->n; k++)
         b->ptr[k] = b->text[k];
 }
 
@@ -138,7 +145,7 @@ static int read_journal(np_journal *jn, const char *path, const bindings *b, int
     if (!info)
         return np_errf(err, errlen, "out of memory");
     reader rd = { jn, NULL, 0, 0 };
-    int rc = resume ? np_jfile_resume(&jn->file, path, journal_magic, b->ptr, BINDINGS, record_line,
+    int rc = resume ? np_jfile_resume(&jn->file, path, journal_magic, b->ptr, b->n, record_line,
                                       &rd, info, err, errlen)
                     : np_jfile_read(path, journal_magic, NULL, 0, record_line, &rd, info, err, errlen);
     free(rd.pend);
@@ -147,15 +154,17 @@ static int read_journal(np_journal *jn, const char *path, const bindings *b, int
 }
 
 /*
- * Not resuming over an existing file: refuse to throw away the verified
- * vectors of an unfinished stream (of these vectors or others), or a file
- * that is not a usable journal.
+ * Not resuming over an existing file: never thrown away without force (it
+ * may hold verified vectors of these or other vectors, of this target or
+ * another), and never anything that is not a usable journal.
  */
-static int fresh_start_ok(const char *path, char *err, size_t errlen)
+static int fresh_start_ok(const char *path, int force, char *err, size_t errlen)
 {
     struct stat sb;
-    if (stat(path, &sb) != 0 || sb.st_size == 0)
+    if (stat(path, &sb) != 0 || (S_ISREG(sb.st_mode) && sb.st_size == 0))
         return 0;
+    if (!S_ISREG(sb.st_mode))
+        return np_errf(err, errlen, "journal %s exists and is not a regular file; not overwriting it", path);
     np_journal probe;
     memset(&probe, 0, sizeof probe);
     np_jfile_none(&probe.file);
@@ -166,15 +175,27 @@ static int fresh_start_ok(const char *path, char *err, size_t errlen)
     free(probe.fails);
     if (rc != NP_JFILE_OK)
         return np_errf(err, errlen, "%s exists and is not a usable journal (%s); not overwriting it", path, perr);
+    if (force)
+        return 0;
     if (had > 0 && had < n)
         return np_errf(err, errlen,
-                    "journal %s holds %llu verified vectors of an unfinished stream: continue it with --resume, or delete it",
-                    path, (unsigned long long)had);
-    return 0;
+                       "journal %s holds %llu verified vectors of an unfinished stream: continue it with --resume, "
+                       "or start over with --force",
+                       path, (unsigned long long)had);
+    return np_errf(err, errlen,
+                   "journal %s exists (%llu of %llu vectors verified): continue it with --resume, or start over "
+                   "with --force",
+                   path, (unsigned long long)had, (unsigned long long)n);
 }
 
 int np_journal_open(np_journal *jn, const char *path, const np_link_job *j, int resume,
                     char *err, size_t errlen)
+{
+    return np_journal_open_bound(jn, path, j, NULL, resume, 0, err, errlen);
+}
+
+int np_journal_open_bound(np_journal *jn, const char *path, const np_link_job *j,
+                          const np_link_target *t, int resume, int force, char *err, size_t errlen)
 {
     memset(jn, 0, sizeof *jn);
     np_jfile_none(&jn->file);
@@ -187,14 +208,17 @@ int np_journal_open(np_journal *jn, const char *path, const np_link_job *j, int 
     if (!path)
         return 0;
     bindings b;
-    bindings_of(j, &b);
+    bindings_of(j, t, &b);
     if (resume) {
         int rc = read_journal(jn, path, &b, 1, err, errlen);
         if (rc == NP_JFILE_MISSING)
             return np_errf(err, errlen, "cannot resume from journal %s: %s", path, strerror(ENOENT));
         if (rc == NP_JFILE_MISMATCH) {
             size_t n = strlen(err);
-            snprintf(err + n, errlen - n, ": it belongs to other vectors, not resuming");
+            const char *whose = strstr(err, "'target=") ? "another target: the results of one are never taken for another's"
+                                : strstr(err, "'size=") ? "another vector file"
+                                                        : "other vectors";
+            snprintf(err + n, errlen - n, ": it belongs to %s, not resuming", whose);
         }
         if (rc != NP_JFILE_OK)
             return -1;
@@ -202,11 +226,9 @@ int np_journal_open(np_journal *jn, const char *path, const np_link_job *j, int 
         jn->prior_errors = jn->n_errors;
         return 0;
     }
-    if (fresh_start_ok(path, err, errlen) != 0)
+    if (fresh_start_ok(path, force, err, errlen) != 0)
         return -1;
-    return np_jfile_create(&jn->file, path, journal_magic, b.ptr, BINDINGS, 1, err, errlen) == NP_JFILE_OK
-               ? 0
-               : -1;
+    return np_jfile_create(&jn->file, path, journal_magic, b.ptr, b.n, 1, err, errlen) == NP_JFILE_OK ? 0 : -1;
 }
 
 int np_journal_append(np_journal *jn, uint64_t first, uint64_t count,

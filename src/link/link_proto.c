@@ -46,7 +46,7 @@ static void header_encode(uint8_t *f, const np_link_hdr *h)
 {
     f[NP_LINK_POS_SYNC] = NP_LINK_SYNC0;
     f[NP_LINK_POS_SYNC + 1] = NP_LINK_SYNC1;
-    f[NP_LINK_POS_VER] = NP_LINK_VERSION;
+    f[NP_LINK_POS_VER] = (uint8_t)(h->version ? h->version : NP_LINK_VERSION);
     f[NP_LINK_POS_TYPE] = (uint8_t)(h->type & 0xffu);
     np_link_put32(f + NP_LINK_POS_SEQ, h->seq);
     np_link_put64(f + NP_LINK_POS_TAG, h->tag);
@@ -94,6 +94,7 @@ int np_link_rx_init(np_link_rx *rx, unsigned max_payload)
 {
     memset(rx, 0, sizeof *rx);
     rx->max_payload = max_payload;
+    rx->version = NP_LINK_VERSION;
     rx->cap = (size_t)NP_LINK_OVERHEAD + max_payload;
     rx->buf = malloc(rx->cap);
     return rx->buf ? 0 : -1;
@@ -160,7 +161,8 @@ np_link_rx_event np_link_rx_step(np_link_rx *rx, const uint8_t **p, size_t *n, n
             np_link_header_decode(f, &ev->h);
             if (!np_link_header_ok(f))
                 return reject(rx, NP_RX_BAD_HEADER); /* in step: a header must start here */
-            if (ev->h.version != NP_LINK_VERSION)
+            /* An ERROR frame is read whatever its ver: its layout never changes (section 10). */
+            if (ev->h.version != rx->version && ev->h.type != NP_LINK_ERROR)
                 return reject(rx, NP_RX_BAD_VERSION);
             if (ev->h.len % 4u != 0 || ev->h.len > rx->max_payload)
                 return reject(rx, NP_RX_BAD_LENGTH);
@@ -304,8 +306,9 @@ int np_link_info_decode(const uint8_t *p, size_t len, np_link_info *i)
     if (i->n_slots > NP_LINK_MAX_SLOTS ||
         len != NP_LINK_INFO_FIXED + (size_t)i->n_slots * NP_LINK_SLOT_BYTES)
         return -1;
-    if (i->max_payload < NP_LINK_MIN_PAYLOAD || i->max_payload > NP_LINK_MAX_PAYLOAD ||
-        i->max_payload % 4u != 0 || i->window < 1)
+    /* (A max_payload below NP_LINK_MIN_PAYLOAD is well-formed; the host refuses it with its own message.) */
+    if (i->max_payload == 0 || i->max_payload > NP_LINK_MAX_PAYLOAD || i->max_payload % 4u != 0 ||
+        i->window < 1)
         return -1;
     for (uint32_t k = 0; k < i->n_slots; k++) {
         const uint8_t *s = p + NP_LINK_INFO_FIXED + (size_t)k * NP_LINK_SLOT_BYTES;

@@ -281,13 +281,35 @@ static void close_board(usb_run *r)
         libusb_exit(r->ctx);
 }
 
-int np_link_usb_run(np_host *h, const np_usb_opts *o, np_usb_info *info, char *err, size_t errlen)
+struct np_usb_board {
+    usb_run r;
+};
+
+/* iSerialNumber's string into info->serial ("" when the device has none or it cannot be read). */
+static void read_serial(usb_run *r, np_usb_info *info)
 {
-    usb_run *r = calloc(1, sizeof *r);
-    if (!r)
+    struct libusb_device_descriptor dd;
+    info->serial[0] = '\0';
+    if (libusb_get_device_descriptor(libusb_get_device(r->dh), &dd) != 0)
+        return;
+    unsigned char s[sizeof info->serial];
+    int n = dd.iSerialNumber ? libusb_get_string_descriptor_ascii(r->dh, dd.iSerialNumber, s, (int)sizeof s - 1) : 0;
+    if (n <= 0)
+        return;
+    s[n] = '\0';
+    for (int k = 0; k < n; k++)
+        info->serial[k] = s[k] > 0x20 && s[k] < 0x7f ? (char)s[k] : '_';
+    info->serial[n] = '\0';
+}
+
+int np_link_usb_open(np_usb_board **out, const np_usb_opts *o, np_usb_info *info, char *err, size_t errlen)
+{
+    *out = NULL;
+    np_usb_board *ub = calloc(1, sizeof *ub);
+    if (!ub)
         return errf(err, errlen, "out of memory");
+    usb_run *r = &ub->r;
     memset(info, 0, sizeof *info);
-    r->h = h;
     r->iface = o->interface < 0 ? 0u : (unsigned)o->interface;
     r->n = o->in_flight ? o->in_flight : 8u;
     if (r->n > MAX_IN_FLIGHT)
@@ -296,9 +318,12 @@ int np_link_usb_run(np_host *h, const np_usb_opts *o, np_usb_info *info, char *e
     r->stalled_ep = -1;
     if (open_board(r, o, info, err, errlen) != 0) {
         close_board(r);
-        free(r);
+        free(ub);
         return -1;
     }
+    read_serial(r, info);
+    info->vid = o->vid;
+    info->pid = o->pid;
     /* IN transfers: a multiple of wMaxPacketSize, so the board cannot overflow them. */
     r->in_bytes = ((size_t)IN_BYTES + r->maxp - 1u) / r->maxp * r->maxp;
     for (unsigned k = 0; k < r->n; k++) {
@@ -309,7 +334,7 @@ int np_link_usb_run(np_host *h, const np_usb_opts *o, np_usb_info *info, char *e
         r->out[k].run = r->in[k].run = r;
         if (!r->out[k].t || !r->out[k].buf || !r->in[k].t || !r->in[k].buf) {
             close_board(r);
-            free(r);
+            free(ub);
             return errf(err, errlen, "out of memory for transfers");
         }
     }
@@ -318,7 +343,22 @@ int np_link_usb_run(np_host *h, const np_usb_opts *o, np_usb_info *info, char *e
     info->max_packet = r->maxp;
     info->in_flight = r->n;
     info->in_transfer = r->in_bytes;
+    *out = ub;
+    return 0;
+}
 
+void np_link_usb_close(np_usb_board *ub)
+{
+    if (!ub)
+        return;
+    close_board(&ub->r);
+    free(ub);
+}
+
+void np_link_usb_stream(np_usb_board *ub, np_host *h)
+{
+    usb_run *r = &ub->r;
+    r->h = h;
     r->last = r->last_out = np_now();
     for (unsigned k = 0; k < r->n; k++)
         if (submit_in(r, k) != 0)
@@ -380,7 +420,4 @@ int np_link_usb_run(np_host *h, const np_usb_opts *o, np_usb_info *info, char *e
     }
     if (r->stalled_ep >= 0)
         libusb_clear_halt(r->dh, (unsigned char)r->stalled_ep);
-    close_board(r);
-    free(r);
-    return 0;
 }

@@ -55,7 +55,13 @@ enum {
     NP_LINK_CRC_BYTES = 4,
     NP_LINK_OVERHEAD = NP_LINK_HDR_BYTES + NP_LINK_CRC_BYTES,
     NP_LINK_MAX_PAYLOAD = 65532, /* len is 16 bits, a multiple of 4 */
-    NP_LINK_MIN_PAYLOAD = 64,
+    /*
+     * A board's max_payload at least (section 4.1): the longest CONFIG
+     * payload, 36 bytes + 256 of configuration text. The host refuses a
+     * board that announces less. The host's own max_payload for IN frames is
+     * NP_LINK_MAX_PAYLOAD.
+     */
+    NP_LINK_MIN_PAYLOAD = 292,
     NP_LINK_MAX_FRAME = NP_LINK_OVERHEAD + NP_LINK_MAX_PAYLOAD,
     NP_LINK_MAX_COUNT = 65535
 };
@@ -143,10 +149,11 @@ static inline uint64_t np_link_get64(const uint8_t *p)
 static inline uint8_t *np_link_payload(uint8_t *f) { return f + NP_LINK_HDR_BYTES; }
 /*
  * Finish the frame at f whose h->len payload bytes are already in place:
- * write the header (version forced to NP_LINK_VERSION) and both CRCs.
+ * write the header and both CRCs.
  * Returns the frame's length, NP_LINK_OVERHEAD + h->len.
  */
 size_t np_link_seal(uint8_t *f, const np_link_hdr *h);
+/* (h->version 0 is NP_LINK_VERSION; another version only for tests of section 10.) */
 /* Header, payload copied from p (may be NULL when h->len is 0), CRCs: the frame length. */
 size_t np_link_encode(uint8_t *f, const np_link_hdr *h, const void *p);
 /* 1 when the 24 bytes at p are a header with sync and a correct hcrc (version not checked). */
@@ -160,7 +167,7 @@ typedef enum np_link_rx_event {
     NP_RX_MORE = 0,     /* all input consumed, no complete frame yet */
     NP_RX_FRAME,        /* a frame: ev->h, ev->payload */
     NP_RX_BAD_HEADER,   /* in step, and no header where one must start */
-    NP_RX_BAD_VERSION,  /* ev->h valid; ver != 1 */
+    NP_RX_BAD_VERSION,  /* ev->h valid; ver is not rx->version (and the frame is no ERROR) */
     NP_RX_BAD_LENGTH,   /* ev->h valid; len not a multiple of 4 or > max_payload */
     NP_RX_BAD_CRC,      /* ev->h valid; payload CRC wrong (ev->crc_got/crc_want) */
     NP_RX_SHORT         /* ev->h valid; payload cut off by a header at ev->short_at */
@@ -177,6 +184,7 @@ typedef struct np_link_rx {
     uint8_t *buf;          /* input copied here; frames parsed in place */
     size_t cap, start, have; /* buf[start..have) not yet parsed */
     unsigned max_payload;
+    unsigned version;      /* the ver read (NP_LINK_VERSION); ERROR frames of any ver are read too (section 10) */
     int in_step;
     uint64_t discarded;    /* bytes skipped while hunting */
     uint64_t bytes;        /* bytes taken in */
@@ -302,6 +310,7 @@ typedef struct np_board_fault {
 
 typedef struct np_board_opts {
     const char *board_id;  /* NULL: "noisepipe board emulator" */
+    unsigned version;      /* protocol version the board speaks; 0: NP_LINK_VERSION (tests of section 10) */
     unsigned max_payload;  /* 0: 16384 */
     unsigned window;       /* 0: 8 */
     size_t tx_limit;       /* bytes queued IN before OUT is refused (NAK); 0: 4 frames */
@@ -374,6 +383,8 @@ void np_link_job_free(np_link_job *j);
  *   config=<configuration...> *<crc>
  *   count=<vectors, decimal> *<crc>
  *   vectors=<hash, 16 hex digits> *<crc>   np_link_job.hash: unit, configuration, every record
+ *   size=<bytes of the vector file> *<crc>  or "generated" (--random), "pipe" (stdin, not a file)
+ *   target=<emulator | usb VID:PID serial S> *<crc>
  *   E <index> <got word>... *<crc>          a failing vector of the next R line
  *   R <first> <count> <errors> *<crc>       vectors first..first+count-1 verified
  *
@@ -383,6 +394,15 @@ void np_link_job_free(np_link_job *j);
  * it held is sent again; a complete line with a bad CRC, a range that
  * overlaps another, or bindings of other vectors make the journal unusable.
  */
+
+/*
+ * What a journal is bound to besides the vectors (section 11): the size of
+ * the vector file, and the target, "emulator" or "usb VID:PID serial S".
+ */
+typedef struct np_link_target {
+    char size[64];   /* "123456" bytes of the vector file; "generated" (--random); "pipe" */
+    char target[192];
+} np_link_target;
 
 typedef struct np_journal_fail {
     uint64_t index;
@@ -404,12 +424,20 @@ typedef struct np_journal {
 /*
  * Open the journal for job j. path NULL: in memory only. resume: the file
  * must exist and describe these vectors; its verified ranges are loaded.
- * Not resume: an existing journal of an unfinished stream is refused (so
- * that nothing verified is thrown away by mistake); otherwise a new journal
- * is started. 0, or -1 with a message in err.
+ * Not resume: an existing non-empty file is refused (so that nothing
+ * verified is thrown away by mistake); otherwise a new journal is started.
+ * 0, or -1 with a message in err.
  */
 int np_journal_open(np_journal *jn, const char *path, const np_link_job *j, int resume,
                     char *err, size_t errlen);
+/*
+ * The same, bound to the vector file's size and the target too (t NULL: no
+ * such bindings, for tests). force: an existing file that is not to be
+ * resumed is replaced (only then); without it any existing non-empty file
+ * is refused (exit 2 for the caller), so nothing verified is thrown away.
+ */
+int np_journal_open_bound(np_journal *jn, const char *path, const np_link_job *j,
+                          const np_link_target *t, int resume, int force, char *err, size_t errlen);
 /* Record a verified range with its failures (each with the got words). 0, or -1 with err. */
 int np_journal_append(np_journal *jn, uint64_t first, uint64_t count,
                       const np_journal_fail *fails, size_t n_fails, char *err, size_t errlen);
@@ -435,7 +463,8 @@ typedef enum np_link_fault {
     NP_FAULT_SEQ,        /* lost, repeated or unexpected IN frame */
     NP_FAULT_BOARD,      /* the board sent ERROR */
     NP_FAULT_CONFIG,     /* the board does not run the unit/configuration (usage) */
-    NP_FAULT_JOURNAL     /* the journal could not be written (usage) */
+    NP_FAULT_JOURNAL,    /* the journal could not be written (usage) */
+    NP_FAULT_INCOMPATIBLE /* the board does not speak this protocol: version, max_payload (usage) */
 } np_link_fault;
 
 const char *np_link_fault_name(np_link_fault f);
@@ -520,15 +549,23 @@ typedef struct np_usb_info {
     unsigned in_flight;
     size_t in_transfer;    /* bytes per IN transfer */
     int speed;             /* libusb_speed */
+    uint16_t vid, pid;
+    char serial[128];      /* iSerialNumber's string; "" when the device has none */
 } np_usb_info;
 
+typedef struct np_usb_board np_usb_board;
+
 /*
- * Open the board, stream the session of h through libusb asynchronous bulk
- * transfers, close. 0 when the session ended (see np_host_done and
- * np_host_get_fault); -1 when the board could not be opened or claimed
- * (message in err: a usage problem). Only with NOISEPIPE_HAVE_USB.
+ * Open the board: find VID:PID, claim the interface, find its first bulk
+ * pair (or the endpoints given), clear their halt, read the serial number
+ * (info). 0, or -1 when it could not be opened or claimed (message in err:
+ * a usage problem). Only with NOISEPIPE_HAVE_USB.
  */
-int np_link_usb_run(np_host *h, const np_usb_opts *o, np_usb_info *info, char *err,
-                    size_t errlen);
+int np_link_usb_open(np_usb_board **out, const np_usb_opts *o, np_usb_info *info, char *err,
+                     size_t errlen);
+/* Stream the session of h through libusb asynchronous bulk transfers until it ends (done or fault). */
+void np_link_usb_stream(np_usb_board *b, np_host *h);
+/* Release the interface and close (NULL is fine). */
+void np_link_usb_close(np_usb_board *b);
 
 #endif /* NP_LINK_H */

@@ -1,0 +1,28 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * np_child.h - start a program in a child process with its standard output
+ * and error in files: how test_link and test_link_usb run `noisepipe stream`.
+ */
+#ifndef NP_CHILD_H
+#define NP_CHILD_H
+
+#include <fcntl.h>
+#include <stdio.h>
+#include <unistd.h>
+
+/* fork + execv(argv[0], argv), stdout to out, stderr to err; the child's pid (-1 when fork failed). */
+static inline pid_t np_child_start(char *const *argv, const char *out, const char *err)
+{
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid == 0) {
+        int fo = open(out, O_WRONLY | O_CREAT | O_TRUNC, 0644), fe = open(err, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        dup2(fo, 1);
+        dup2(fe, 2);
+        execv(argv[0], argv);
+        _exit(127);
+    }
+    return pid;
+}
+
+#endif /* NP_CHILD_H */
