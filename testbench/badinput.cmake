@@ -50,3 +50,24 @@ file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/bad_deep.json "{ \"noisepipe_scene\": ${n
 add_test(NAME badinput.scene_deep_nesting COMMAND ${CMAKE_COMMAND}
   -DCMD=$<TARGET_FILE:noisepipe> -DARGS=render\;${CMAKE_CURRENT_BINARY_DIR}/bad_deep.json
   -DWANT_RC=2 "-DWANT=JSON nested deeper than 1000 levels" -P ${CMAKE_CURRENT_SOURCE_DIR}/render_expect.cmake)
+
+# Vector and results files (issue 11 items 4 and 9): each wants exit 2 and the hint.
+function(np_bad_sh name script)
+  add_test(NAME badinput.${name}
+    COMMAND sh -c "set -u; np=\"$0\"; d=\"$1\"; rm -rf \"$d\"; mkdir -p \"$d\"; cd \"$d\" || exit 1
+                   want() { \"$@\" > out.txt 2> err.txt; s=$?; cat err.txt; test $s -eq 2 || { echo \"exit $s, want 2\"; exit 1; }; }
+                   has() { grep -qF -- \"$1\" err.txt || { echo \"stderr does not say: $1\"; exit 1; }; }
+                   ${script}"
+            $<TARGET_FILE:noisepipe> ${CMAKE_CURRENT_BINARY_DIR}/badinput_${name})
+endfunction()
+np_bad_sh(results_other_unit "\"$np\" vectors --unit classic3 -n 3 -o c.vec && \"$np\" vectors --unit simplex3 -n 3 -o s.vec &&
+  \"$np\" device s.vec --format results -o s.res && want \"$np\" verify --results s.res c.vec && has \"s.res:2: field 'unit': the results are for unit simplex3, the vectors for unit classic3\"")
+np_bad_sh(results_other_count "\"$np\" vectors --unit classic3 -n 3 -o c.vec && \"$np\" device c.vec --format results -o c.res &&
+  sed 's|^// count .*|// count 5|' c.res > c5.res && want \"$np\" verify --results c5.res c.vec && has \"field 'count': the results are for count 5\"")
+np_bad_sh(vectors_bom "\"$np\" vectors --unit classic3 -n 3 -o c.vec && printf '\\357\\273\\277' > b.vec && cat c.vec >> b.vec &&
+  want \"$np\" verify b.vec && has 'b.vec:1: the file starts with a UTF-8 byte-order mark'")
+np_bad_sh(vectors_cr_only "\"$np\" vectors --unit classic3 -n 3 -o c.vec && tr '\\n' '\\r' < c.vec > r.vec &&
+  want \"$np\" verify r.vec && has 'CR-only (classic Mac) line endings'")
+np_bad_sh(vectors_coe "\"$np\" vectors --unit classic3 -n 3 --format coe -o c.coe &&
+  want \"$np\" verify c.coe && has 'this is a Xilinx .coe export'")
+np_bad_sh(config_not_a_number "want \"$np\" vectors --unit classic3 --config out_bits=abc -n 2 && has 'out_bits=abc: not a number'")

@@ -595,7 +595,7 @@ static const bad_kind bad_kinds[] = {
     { "bad_config_key_twice", NULL, -3, -1, "# config out_bits=8 s_frac=12 lerp_frac=11 s_frac=12", 0,
       "bad.vec:%u: bad config 'out_bits=8 s_frac=12 lerp_frac=11 s_frac=12' for unit classic3: key s_frac given twice" },
     { "bad_config_hex", NULL, -3, -1, "# config out_bits=0x8 s_frac=12 lerp_frac=11", 0,
-      "bad.vec:%u: bad config 'out_bits=0x8 s_frac=12 lerp_frac=11' for unit classic3: out_bits=0x8: expected a "
+      "bad.vec:%u: bad config 'out_bits=0x8 s_frac=12 lerp_frac=11' for unit classic3: out_bits=0x8: not a number: expected a "
       "decimal integer in 2..16" },
     { "bad_field_decl", NULL, -10, -1, "# field f out 8 s8 Q3.5", 0,
       "bad.vec:%u: field f: header declares 'f out 8 s8 Q3.5', but unit classic3" },

@@ -202,7 +202,12 @@ int np_unit_cfg_set(const np_unit *u, void *cfg, const char *key, const char *va
         return -1;
     }
     if (np_unit_parse_uint(value, k->lo, k->hi, &v) != 0) {
-        snprintf(err, errlen, "%s=%s: expected a decimal integer in %u..%u", key, value, k->lo, k->hi);
+        /* Say which: not a number at all, or a number out of the key's range. */
+        int digits = *value != '\0';
+        for (const char *p = value; *p; p++)
+            digits &= *p >= '0' && *p <= '9';
+        snprintf(err, errlen, "%s=%s: %s: expected a decimal integer in %u..%u", key, value,
+                 digits ? "out of range" : "not a number", k->lo, k->hi);
         return -1;
     }
     np_unit_key_put(k, cfg, v);

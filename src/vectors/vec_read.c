@@ -95,9 +95,16 @@ static int lines_next(np_vec_lines *L, char **s)
     char *b = L->buf;
     if (memchr(b, '\0', (size_t)n))
         return lerr(L, "NUL byte in line: not a text file");
+    if (L->lineno == 1 && n >= 3 && (unsigned char)b[0] == 0xef && (unsigned char)b[1] == 0xbb &&
+        (unsigned char)b[2] == 0xbf)
+        return lerr(L, "the file starts with a UTF-8 byte-order mark (an editor's BOM): save it as plain text "
+                       "without one (e.g. sed -i '1s/^\\xEF\\xBB\\xBF//' FILE)");
     while (n > 0 && (b[n - 1] == '\n' || b[n - 1] == '\r' || b[n - 1] == ' ' || b[n - 1] == '\t'))
         n--;
     b[n] = '\0';
+    if (memchr(b, '\r', (size_t)n))
+        return lerr(L, "carriage return inside a line: the file has CR-only (classic Mac) line endings; "
+                       "convert them to LF (tr '\\r' '\\n' < FILE)");
     while (*b == ' ' || *b == '\t')
         b++;
     *s = b;
@@ -206,6 +213,7 @@ typedef struct hdr_state {
     unsigned n_field;
     uint64_t first_line; /* first non-blank line */
     int first_slashes;   /* it starts with "//": a $readmemh or results file */
+    int first_coe;       /* it starts with "memory_initialization_radix" or a ";" comment: a Xilinx .coe file */
 } hdr_state;
 
 /* Copy s into dst with every run of blanks made one space. */
@@ -318,6 +326,8 @@ static int header_finish(np_vec_reader *r, const hdr_state *hs, uint64_t at)
                        NP_VEC_VERSION,
                        hs->first_slashes ? " (this looks like a $readmemh export or a results file;"
                                            " give the text vector file)"
+                       : hs->first_coe   ? " (this is a Xilinx .coe export, for initialising a block RAM;"
+                                           " give the text vector file it was written from)"
                                          : "");
     if (strncmp(hs->version.text, "results", 7) == 0)
         return hdr_err(r, hs->version.line, "this is a device results file, not a vector file");
@@ -370,6 +380,7 @@ int np_vec_open(np_vec_reader *r, const char *path)
         if (!hs.first_line) {
             hs.first_line = r->L.lineno;
             hs.first_slashes = s[0] == '/' && s[1] == '/';
+            hs.first_coe = s[0] == ';' || strncmp(s, "memory_initialization_radix", 27) == 0;
         }
         if (*s != '#') {
             r->pending = 1;
@@ -470,6 +481,52 @@ static int results_packed(np_vec_results *rr, const char *s, np_vec_rec *rec)
     return 0;
 }
 
+/*
+ * A comment line of a results file. The header that `device --format
+ * results` writes ("// unit U", "// config ...", "// seed S", "// level L",
+ * "// count N") must describe the vectors being checked: results of another
+ * unit, configuration or vector set are refused, naming the line. Other
+ * comments, and results files without a header, are accepted.
+ */
+static int results_header_line(np_vec_results *rr, const char *s)
+{
+    while (*s == ' ')
+        s++;
+    const np_vec_header *h = rr->h;
+    char want[320];
+    const char *key = NULL, *val = NULL;
+    static const char *const keys[] = { "unit ", "config ", "seed ", "level ", "count " };
+    for (unsigned k = 0; k < sizeof keys / sizeof keys[0] && !key; k++)
+        if (strncmp(s, keys[k], strlen(keys[k])) == 0) {
+            key = keys[k];
+            val = s + strlen(keys[k]);
+        }
+    if (!key)
+        return 0;
+    if (strcmp(key, "unit ") == 0)
+        snprintf(want, sizeof want, "%s", h->unit->name);
+    else if (strcmp(key, "config ") == 0)
+        snprintf(want, sizeof want, "%s", h->cfg_text);
+    else if (strcmp(key, "seed ") == 0 && h->has_seed)
+        snprintf(want, sizeof want, "%llu", (unsigned long long)h->seed);
+    else if (strcmp(key, "level ") == 0 && h->level)
+        snprintf(want, sizeof want, "%u", h->level);
+    else if (strcmp(key, "count ") == 0)
+        snprintf(want, sizeof want, "%llu", (unsigned long long)h->count);
+    else
+        return 0; /* the vectors do not say: nothing to compare */
+    size_t n = strlen(val);
+    while (n && val[n - 1] == ' ')
+        n--;
+    if (strlen(want) != n || strncmp(val, want, n) != 0)
+    {
+        int kl = (int)strlen(key) - 1;
+        return lerr(&rr->L, "field '%.*s': the results are for %.*s %.*s, the vectors for %.*s %s: results of "
+                    "other vectors", kl, key, kl, key, (int)n, val, kl, key, want);
+    }
+    return 0;
+}
+
 int np_vec_results_read(np_vec_results *rr, np_vec_rec *rec)
 {
     char *s;
@@ -483,7 +540,12 @@ int np_vec_results_read(np_vec_results *rr, np_vec_rec *rec)
                             (unsigned long long)rr->n, (unsigned long long)rr->h->count);
             return 0;
         }
-        if (*s == '\0' || *s == '#' || (s[0] == '/' && s[1] == '/'))
+        if (*s == '#' || (s[0] == '/' && s[1] == '/')) {
+            if (results_header_line(rr, s + (*s == '#' ? 1 : 2)) != 0)
+                return -1;
+            continue;
+        }
+        if (*s == '\0')
             continue;
         if (*s == '@') {
             uint64_t a;
