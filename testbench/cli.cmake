@@ -41,3 +41,8 @@ add_test(NAME cli.vectors_output_kinds
                  \"$0\" vectors --unit classic3 -n 5 -o \"$d/l\" && test -L \"$d/l\" && test -s \"$d/t\" || { echo 'symlink'; exit 1; }
                  ls \"$d\" | grep -q tmp && { echo 'a temporary file was left'; exit 1; }; exit 0"
           $<TARGET_FILE:noisepipe> ${CMAKE_CURRENT_BINARY_DIR}/cli_outkinds)
+# render shows progress too (4096 x 4096 used to take minutes in silence).
+add_test(NAME cli.render_progress
+  COMMAND sh -c "\"$0\" render embedded:wood -o \"$1\" --progress 2>&1 >/dev/null | grep -q '^render: float reference, spans: 100.0%' &&
+                 \"$0\" render embedded:wood -o \"$1\" --progress 2>&1 >/dev/null | grep -q '^render: fdiff cycle model, spans: 100.0%'"
+          $<TARGET_FILE:noisepipe> ${CMAKE_CURRENT_BINARY_DIR}/cli_render_progress)

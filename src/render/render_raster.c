@@ -274,8 +274,11 @@ int np_render_reference(np_render_frame *fr)
     for (size_t i = 0; i < npx; i++)
         for (int ch = 0; ch < 3; ch++)
             fr->ref[3 * i + (size_t)ch] = sc->background[ch];
+    np_progress pr;
+    np_progress_start(&pr, "render: float reference, spans", fr->n_spans);
     double t0 = np_now();
     for (size_t i = 0; i < fr->n_spans; i++) {
+        np_progress_update(&pr, i + 1u); /* counted as it starts: the last update is 100 % */
         const np_rspan *s = &fr->spans[i];
         double *row = fr->ref + ((size_t)s->hw.y * sc->width + s->hw.x0) * 3;
         for (uint32_t k = 0; k < s->hw.n; k++) {
@@ -286,6 +289,7 @@ int np_render_reference(np_render_frame *fr)
         }
     }
     fr->ref_seconds = np_now() - t0;
+    np_progress_end(&pr);
     return 0;
 }
 

@@ -54,8 +54,16 @@ static int run_cycles(const np_render_frame *fr, const np_span_engine *e, const 
     if (np_span_sim_init(&m, e, ecfg, &fr->regs))
         return -1;
     size_t next = 0;
-    uint64_t limit = (fr->pixels + fr->n_spans + 16u) * CYCLE_LIMIT_PER_PIXEL;
+    uint64_t limit = (fr->pixels + fr->n_spans + 16u) * CYCLE_LIMIT_PER_PIXEL, shown = 0;
+    char label[64];
+    snprintf(label, sizeof label, "render: %s cycle model, spans", e->name);
+    np_progress pr;
+    np_progress_start(&pr, label, fr->n_spans);
     while ((next < fr->n_spans || !np_span_sim_idle(&m)) && m.stats.cycles < limit) {
+        if (next != shown) {
+            shown = next;
+            np_progress_update(&pr, next);
+        }
         np_span_port p;
         memset(&p, 0, sizeof p);
         p.in_valid = next < fr->n_spans;
@@ -68,6 +76,7 @@ static int run_cycles(const np_render_frame *fr, const np_span_engine *e, const 
             next++;
         np_span_sim_clock(&m, &p);
     }
+    np_progress_end(&pr);
     *st = m.stats;
     np_span_sim_free(&m);
     return 0;
@@ -89,12 +98,18 @@ int np_render_engine(const np_render_frame *fr, const np_span_engine *e, const v
     np_span_counts cnt;
     memset(&cnt, 0, sizeof cnt);
     e->init(core, ecfg, &fr->regs);
+    char label[64];
+    snprintf(label, sizeof label, "render: %s bit-exact model, spans", e->name);
+    np_progress pr;
+    np_progress_start(&pr, label, fr->n_spans);
     double t0 = np_now();
     for (size_t i = 0; i < fr->n_spans; i++) {
         np_span_run(e, core, sig, &fr->spans[i].hw, px, &cnt, NULL, NULL);
         put_pixels(fr->sc, run->rgb, px, fr->spans[i].hw.n);
+        np_progress_update(&pr, i + 1u);
     }
     run->model_seconds = np_now() - t0;
+    np_progress_end(&pr);
     free(px);
     free(core);
     free(sig);
