@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 
 #include "np_cli.h"
+#include "np_outfile.h"
 #include "np_cmd.h"
 #include "np_pareto.h"
 #include "np_render.h"
@@ -41,23 +42,30 @@ static const char usage_text[] =
     "  multipliers, weight bits): max error against the float reference, cycles per frame, model\n"
     "  time (best of --repeat N runs, default 3); DIR/error_runtime.{md,csv}, plots and images.\n";
 
-/* Open DIR/name.tmp for writing; np_commit() renames it into place. */
+/*
+ * Open DIR/name for writing through np_outfile (atomic for a regular file,
+ * written through a symbolic link, refused for a directory; removed on a
+ * signal); commit() finishes it. One report file is open at a time.
+ */
+static np_outfile report_out;
+
 static FILE *open_tmp(const char *dir, const char *name, char *tmp, char *final, size_t len)
 {
     snprintf(final, len, "%s/%s", dir, name);
-    snprintf(tmp, len, "%s/.%s.tmp", dir, name);
-    FILE *f = fopen(tmp, "w");
-    if (!f)
-        np_err("report", "cannot write %s: %s", tmp, strerror(errno));
-    return f;
+    snprintf(tmp, len, "%s", final);
+    if (np_outfile_open(&report_out, final, "w") != 0) {
+        np_err("report", "cannot write %s", report_out.err);
+        return NULL;
+    }
+    return report_out.f;
 }
 
 static int commit(FILE *f, const char *tmp, const char *final)
 {
-    int bad = ferror(f);
-    if (fclose(f) != 0 || bad || rename(tmp, final) != 0) {
-        np_err("report", "cannot write %s: %s", final, strerror(errno));
-        remove(tmp);
+    (void)tmp;
+    (void)final;
+    if (f != report_out.f || np_outfile_close(&report_out, 1) != 0) {
+        np_err("report", "cannot write %s", report_out.err);
         return -1;
     }
     return 0;

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "np_cli.h"
+#include "np_outfile.h"
 #include "render_cli.h"
 
 int np_render_hash_add(hash_list *l, const char *scene, const char *image, const char *hash, const char *cfg)
@@ -60,11 +61,12 @@ int np_render_hash_read(const char *path, hash_list *l)
 
 int np_render_hash_write(const char *path, const hash_list *l)
 {
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        np_err("render", "%s: cannot create: %s", path, strerror(errno));
+    np_outfile o;
+    if (np_outfile_open(&o, path, "w") != 0) {
+        np_err("render", "%s", o.err);
         return -1;
     }
+    FILE *f = o.f;
     fputs("# noisepipe golden images: SHA-256 of each image as a binary PPM (np_image_hash;\n"
           "# `noisepipe render --ppm` writes the PPM files, `sha256sum` of them gives these).\n"
           "# Written by `noisepipe render --write-hashes`; checked by `noisepipe render --hashes`\n"
@@ -73,7 +75,11 @@ int np_render_hash_write(const char *path, const hash_list *l)
           f);
     for (size_t i = 0; i < l->n; i++)
         fprintf(f, "%s %s %s %s\n", l->r[i].scene, l->r[i].image, l->r[i].hash, l->r[i].cfg);
-    return fclose(f) == 0 ? 0 : -1;
+    if (np_outfile_close(&o, 1) != 0) {
+        np_err("render", "%s", o.err);
+        return -1;
+    }
+    return 0;
 }
 
 /* Compare got with the golden list; prints each difference. Returns the number of failures. */
