@@ -46,3 +46,22 @@ add_test(NAME cli.render_progress
   COMMAND sh -c "\"$0\" render embedded:wood -o \"$1\" --progress 2>&1 >/dev/null | grep -q '^render: float reference, spans: 100.0%' &&
                  \"$0\" render embedded:wood -o \"$1\" --progress 2>&1 >/dev/null | grep -q '^render: fdiff cycle model, spans: 100.0%'"
           $<TARGET_FILE:noisepipe> ${CMAKE_CURRENT_BINARY_DIR}/cli_render_progress)
+# SIGINT during a journalled sweep: exit 130, one line saying what the journal
+# keeps and how to go on, and --resume finishes from there (issue 11 item 6).
+add_test(NAME cli.sweep_interrupt
+  COMMAND sh -c "j=\"$1\"; rm -f \"$j\" \"$j.err\"
+                 \"$0\" sweep --unit classic3 --z 0 --x-cells 0:256 --journal \"$j\" > /dev/null 2> \"$j.err\" & p=$!
+                 i=0; while [ $i -lt 600 ] && ! grep -q '^block' \"$j\" 2>/dev/null; do sleep 0.1; i=$((i+1)); done
+                 kill -INT $p; wait $p; s=$?; cat \"$j.err\"
+                 test $s -eq 130 || { echo \"exit $s, want 130\"; exit 1; }
+                 grep -q 'interrupted by SIGINT' \"$j.err\" && grep -q 'keeps [0-9]* finished block' \"$j.err\" &&
+                   grep -q -- '--resume' \"$j.err\" || { echo 'no note'; exit 1; }
+                 k=$(sed -n 's/.*keeps \\([0-9]*\\) finished.*/\\1/p' \"$j.err\")
+                 \"$0\" sweep --unit classic3 --z 0 --x-cells 0:256 --journal \"$j\" --resume --threads 1 > \"$j.out\" 2>&1 & p=$!
+                 sleep 0.5; kill -TERM $p; wait $p; s=$?; cat \"$j.out\"
+                 test $s -eq 143 || { echo \"resumed run, SIGTERM: exit $s, want 143\"; exit 1; }
+                 grep -q \"[0-9]* finished block\" \"$j.out\" || { echo 'no note after resume'; exit 1; }
+                 k2=$(sed -n 's/.*keeps \\([0-9]*\\) finished.*/\\1/p' \"$j.out\")
+                 test \"$k2\" -ge \"$k\" || { echo \"the resumed journal keeps $k2 blocks, fewer than $k\"; exit 1; }; exit 0"
+          $<TARGET_FILE:noisepipe> ${CMAKE_CURRENT_BINARY_DIR}/cli_sweep_interrupt.jnl)
+set_tests_properties(cli.sweep_interrupt PROPERTIES TIMEOUT 120)

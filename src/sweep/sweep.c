@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* The exhaustive error sweep (np_sweep.h): statistics, blocks, journal, threads. */
 #include "np_sweep.h"
+#include "np_outfile.h"
 
 #include <inttypes.h>
 #include <math.h>
@@ -435,6 +436,19 @@ static int journal_open(sweep_run *run, char *err, size_t errlen)
 
 /* ---------------------------------------------------------------- threads */
 
+/* What an interrupt (SIGINT, SIGTERM) keeps, for its handler to say (np_outfile.h). */
+static void interrupt_note(const sweep_run *run)
+{
+    unsigned kept = 0;
+    for (unsigned k = 0; k < NP_SWEEP_CELLS; k++)
+        kept += run->have[k] != 0;
+    char note[600];
+    snprintf(note, sizeof note,
+             "journal %.400s keeps %u finished block%s of 2^24 inputs; run the same command with --resume to go on",
+             run->o->journal, kept, kept == 1 ? "" : "s");
+    np_interrupt_note(note);
+}
+
 static void *worker(void *arg)
 {
     sweep_run *run = arg;
@@ -464,6 +478,8 @@ static void *worker(void *arg)
             } else if (np_jfile_commit(&run->jf, 1, jerr, sizeof jerr) != 0) {
                 run->failed = 1;
                 snprintf(run->err, sizeof run->err, "%s", jerr);
+            } else {
+                interrupt_note(run);
             }
         }
         if (run->o->progress)
@@ -501,6 +517,8 @@ int np_sweep_run(const np_sweep_opts *o, np_sweep_result *res, char *err, size_t
         free(run);
         return -1;
     }
+    if (o->journal)
+        interrupt_note(run);
 
     for (unsigned b = o->x_first; b < o->x_end; b++) {
         if (run->have[b])
