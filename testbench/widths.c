@@ -37,7 +37,10 @@ unsigned np_widths_judge(const np_op *ops, size_t n_ops, const np_trace *t, unsi
         NP_CHECK(op->out <= need + margin, "%s: %s declared %u bits, needs only %u", what, tr->signal, op->out, need);
         if (print) {
             char range[64];
-            snprintf(range, sizeof range, "[%" PRId64 ", %" PRId64 "]", tr->lo, tr->hi);
+            if (tr->wide && tr->lo == 0 && tr->hi == 0) /* traced by width only (np_trace_add_wide) */
+                snprintf(range, sizeof range, "%u bits (two's complement)%s", tr->wide, tr->wide_neg ? ", < 0 seen" : "");
+            else
+                snprintf(range, sizeof range, "[%" PRId64 ", %" PRId64 "]", tr->lo, tr->hi);
             printf("  %-8s %8u%s %-36s %5u\n", tr->signal, op->out, op->out_signed ? "s" : "u", range, need);
         }
     }
