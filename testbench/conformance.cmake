@@ -24,7 +24,7 @@ if(CMAKE_SCRIPT_MODE_FILE)
   return()
 endif()
 
-add_library(np_conformance STATIC conformance.c kat.c widths.c span_test.c)
+add_library(np_conformance STATIC conformance.c conf_toy.c kat.c widths.c span_test.c)
 target_link_libraries(np_conformance PUBLIC np_tools)
 target_include_directories(np_conformance PUBLIC ${CMAKE_CURRENT_SOURCE_DIR})
 np_project_target(np_conformance)

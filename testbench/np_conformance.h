@@ -12,6 +12,7 @@
 #define NP_CONFORMANCE_H
 
 #include "np_unit.h"
+#include "np_vec.h"
 
 typedef struct np_conf_env {
     const char *vec_dir;  /* golden vector sets: <vec_dir>/<unit>/<unit>-l<L>-seed<S>.vec and .memh */
@@ -46,5 +47,28 @@ extern const np_conf_check np_conf_checks[]; /* NULL-terminated */
 enum { NP_CONF_WIDTH_MARGIN = 1 };
 
 const np_conf_check *np_conf_find(const char *name);
+
+/*
+ * For a test that registers its own unit at run time (test_toy.c,
+ * test_toy_span.c): the unit's golden set and known-answer table, written
+ * where a unit in the tree checks them in, but under a scratch directory
+ * <work>/<unit>-<tag> (one per CTest case: cases run in parallel).
+ */
+typedef struct np_conf_toy {
+    const np_unit *u;
+    char dir[4096];     /* <work>/<unit>-<tag> */
+    char set[4400];     /* <dir>/<unit>/<unit>-l1-seed1, without .vec / .memh */
+    char sources[128];  /* the set's "# sources" text */
+    np_conf_env env;    /* dir as the golden sets', the tables' and the scratch directory */
+} np_conf_toy;
+
+/* Write u's level-1 set (text and $readmemh) and its table (gen_kat at kat_cfg, "key=value,..."). 0, or 1. */
+int np_conf_toy_generate(np_conf_toy *t, const np_unit *u, const char *work, const char *tag, const char *kat_cfg);
+/* Open the set's text file (np_vec_open). 0, or 1 after a failed check. */
+int np_conf_toy_open(const np_conf_toy *t, np_vec_reader *r);
+/* The set verifies through u's cycle model with random stalls, and a copy with one output bit flipped fails. 0, or 1. */
+int np_conf_toy_verify(const np_conf_toy *t);
+/* Every check of np_conf_checks on the unit with t's files; a skip fails. 0, or 1. */
+int np_conf_toy_conformance(const np_conf_toy *t);
 
 #endif /* NP_CONFORMANCE_H */

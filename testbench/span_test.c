@@ -4,6 +4,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "np_test.h"
@@ -94,6 +95,24 @@ np_tex_regs span_wide_regs(np_rng *g, unsigned n_oct, int variant)
         for (int ch = 0; ch < 3; ch++)
             r.cmap[k][ch] = (uint8_t)(k % 7u == 0 ? (k & 8u ? 255u : 0u) : np_rng_below(g, 256));
     return r;
+}
+
+size_t span_rand_run(const np_span_engine *e, const void *cfg, const np_tex_regs *r, np_rng *g, np_span *sp,
+                     size_t ns, np_tex_pixel *want, np_span_counts *cnt)
+{
+    np_tex_pixel scratch[300]; /* span_rand: at most 299 pixels */
+    void *core = calloc(1, e->core_size), *sig = calloc(1, e->sig_size);
+    size_t nw = 0;
+    memset(cnt, 0, sizeof *cnt);
+    for (size_t i = 0; i < ns && core && sig; i++) {
+        sp[i] = span_rand(g);
+        e->init(core, cfg, r);
+        np_span_run(e, core, sig, &sp[i], want ? want + nw : scratch, cnt, NULL, NULL);
+        nw += sp[i].n;
+    }
+    free(core);
+    free(sig);
+    return nw;
 }
 
 void span_traffic_phases(np_rng *g, int *state, int waiting, int *in_valid, int *out_ready)

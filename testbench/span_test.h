@@ -32,6 +32,15 @@ np_span span_rand(np_rng *g);
 np_tex_regs span_wide_regs(np_rng *g, unsigned n_oct, int variant);
 
 /*
+ * ns random spans (span_rand, from g) into sp, and their pixels by engine
+ * e's bit-exact model (np_span_run, configuration cfg, registers r) one
+ * after the other into want (NULL: not kept); cnt is cleared, then counts
+ * them. Returns the pixels.
+ */
+size_t span_rand_run(const np_span_engine *e, const void *cfg, const np_tex_regs *r, np_rng *g, np_span *sp,
+                     size_t ns, np_tex_pixel *want, np_span_counts *cnt);
+
+/*
  * Traffic at the ports, one call per cycle: in_valid (only asked when a
  * descriptor is waiting) and out_ready, from g and a state the driver keeps.
  */

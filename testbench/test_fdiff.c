@@ -674,14 +674,8 @@ static int cycle_vs_model(void)
         enum { NS = 300 };
         np_span *sp = calloc(NS, sizeof *sp);
         np_tex_pixel *want = calloc(NS * 300, sizeof *want);
-        size_t nw = 0;
         np_span_counts cnt;
-        memset(&cnt, 0, sizeof cnt);
-        for (unsigned i = 0; i < NS; i++) {
-            sp[i] = span_rand(&g);
-            np_fdiff_span(&cfg, &r, &sp[i], want + nw, &cnt, NULL);
-            nw += sp[i].n;
-        }
+        size_t nw = span_rand_run(&np_fdiff_engine, &cfg, &r, &g, sp, NS, want, &cnt);
         span_drive_result d;
         NP_CHECK(span_drive(&np_fdiff_engine, &cfg, &r, sp, NS, want, nw, &g, span_traffic_phases, 50000000u, &d) == 0,
                  "init");
@@ -712,13 +706,7 @@ static int cycle_count(void)
     enum { NS = 200 };
     np_span sp[NS];
     np_span_counts cnt;
-    memset(&cnt, 0, sizeof cnt);
-    np_tex_pixel *px = calloc(300, sizeof *px);
-    for (unsigned i = 0; i < NS; i++) {
-        sp[i] = span_rand(&g);
-        np_fdiff_span(&cfg, &r, &sp[i], px, &cnt, NULL);
-    }
-    free(px);
+    span_rand_run(&np_fdiff_engine, &cfg, &r, &g, sp, NS, NULL, &cnt);
     span_drive_result d;
     NP_CHECK(span_drive(&np_fdiff_engine, &cfg, &r, sp, NS, NULL, 0, NULL, NULL, UINT64_MAX, &d) == 0, "init");
     uint64_t want = NS + cnt.setup_cycles + cnt.pixels + NP_FDIFF_TAIL_STAGES;

@@ -78,14 +78,8 @@ static int texel_cycle_vs_model(void)
     enum { NS = 120 };
     np_span sp[NS];
     np_tex_pixel *want = calloc(NS * 300, sizeof *want);
-    size_t nw = 0;
     np_span_counts cnt;
-    memset(&cnt, 0, sizeof cnt);
-    for (unsigned i = 0; i < NS; i++) {
-        sp[i] = span_rand(&g);
-        np_texel_span(&cfg, &r, &sp[i], want + nw, &cnt, NULL);
-        nw += sp[i].n;
-    }
+    size_t nw = span_rand_run(&np_texel_engine, &cfg, &r, &g, sp, NS, want, &cnt);
     for (int traffic = 0; traffic < 2; traffic++) {
         span_drive_result d;
         NP_CHECK(span_drive(&np_texel_engine, &cfg, &r, sp, NS, want, nw, &g, traffic ? span_traffic_thirds : NULL,
