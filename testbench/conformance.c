@@ -8,12 +8,16 @@
 #include <string.h>
 
 #include "np_kat.h"
+#include "np_rng.h"
 #include "np_test.h"
 #include "np_vec.h"
 #include "np_widths.h"
+#include "span_test.h"
 
 /* Random cases added to the generator's for the width trace: the default, each other configuration. */
 enum { MAX_CONFIGS = 8, MAX_OPS = 256, WIDTH_RANDOM = 100000, WIDTH_RANDOM_OTHER = 40000 };
+/* The span units' width trace draws its random cases from np_rng seeded with this. */
+static const uint64_t WIDTH_SEED = 43;
 
 /* The default ("") then the unit's conformance configurations; returns how many. */
 static unsigned configs_of(const np_unit *u, const char *out[MAX_CONFIGS])
@@ -201,19 +205,57 @@ static void widths_config(const np_unit *u, const char *spec, int print)
     np_pipe_free(&w.pipe);
 }
 
+/*
+ * A span unit: its engine's declaration for two register sets over their
+ * full formats (span_wide_regs: 8 octaves and a 256-entry repeating table;
+ * 3 octaves and a clamped one), since it holds for any registers, against
+ * what the unit's span->trace drives through the engine's signals for them.
+ */
+static void widths_span(const np_unit *u, const char *spec, np_rng *g, int print)
+{
+    static widths w;
+    np_vec_header h;
+    if (header(&h, u, spec) != 0)
+        return;
+    const void *ecfg = np_unit_span_cfg(u->span, &h.cfg);
+    for (int variant = 0; variant < 2; variant++) {
+        np_tex_regs r = span_wide_regs(g, variant ? 3u : 8u, variant);
+        char what[320];
+        snprintf(what, sizeof what, "%s [%s], %s table", u->name, h.cfg_text, variant ? "clamped" : "repeating");
+        w.n_ops = u->span->engine->datapath(ecfg, &r, w.ops, MAX_OPS);
+        NP_CHECK(w.n_ops <= MAX_OPS, "%s: declaration of %zu ops", what, w.n_ops);
+        if (w.n_ops > MAX_OPS)
+            return;
+        w.n_t = np_widths_traces(w.ops, w.n_ops, w.t);
+        const char *why = u->span->trace(ecfg, &r, g, w.t, w.n_t);
+        NP_CHECK(why == NULL, "%s: %s", what, why);
+        unsigned bad = np_widths_judge(w.ops, w.n_ops, w.t, NP_CONF_WIDTH_MARGIN, what, print && variant == 0);
+        printf("%s: %zu traced signals, %u octaves: %s\n", what, w.n_t, r.n_oct,
+               bad || why ? "FAILED" : "every declared width holds, margin <= 1");
+    }
+}
+
 static int datapath_widths(const np_unit *u, const np_conf_env *e)
 {
     (void)e;
-    if (!u->datapath || !u->trace || u->stream) {
+    const int span = u->span && u->span->trace;
+    if (!u->datapath || !(span || (u->trace && !u->stream))) {
         printf("%s: skipped: %s\n", u->name,
                !u->datapath ? "no datapath declared (np_unit.datapath)"
-                            : "no trace of the pipe's signals (np_unit.trace); the unit's own test traces them");
+               : u->span    ? "no trace of the engine's signals (np_unit_span.trace)"
+                            : "no trace of the pipe's signals (np_unit.trace)");
         return NP_TEST_SKIP;
     }
     const char *cfgs[MAX_CONFIGS];
     unsigned nc = configs_of(u, cfgs);
-    for (unsigned c = 0; c < nc; c++)
-        widths_config(u, cfgs[c], c == 0);
+    np_rng g;
+    np_rng_seed(&g, WIDTH_SEED);
+    for (unsigned c = 0; c < nc; c++) {
+        if (span)
+            widths_span(u, cfgs[c], &g, c == 0);
+        else
+            widths_config(u, cfgs[c], c == 0);
+    }
     return 0;
 }
 

@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: MIT
 # The unit-conformance test (test_conformance.c, conformance.c): every check on every
 # registered unit, as conformance.<unit>.<check>; gen_kat, the one generator of the
-# known-answer tables (<unit>_kat.inc); the toy unit registered at run time (test_toy.c).
+# known-answer tables (<unit>_kat.inc); the toy units registered at run time (test_toy.c, test_toy_span.c).
 #
 # The case list comes from the registry: after each build, test_conformance prints its
 # cases (UNIT.CHECK) and conformance_cases.cmake below turns them into add_test() lines in
@@ -24,7 +24,7 @@ if(CMAKE_SCRIPT_MODE_FILE)
   return()
 endif()
 
-add_library(np_conformance STATIC conformance.c kat.c widths.c)
+add_library(np_conformance STATIC conformance.c conf_toy.c kat.c widths.c span_test.c)
 target_link_libraries(np_conformance PUBLIC np_tools)
 target_include_directories(np_conformance PUBLIC ${CMAKE_CURRENT_SOURCE_DIR})
 np_project_target(np_conformance)
@@ -52,3 +52,9 @@ np_test_program(test_toy test_toy.c)
 target_link_libraries(test_toy PRIVATE np_conformance)
 target_compile_definitions(test_toy PRIVATE ${np_conf_defs})
 np_add_cases(test_toy toy register vectors verify conformance gates)
+
+# The toy span unit registered at run time (test_toy_span.c): renders, vectors, verify, conformance, gates.
+np_test_program(test_toy_span test_toy_span.c)
+target_link_libraries(test_toy_span PRIVATE np_conformance np_render)
+target_compile_definitions(test_toy_span PRIVATE ${np_conf_defs})
+np_add_cases(test_toy_span toy_span register render_units render vectors verify conformance gates)

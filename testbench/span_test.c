@@ -4,6 +4,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "np_test.h"
@@ -96,67 +97,22 @@ np_tex_regs span_wide_regs(np_rng *g, unsigned n_oct, int variant)
     return r;
 }
 
-void span_dp_begin(span_dp_check *c, size_t nops)
+size_t span_rand_run(const np_span_engine *e, const void *cfg, const np_tex_regs *r, np_rng *g, np_span *sp,
+                     size_t ns, np_tex_pixel *want, np_span_counts *cnt)
 {
-    c->nops = nops;
-    c->nt = 0;
-    memset(c->t, 0, sizeof c->t);
-    for (size_t i = 0; i < nops && i < SPAN_DP_MAX; i++)
-        if (c->ops[i].signal && c->ops[i].out)
-            c->t[c->nt++].signal = c->ops[i].signal;
-}
-
-int span_dp_end(const span_dp_check *c, const char *what, int print)
-{
-    NP_CHECK(c->nops <= SPAN_DP_MAX, "%s: declaration too long", what);
-    for (size_t i = 0, ti = 0; i < c->nops; i++) {
-        const np_op *op = &c->ops[i];
-        if (!(op->signal && op->out))
-            continue;
-        const np_trace *tr = &c->t[ti++];
-        unsigned need = np_trace_need(tr, op->out_signed);
-        NP_CHECK(tr->samples > 0, "%s: signal %s never traced", what, tr->signal);
-        NP_CHECK(need <= op->out, "%s: %s declared %u bits, needs %u", what, tr->signal, op->out, need);
-        NP_CHECK(op->out - need <= SPAN_WIDTH_MARGIN, "%s: %s declared %u bits, needs only %u", what, tr->signal, op->out,
-                 need);
-        if (print)
-            printf("  %-5s stage %-2s declared %3u%s, traced needs %3u (%llu samples)\n", tr->signal, op->stage,
-                   op->out, op->out_signed ? "s" : "u", need, (unsigned long long)tr->samples);
+    np_tex_pixel scratch[300]; /* span_rand: at most 299 pixels */
+    void *core = calloc(1, e->core_size), *sig = calloc(1, e->sig_size);
+    size_t nw = 0;
+    memset(cnt, 0, sizeof *cnt);
+    for (size_t i = 0; i < ns && core && sig; i++) {
+        sp[i] = span_rand(g);
+        e->init(core, cfg, r);
+        np_span_run(e, core, sig, &sp[i], want ? want + nw : scratch, cnt, NULL, NULL);
+        nw += sp[i].n;
     }
-    return 0;
-}
-
-int span_dp_widths(const char *unit, const char *const *specs, unsigned n_cfg, uint64_t seed,
-                   span_dp_trace_fn trace)
-{
-    static span_dp_check c;
-    const np_unit *u = np_unit_find(unit);
-    np_rng g;
-    np_rng_seed(&g, seed);
-    NP_CHECK(u && u->span, "%s: not a span unit", unit);
-    if (!u || !u->span)
-        return 1;
-    for (unsigned ci = 0; ci < n_cfg; ci++) {
-        np_unit_cfg ucfg;
-        char err[256];
-        NP_CHECK(np_unit_configure(u, &ucfg, specs[ci], err, sizeof err) == 0, "%s cfg %u (%s): %s", unit, ci,
-                 specs[ci], err);
-        const void *cfg = np_unit_span_cfg(u->span, &ucfg);
-        for (int variant = 0; variant < 2; variant++) {
-            np_tex_regs r = span_wide_regs(&g, variant ? 3u : 8u, variant);
-            span_dp_begin(&c, u->span->engine->datapath(cfg, &r, c.ops, SPAN_DP_MAX));
-            trace(cfg, ci, &r, &g, &c);
-            char what[64];
-            snprintf(what, sizeof what, "%s cfg %u, %s table", unit, ci, variant ? "clamped" : "repeating");
-            if (ci == 0 && variant == 0)
-                printf("%s, default configuration, 8 octaves, 256-entry table:\n", unit);
-            if (span_dp_end(&c, what, ci == 0 && variant == 0))
-                return 1;
-        }
-    }
-    printf("%s: every declared signal width holds its traced range, within 1 bit (%u configurations x 2 tables)\n",
-           unit, n_cfg);
-    return 0;
+    free(core);
+    free(sig);
+    return nw;
 }
 
 void span_traffic_phases(np_rng *g, int *state, int waiting, int *in_valid, int *out_ready)

@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /*
  * span_test.h - what the span units' test programs share (test_fdiff.c,
- * test_texel.c, test_texture.c): register and span fixtures, the datapath
- * width check, and one driver that runs spans through an engine's
+ * test_texel.c, test_texture.c, the conformance test's width check and the
+ * toy span unit): register and span fixtures, and one driver that runs spans through an engine's
  * cycle-accurate model (np_span_sim) like an RTL testbench and compares
  * every pixel with its bit-exact model.
  */
@@ -12,7 +12,6 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "np_datapath.h"
 #include "np_rng.h"
 #include "np_span.h"
 #include "np_texture.h"
@@ -33,33 +32,13 @@ np_span span_rand(np_rng *g);
 np_tex_regs span_wide_regs(np_rng *g, unsigned n_oct, int variant);
 
 /*
- * A declared signal width must hold every traced value and be at most
- * SPAN_WIDTH_MARGIN bits wider than the widest (the rule of
- * classic.datapath_widths).
+ * ns random spans (span_rand, from g) into sp, and their pixels by engine
+ * e's bit-exact model (np_span_run, configuration cfg, registers r) one
+ * after the other into want (NULL: not kept); cnt is cleared, then counts
+ * them. Returns the pixels.
  */
-enum { SPAN_WIDTH_MARGIN = 1, SPAN_DP_MAX = 128 };
-typedef struct span_dp_check {
-    np_op ops[SPAN_DP_MAX];
-    size_t nops;
-    np_trace t[SPAN_DP_MAX];
-    size_t nt;
-} span_dp_check;
-void span_dp_begin(span_dp_check *c, size_t nops);
-/* 0, or 1 after NP_CHECK failures; print: one line per signal. */
-int span_dp_end(const span_dp_check *c, const char *what, int print);
-
-/* Drive the unit's signals for cfg (configuration ci) and r through c's traces, with g. */
-typedef void (*span_dp_trace_fn)(const void *cfg, unsigned ci, const np_tex_regs *r, np_rng *g, span_dp_check *c);
-/*
- * The datapath-width check of registry unit `unit`: for each of the n_cfg
- * configurations (specs: "key=value,..." over the defaults; the engine's
- * configuration inside the unit's block is handed on) and two register sets
- * (span_wide_regs: 8 octaves and a 256-entry repeating table; 3 octaves and a
- * clamped one), the engine's declaration against what trace saw (np_rng seeded with
- * seed). Prints the first configuration's signals. 0, or 1 on a failed check.
- */
-int span_dp_widths(const char *unit, const char *const *specs, unsigned n_cfg, uint64_t seed,
-                   span_dp_trace_fn trace);
+size_t span_rand_run(const np_span_engine *e, const void *cfg, const np_tex_regs *r, np_rng *g, np_span *sp,
+                     size_t ns, np_tex_pixel *want, np_span_counts *cnt);
 
 /*
  * Traffic at the ports, one call per cycle: in_valid (only asked when a

@@ -260,8 +260,8 @@ static int rng_kat(void)
 /* For every unit: the default configuration's text configures, every key once, to the same block and text. */
 static int unit_keys_roundtrip(void)
 {
-    for (size_t i = 0; np_units[i]; i++) {
-        const np_unit *u = np_units[i];
+    const np_unit *u;
+    for (size_t i = 0; (u = np_unit_at(i)) != NULL; i++) {
         np_unit_cfg def, back, none;
         char text[512], again[512], err[512] = "";
         NP_CHECK(u->keys && np_unit_key_count(u) > 0, "%s declares no keys", u->name);
@@ -292,8 +292,8 @@ static int unit_keys_roundtrip(void)
 static int unit_keys_ranges(void)
 {
     unsigned checked = 0;
-    for (size_t i = 0; np_units[i]; i++) {
-        const np_unit *u = np_units[i];
+    const np_unit *u;
+    for (size_t i = 0; (u = np_unit_at(i)) != NULL; i++) {
         for (const np_unit_key *k = u->keys; k->name; k++) {
             np_unit_cfg cfg;
             char v[32], err[512], range[128];
@@ -371,8 +371,8 @@ static int unit_keys_decimal(void)
 /* A key given twice is an error naming it; an unknown key lists the keys; a '# config' text misses none. */
 static int unit_keys_twice_missing(void)
 {
-    for (size_t i = 0; np_units[i]; i++) {
-        const np_unit *u = np_units[i];
+    const np_unit *u;
+    for (size_t i = 0; (u = np_unit_at(i)) != NULL; i++) {
         np_unit_cfg cfg;
         char text[512], spec[1024], err[512];
         np_unit_cfg_default(u, &cfg);

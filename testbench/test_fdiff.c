@@ -3,9 +3,9 @@
  * The forward-difference unit np_fdiff: set-up against the seed's Appendix
  * and the exact polynomial, the drift identity and its bound, the stiff and
  * extreme cases, the guard-bit search, the cycle model (the span sequencer
- * with np_fdiff_engine), the datapath declaration. The per-pixel unit is in
- * test_texel.c, what both share in test_texture.c, the fixtures in
- * span_test.c.
+ * with np_fdiff_engine). The per-pixel unit is in test_texel.c, what both
+ * share in test_texture.c, the fixtures in span_test.c; the declared widths
+ * are checked by conformance.fdiff.datapath_widths (np_unit_span.trace).
  *
  * The stiff cases use a "grey ramp" texture: one octave, identity transform,
  * a' = 1 (x = n), a clamped two-entry map black..white, so colour = 255 n:
@@ -674,14 +674,8 @@ static int cycle_vs_model(void)
         enum { NS = 300 };
         np_span *sp = calloc(NS, sizeof *sp);
         np_tex_pixel *want = calloc(NS * 300, sizeof *want);
-        size_t nw = 0;
         np_span_counts cnt;
-        memset(&cnt, 0, sizeof cnt);
-        for (unsigned i = 0; i < NS; i++) {
-            sp[i] = span_rand(&g);
-            np_fdiff_span(&cfg, &r, &sp[i], want + nw, &cnt, NULL);
-            nw += sp[i].n;
-        }
+        size_t nw = span_rand_run(&np_fdiff_engine, &cfg, &r, &g, sp, NS, want, &cnt);
         span_drive_result d;
         NP_CHECK(span_drive(&np_fdiff_engine, &cfg, &r, sp, NS, want, nw, &g, span_traffic_phases, 50000000u, &d) == 0,
                  "init");
@@ -712,13 +706,7 @@ static int cycle_count(void)
     enum { NS = 200 };
     np_span sp[NS];
     np_span_counts cnt;
-    memset(&cnt, 0, sizeof cnt);
-    np_tex_pixel *px = calloc(300, sizeof *px);
-    for (unsigned i = 0; i < NS; i++) {
-        sp[i] = span_rand(&g);
-        np_fdiff_span(&cfg, &r, &sp[i], px, &cnt, NULL);
-    }
-    free(px);
+    span_rand_run(&np_fdiff_engine, &cfg, &r, &g, sp, NS, NULL, &cnt);
     span_drive_result d;
     NP_CHECK(span_drive(&np_fdiff_engine, &cfg, &r, sp, NS, NULL, 0, NULL, NULL, UINT64_MAX, &d) == 0, "init");
     uint64_t want = NS + cnt.setup_cycles + cnt.pixels + NP_FDIFF_TAIL_STAGES;
@@ -740,81 +728,7 @@ static int cycle_count(void)
     return 0;
 }
 
-/* --- The datapath declaration against the model (np_fdiff_datapath; rule and registers: span_test.h) --- */
-
-/* The signals of cell set-ups (random cells and the extremes) and of spans through the core and the colour stages. */
-static void fdiff_trace(const void *vcfg, unsigned ci, const np_tex_regs *r, np_rng *g, span_dp_check *c)
-{
-    const np_fdiff_cfg *cfg = vcfg;
-    const unsigned F = np_fdiff_frac(cfg);
-    /* Cell set-ups: random cells and steps, and the extremes (fractions 0 / max, steps -2^39). */
-    for (unsigned n = 0; n < 40000; n++) {
-        uint64_t u[3];
-        int64_t du[3];
-        rand_cell(g, u, du);
-        if (n % 4u == 0)
-            for (int a = 0; a < 3; a++) {
-                u[a] = (u[a] & ~(uint64_t)NP_MASK(NP_TEX_FC)) | (n & 8u ? NP_MASK(NP_TEX_FC) : 0u);
-                du[a] = n & 16u ? -((int64_t)1 << 39) : ((int64_t)1 << 39) - 1;
-            }
-        unsigned o = (unsigned)np_rng_below(g, r->n_oct);
-        np_s128 d[4];
-        np_fdiff_setup_sig sig;
-        np_fdiff_cell_setup_sig(cfg, r, o, u, du, d, &sig);
-        np_fdiff_trace_setup(cfg, &sig, c->t, c->nt);
-        uint8_t lat[8];
-        np_tex_lattice(np_tex_cell(u[0]), np_tex_cell(u[1]), np_tex_cell(u[2]), lat);
-        for (int k = 0; k < 8; k++)
-            np_tex_trace(c->t, c->nt, "n", lat[k]);
-        for (unsigned j = 0; j < 4; j++)
-            NP_CHECK(np_tex_to_index(np_wrap_s128(sig.y[j], np_fdiff_y_window(cfg)), NP_FDIFF_EXACT_FRAC, F,
-                                     np_fdiff_width(cfg)) == d[j],
-                     "cfg %u: set-up window too narrow", ci);
-    }
-    /* Spans through the core, then the colour stages on each pixel's x. */
-    for (unsigned n = 0; n < 300; n++) {
-        np_span sp;
-        memset(&sp, 0, sizeof sp);
-        sp.n = 1u + (uint32_t)np_rng_below(g, 200);
-        for (int a = 0; a < 3; a++) {
-            sp.s[a] = np_sext(np_rng_next(g), 40);
-            sp.ds[a] = np_asr(np_sext(np_rng_next(g), 32), (unsigned)np_rng_below(g, 24));
-        }
-        if (np_span_check(&sp) != NULL)
-            continue;
-        np_fdiff_core core;
-        np_span_counts cnt;
-        memset(&cnt, 0, sizeof cnt);
-        np_fdiff_core_init(&core, cfg, r);
-        np_fdiff_core_begin(&core, &sp, &cnt);
-        for (uint32_t k = 0; k < sp.n; k++) {
-            np_fdiff_trace_core(&core, c->t, c->nt);
-            unsigned seg;
-            uint32_t w;
-            int64_t prod[3];
-            uint8_t rgb[3];
-            np_tex_colour_split(r, np_fdiff_core_x(&core), F, cfg->w_frac, &seg, &w);
-            np_tex_colour_mix(r, seg, w, cfg->w_frac, prod);
-            np_tex_colour_round(prod, cfg->w_frac, rgb);
-            np_tex_trace_colour(r, seg, w, prod, rgb, cfg->w_frac, c->t, c->nt);
-            np_fdiff_core_advance(&core, &cnt);
-        }
-    }
-}
-
-static int fdiff_datapath_widths(void)
-{
-    /* I, Fw, G, K: the default, few guard bits with K, narrow, the widest, the narrowest index. */
-    static const char *const specs[] = {
-        "idx_int=10,w_frac=12,guard=44,resetup=0", "idx_int=10,w_frac=12,guard=8,resetup=16",
-        "idx_int=4,w_frac=8,guard=0,resetup=0", "idx_int=11,w_frac=24,guard=91,resetup=256",
-        "idx_int=1,w_frac=1,guard=20,resetup=0",
-    };
-    return span_dp_widths("fdiff", specs, sizeof specs / sizeof specs[0], 43, fdiff_trace);
-}
-
 static const np_test_case cases[] = {
-    { "datapath_widths", fdiff_datapath_widths },
     { "stiff_span65536", stiff_span65536 },
     { "stiff_deriv_tiny", stiff_deriv_tiny },
     { "stiff_deriv_huge", stiff_deriv_huge },

@@ -175,8 +175,8 @@ static int stream_latency(const np_unit *u, const void *cfg, const np_unit_cost 
 static int latency_matches_model(void)
 {
     unsigned n = 0;
-    for (size_t i = 0; np_units[i]; i++) {
-        const np_unit *u = np_units[i];
+    const np_unit *u;
+    for (size_t i = 0; (u = np_unit_at(i)) != NULL; i++) {
         if (!u->datapath)
             continue;
         np_unit_cfg cfg;

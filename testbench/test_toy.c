@@ -21,7 +21,6 @@
 #include <string.h>
 
 #include "np_conformance.h"
-#include "np_kat.h"
 #include "np_report.h"
 #include "np_test.h"
 #include "np_vec.h"
@@ -175,26 +174,8 @@ static const np_unit *toy(void)
     return np_unit_find("toy2");
 }
 
-/*
- * The toy's golden set and KAT live in the build tree, one directory per
- * case (CTest runs cases in parallel); a unit in the tree checks them in.
- */
-static char toy_dir[4096], toy_set[4200], toy_sources[128];
-
-static void toy_paths(const char *name)
-{
-    snprintf(toy_dir, sizeof toy_dir, "%s/toy-%s", NP_CONF_WORK, name);
-    snprintf(toy_set, sizeof toy_set, "%s/toy2/toy2-l1-seed1", toy_dir);
-}
-
-static const char *at(const char *dir, const char *file)
-{
-    static char buf[4][4400];
-    static unsigned k;
-    k = (k + 1u) % 4u;
-    snprintf(buf[k], sizeof buf[k], "%s%s", dir, file);
-    return buf[k];
-}
+/* The toy's golden set and KAT, written in the build tree by each case that needs them (np_conf_toy_generate). */
+static np_conf_toy files;
 
 static int toy_register(void)
 {
@@ -220,39 +201,13 @@ static int toy_register(void)
     return 0;
 }
 
-/* Write the toy's level-1 set (text and $readmemh) and its KAT under the case's directory. */
-static int toy_generate(const char *name)
-{
-    toy_paths(name);
-    np_vec_header h;
-    char err[NP_VEC_ERRLEN];
-    if (np_vec_header_init(&h, toy(), NULL, err, sizeof err) != 0) {
-        NP_CHECK(0, "%s", err);
-        return 1;
-    }
-    char cmd[4400];
-    snprintf(cmd, sizeof cmd, "mkdir -p '%s/toy2'", toy_dir);
-    NP_CHECK(system(cmd) == 0, "%s", cmd);
-    np_vec_output o[2] = { { at(toy_set, ".vec"), NP_VEC_TEXT }, { at(toy_set, ".memh"), NP_VEC_READMEMH } };
-    int rc = np_vec_generate(&h, 1, 1, UINT64_MAX, o, 2, err, sizeof err);
-    NP_CHECK(rc == 0, "vectors: %s", err);
-    snprintf(toy_sources, sizeof toy_sources, "%s", h.sources);
-    char *argv[] = { "toy2", "--config", "out_bits=8" };
-    np_kat_spec s;
-    FILE *f = fopen(at(toy_dir, "/toy2_kat.inc"), "w");
-    NP_CHECK(f && np_kat_parse(3, argv, NULL, &s, err, sizeof err) == 0 && np_kat_write(&s, f, err, sizeof err) == 0,
-             "kat: %s", err);
-    if (f)
-        fclose(f);
-    return rc;
-}
+static int toy_generate(const char *tag) { return np_conf_toy_generate(&files, toy(), NP_CONF_WORK, tag, "out_bits=8"); }
 
 static int toy_vectors(void)
 {
-    if (toy_generate("vectors") != 0)
-        return 1;
     np_vec_reader r;
-    NP_CHECK(np_vec_open(&r, at(toy_set, ".vec")) == 0, "%s", r.L.err);
+    if (toy_generate("vectors") != 0 || np_conf_toy_open(&files, &r) != 0)
+        return 1;
     np_vec_rec rec;
     uint64_t n = 0, exact = 0;
     int rc;
@@ -267,52 +222,14 @@ static int toy_vectors(void)
     NP_CHECK(exact == n, "the reference equals the model on %llu of %llu", (unsigned long long)exact,
              (unsigned long long)n);
     printf("toy2: %llu golden vectors (%s), f = (a ^ b) + b on each, the reference exact\n", (unsigned long long)n,
-           toy_sources);
+           files.sources);
     np_vec_close(&r);
     return 0;
 }
 
-static int toy_verify(void)
-{
-    if (toy_generate("verify") != 0)
-        return 1;
-    np_verify_opts o = { "verify", 10, -1.0, 1, 1, NULL };
-    int rc = np_verify(at(toy_set, ".vec"), &o, stdout);
-    NP_CHECK(rc == 0, "verify of the toy's vectors: %d", rc);
-    /* A wrong expected output in one vector must fail the run, naming that vector. */
-    FILE *in = fopen(at(toy_set, ".vec"), "r"), *out = fopen(at(toy_dir, "/bad.vec"), "w");
-    char line[256];
-    int changed = 0;
-    while (in && out && fgets(line, sizeof line, in)) {
-        if (line[0] != '#' && !changed++) /* "aa bb fff ref": flip the low bit of f */
-            line[8] ^= 1;
-        fputs(line, out);
-    }
-    if (in)
-        fclose(in);
-    if (out)
-        fclose(out);
-    FILE *sink = tmpfile();
-    NP_CHECK(np_verify(at(toy_dir, "/bad.vec"), &o, sink ? sink : stdout) == 1, "a wrong bit was not caught");
-    if (sink)
-        fclose(sink);
-    puts("toy2: its vectors verify through its cycle model with random stalls; a flipped bit fails");
-    return 0;
-}
+static int toy_verify(void) { return toy_generate("verify") || np_conf_toy_verify(&files); }
 
-static int toy_conformance(void)
-{
-    if (toy_generate("conformance") != 0)
-        return 1;
-    const np_conf_env env = { toy_dir, toy_dir, toy_dir };
-    for (const np_conf_check *c = np_conf_checks; c->name; c++) {
-        int before = np_test_failures;
-        int rc = c->fn(toy(), &env);
-        NP_CHECK(rc == 0, "conformance check %s: %d", c->name, rc);
-        printf("== conformance.toy2.%s: %s\n", c->name, np_test_failures == before && rc == 0 ? "pass" : "FAIL");
-    }
-    return 0;
-}
+static int toy_conformance(void) { return toy_generate("conformance") || np_conf_toy_conformance(&files); }
 
 static int toy_gates(void)
 {

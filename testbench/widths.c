@@ -31,15 +31,16 @@ unsigned np_widths_judge(const np_op *ops, size_t n_ops, const np_trace *t, unsi
         const np_trace *tr = &t[ti++];
         unsigned need = np_trace_need(tr, op->out_signed);
         bad += !(tr->samples > 0 && need <= op->out && op->out <= need + margin);
-        NP_CHECK(tr->samples > 0, "%s: signal %s never traced", what, tr->signal);
-        NP_CHECK(need <= op->out, "%s: %s declared %u bits, needs %u ([%" PRId64 ", %" PRId64 "])", what, tr->signal,
-                 op->out, need, tr->lo, tr->hi);
-        NP_CHECK(op->out <= need + margin, "%s: %s declared %u bits, needs only %u", what, tr->signal, op->out, need);
-        if (print) {
-            char range[64];
+        char range[64];
+        if (tr->wide && tr->lo == 0 && tr->hi == 0) /* traced by width only (np_trace_add_wide) */
+            snprintf(range, sizeof range, "%u bits (two's complement)%s", tr->wide, tr->wide_neg ? ", < 0 seen" : "");
+        else
             snprintf(range, sizeof range, "[%" PRId64 ", %" PRId64 "]", tr->lo, tr->hi);
+        NP_CHECK(tr->samples > 0, "%s: signal %s never traced", what, tr->signal);
+        NP_CHECK(need <= op->out, "%s: %s declared %u bits, needs %u (%s)", what, tr->signal, op->out, need, range);
+        NP_CHECK(op->out <= need + margin, "%s: %s declared %u bits, needs only %u", what, tr->signal, op->out, need);
+        if (print)
             printf("  %-8s %8u%s %-36s %5u\n", tr->signal, op->out, op->out_signed ? "s" : "u", range, need);
-        }
     }
     return bad;
 }

@@ -62,7 +62,7 @@ enum { MAX_UNITS = 16, UNIT_SPEC_MAX = 512 };
 
 typedef struct opts {
     const char *out;
-    /* --unit-config: the keys given for np_units[i], joined by commas; the unit's block configured from them. */
+    /* --unit-config: the keys given for registry unit i (np_unit_at), joined by commas; the unit's block configured from them. */
     char unit_spec[MAX_UNITS][UNIT_SPEC_MAX];
     np_unit_cfg ucfg[MAX_UNITS];
     double tolerance;
@@ -109,11 +109,12 @@ int np_mkdir_p(const char *dir)
     return 0;
 }
 
-/* Index of unit name in np_units[], or -1. */
+/* Index of unit name in the registry (np_unit_at), or -1. */
 static int unit_index(const char *name)
 {
-    for (int i = 0; np_units[i] && i < MAX_UNITS; i++)
-        if (strcmp(np_units[i]->name, name) == 0)
+    const np_unit *u;
+    for (int i = 0; (u = np_unit_at((size_t)i)) != NULL && i < MAX_UNITS; i++)
+        if (strcmp(u->name, name) == 0)
             return i;
     return -1;
 }
@@ -137,8 +138,9 @@ static int add_unit_config(opts *o, const char *unit, const char *arg)
     int i = unit_index(unit);
     if (i < 0) {
         char known[256] = "";
-        for (size_t k = 0; np_units[k]; k++)
-            snprintf(known + strlen(known), sizeof known - strlen(known), "%s%s", k ? ", " : "", np_units[k]->name);
+        const np_unit *u;
+        for (size_t k = 0; (u = np_unit_at(k)) != NULL; k++)
+            snprintf(known + strlen(known), sizeof known - strlen(known), "%s%s", k ? ", " : "", u->name);
         np_err(CMD, "--unit-config: unknown unit '%s' (units: %s)", unit, known);
         return -1;
     }
@@ -154,8 +156,8 @@ static int add_unit_config(opts *o, const char *unit, const char *arg)
 /* Configure every unit from its --unit-config keys (the scene's keys are the scene's, not the user's). */
 static int configure_units(opts *o)
 {
-    for (int i = 0; np_units[i] && i < MAX_UNITS; i++) {
-        const np_unit *u = np_units[i];
+    const np_unit *u;
+    for (int i = 0; (u = np_unit_at((size_t)i)) != NULL && i < MAX_UNITS; i++) {
         char err[512], key[64];
         if (np_unit_configure(u, &o->ucfg[i], o->unit_spec[i], err, sizeof err) != 0) {
             np_err(CMD, "--unit-config %s: %s", u->name, err);

@@ -78,8 +78,8 @@ static int write_gates(const char *dir, const np_unit *only, const char *spec)
     char err[256];
     if (!costs)
         return NP_EXIT_USAGE;
-    for (size_t i = 0; np_units[i] && n < 16; i++) {
-        const np_unit *u = np_units[i];
+    const np_unit *u;
+    for (size_t i = 0; (u = np_unit_at(i)) != NULL && n < 16; i++) {
         if ((only && u != only) || !u->datapath)
             continue;
         np_unit_cfg cfg;
@@ -301,8 +301,8 @@ static int write_scene(const char *dir, const char *path)
     const np_unit *left[MAXU];
     size_t n = 0, nleft = 0;
     int rc = costs && su ? NP_EXIT_OK : NP_EXIT_USAGE;
-    for (size_t i = 0; np_units[i] && rc == NP_EXIT_OK && n < MAXU; i++) {
-        const np_unit *u = np_units[i];
+    const np_unit *u;
+    for (size_t i = 0; (u = np_unit_at(i)) != NULL && rc == NP_EXIT_OK && n < MAXU; i++) {
         if (!u->datapath)
             continue;
         int used = u->cfg_scene ? u->cfg_scene(&su[n].cfg, &sc, err, sizeof err) : 0;

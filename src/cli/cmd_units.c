@@ -16,8 +16,8 @@ int np_cmd_units(int argc, char **argv)
         np_err("units", "unexpected argument '%s'", argv[1]);
         return NP_EXIT_USAGE;
     }
-    for (size_t i = 0; np_units[i]; i++) {
-        const np_unit *u = np_units[i];
+    const np_unit *u;
+    for (size_t i = 0; (u = np_unit_at(i)) != NULL; i++) {
         np_unit_cfg cfg;
         char buf[256];
         np_unit_fields f;

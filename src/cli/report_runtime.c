@@ -41,9 +41,10 @@ static unsigned n_cols;
 /* Does some sweep of a registered unit set key (as its key or in fixed)? */
 static int swept(const char *key, size_t len)
 {
-    for (size_t i = 0; np_units[i]; i++)
-        for (unsigned s = 0; np_units[i]->span && s < np_units[i]->span->n_sweeps; s++) {
-            const np_unit_sweep *w = &np_units[i]->span->sweeps[s];
+    const np_unit *u;
+    for (size_t i = 0; (u = np_unit_at(i)) != NULL; i++)
+        for (unsigned s = 0; u->span && s < u->span->n_sweeps; s++) {
+            const np_unit_sweep *w = &u->span->sweeps[s];
             if (strlen(w->key) == len && strncmp(w->key, key, len) == 0)
                 return 1;
             for (const char *p = w->fixed; p && *p; p += strcspn(p, ","), p += *p == ',')
@@ -71,9 +72,10 @@ static void find_cols(void)
     for (unsigned k = 0; k < N_KNOWN; k++)
         if (swept(known[k].key, strlen(known[k].key)))
             add_col(known[k].key, strlen(known[k].key), known[k].md);
-    for (size_t i = 0; np_units[i]; i++)
-        for (unsigned s = 0; np_units[i]->span && s < np_units[i]->span->n_sweeps; s++) {
-            const np_unit_sweep *w = &np_units[i]->span->sweeps[s];
+    const np_unit *u;
+    for (size_t i = 0; (u = np_unit_at(i)) != NULL; i++)
+        for (unsigned s = 0; u->span && s < u->span->n_sweeps; s++) {
+            const np_unit_sweep *w = &u->span->sweeps[s];
             add_col(w->key, strlen(w->key), NULL);
             for (const char *p = w->fixed; p && *p; p += strcspn(p, ","), p += *p == ',')
                 add_col(p, strcspn(p, "="), NULL);

@@ -42,8 +42,8 @@ int np_render_units(const np_scene *sc, const char *(*spec)(const void *ctx, con
                     np_render_unit_cfg *us, char *err, size_t errlen)
 {
     int n = 0;
-    for (size_t i = 0; np_units[i]; i++) {
-        const np_unit *u = np_units[i];
+    const np_unit *u;
+    for (size_t i = 0; (u = np_unit_at(i)) != NULL; i++) {
         if (!u->span || !u->cfg_scene)
             continue;
         if (n == NP_RENDER_MAX_UNITS) {

@@ -30,6 +30,8 @@ struct np_scene;
 struct np_rng;
 struct np_unit_timing;
 struct np_span_engine;
+struct np_tex_regs;
+struct np_rng;
 
 /*
  * A span unit's engine (rtl_model/np_span.h) as the registry shows it: the
@@ -60,6 +62,17 @@ typedef struct np_unit_span {
     unsigned n_sweeps;
     /* Optional: one more error image for the report, NAME_UNIT_<extra_name>_err.png at extra_cfg. */
     const char *extra_name, *extra_cfg;
+    /*
+     * Optional (NULL: the conformance test cannot check the declared widths):
+     * drive the engine's signals for its configuration ecfg and registers r
+     * over the engine's stiff cases and random ones drawn from g, widening
+     * each trace in t[0..n) whose signal they produce (np_datapath.h). The
+     * conformance test (datapath_widths) calls it on registers over their
+     * full formats, since the engine's declaration (np_span_engine.datapath)
+     * holds for any registers. NULL, or a message naming a window of the
+     * model that does not hold what the declaration keeps.
+     */
+    const char *(*trace)(const void *ecfg, const struct np_tex_regs *r, struct np_rng *g, np_trace *t, size_t n);
 } np_unit_span;
 
 /* The engine's configuration inside a unit's configuration block cfg. */
@@ -239,8 +252,8 @@ typedef struct np_unit {
      */
     const np_unit_span *span;
     /*
-     * Optional (NULL: the declared widths are checked by the unit's own
-     * test): widen each trace in t[0..n) whose signal stage k of the pipe
+     * Optional (NULL: no width check, unless the unit is a span unit with
+     * span->trace): widen each trace in t[0..n) whose signal stage k of the pipe
      * (pipe_init's stage k) produces, from the signal bundle sig just after
      * that stage ran. The conformance test (testbench/conformance.c) runs
      * the stages over the generator's cases and checks every declared

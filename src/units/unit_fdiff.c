@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "np_fdiff.h"
+#include "np_rng.h"
 #include "unit_span.h"
 
 typedef struct fd_cfg {
@@ -97,16 +98,92 @@ static const np_unit_sweep fd_sweeps[] = {
     { "fdiff K=0, set-up multipliers", NULL, "setup_mults", rep_p, N_P, 0, 4 },
 };
 
+/*
+ * The signals for the conformance test's width check (np_unit_span.trace):
+ * cell set-ups (random cells and steps, and every fourth one at the extremes:
+ * fractions 0 or all ones, steps -2^39 or 2^39 - 1), then spans through the
+ * core and the colour stages. The set-up's window must give the rounding's bits.
+ */
+static const char *fd_trace(const void *ecfg, const np_tex_regs *r, np_rng *g, np_trace *t, size_t n)
+{
+    const np_fdiff_cfg *cfg = ecfg;
+    const unsigned F = np_fdiff_frac(cfg);
+    for (unsigned i = 0; i < 40000; i++) {
+        uint64_t u[3];
+        int64_t du[3];
+        for (int a = 0; a < 3; a++) {
+            u[a] = np_rng_next(g) & NP_MASK(NP_TEX_U_BITS);
+            unsigned sh = (unsigned)np_rng_below(g, 40);
+            du[a] = np_asr(np_sext(np_rng_next(g), NP_TEX_DU_BITS), sh);
+        }
+        if (i % 4u == 0)
+            for (int a = 0; a < 3; a++) {
+                u[a] = (u[a] & ~(uint64_t)NP_MASK(NP_TEX_FC)) | (i & 8u ? NP_MASK(NP_TEX_FC) : 0u);
+                du[a] = i & 16u ? -((int64_t)1 << 39) : ((int64_t)1 << 39) - 1;
+            }
+        unsigned o = (unsigned)np_rng_below(g, r->n_oct);
+        np_s128 d[4];
+        np_fdiff_setup_sig sig;
+        np_fdiff_cell_setup_sig(cfg, r, o, u, du, d, &sig);
+        np_fdiff_trace_setup(cfg, &sig, t, n);
+        uint8_t lat[8];
+        np_tex_lattice(np_tex_cell(u[0]), np_tex_cell(u[1]), np_tex_cell(u[2]), lat);
+        for (int k = 0; k < 8; k++)
+            np_tex_trace(t, n, "n", lat[k]);
+        for (unsigned j = 0; j < 4; j++)
+            if (np_tex_to_index(np_wrap_s128(sig.y[j], np_fdiff_y_window(cfg)), NP_FDIFF_EXACT_FRAC, F,
+                                np_fdiff_width(cfg)) != d[j])
+                return "the set-up's window Y is too narrow for the rounding";
+    }
+    for (unsigned i = 0; i < 300; i++) {
+        np_span sp;
+        memset(&sp, 0, sizeof sp);
+        sp.n = 1u + (uint32_t)np_rng_below(g, 200);
+        for (int a = 0; a < 3; a++) {
+            sp.s[a] = np_sext(np_rng_next(g), 40);
+            sp.ds[a] = np_asr(np_sext(np_rng_next(g), 32), (unsigned)np_rng_below(g, 24));
+        }
+        if (np_span_check(&sp) != NULL)
+            continue;
+        np_fdiff_core core;
+        np_span_counts cnt;
+        memset(&cnt, 0, sizeof cnt);
+        np_fdiff_core_init(&core, cfg, r);
+        np_fdiff_core_begin(&core, &sp, &cnt);
+        for (uint32_t k = 0; k < sp.n; k++) {
+            np_fdiff_trace_core(&core, t, n);
+            np_span_sig s;
+            memset(&s, 0, sizeof s);
+            s.x = np_fdiff_core_x(&core);
+            for (unsigned st = 0; st < NP_SPAN_COLOUR_STAGES; st++)
+                np_span_colour_stages[st].fn(np_span_ctx_of(&core), &s);
+            np_tex_trace_colour(r, s.seg, s.cw, s.prod, s.pix.rgb, cfg->w_frac, t, n);
+            np_fdiff_core_advance(&core, &cnt);
+        }
+    }
+    return NULL;
+}
+
 _Static_assert(sizeof(np_fdiff_core) <= NP_SU_CORE_MAX && sizeof(np_span_sig) + NP_SU_SIG_HEAD <= NP_SU_SIG_MAX &&
                    (unsigned)NP_FDIFF_TAIL_STAGES <= (unsigned)NP_SU_STAGES_MAX,
                "the engine fits the span-unit adapter");
 static np_su fd_su = {
     .span = { &np_fdiff_engine, offsetof(fd_cfg, c), offsetof(fd_cfg, tex), fd_sweeps,
-              sizeof fd_sweeps / sizeof fd_sweeps[0], "g4", "guard=4" },
+              sizeof fd_sweeps / sizeof fd_sweeps[0], "g4", "guard=4",
+              fd_trace },
     .engine_cfg_size = sizeof(np_fdiff_cfg),
     .front_name = "R",
 };
 NP_SU_DEFINE(fd_su, np_unit_fdiff);
+
+/*
+ * The conformance test's configurations besides the default (I, Fw, G, K):
+ * few guard bits with K, narrow, the widest, the narrowest index.
+ */
+static const char *const fd_configs[] = {
+    "guard=8,resetup=16", "idx_int=4,w_frac=8,guard=0", "idx_int=11,w_frac=24,guard=91,resetup=256",
+    "idx_int=1,w_frac=1,guard=20", NULL,
+};
 
 const np_unit np_unit_fdiff = {
     .name = "fdiff",
@@ -115,5 +192,6 @@ const np_unit np_unit_fdiff = {
     .cfg_check = cfg_check,
     .error_bound_lsb = error_bound,
     .timing = timing,
+    .conformance_configs = fd_configs,
     NP_SU_MEMBERS(fd_su),
 };

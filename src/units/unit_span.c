@@ -119,6 +119,10 @@ int np_su_cfg_scene(const np_su *su, void *cfg, const np_scene *sc, char *err, s
 
 void np_su_ref(const np_su *su, const void *cfg, const uint64_t *in, double *out)
 {
+    if (su->ref) {
+        su->ref(cfg, in, out);
+        return;
+    }
     const np_ref_texture *t = ut_ref_texture(np_su_texture(&su->span, cfg));
     np_span sp;
     np_ut_span(in, &sp);

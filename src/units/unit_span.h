@@ -89,6 +89,13 @@ typedef struct np_su {
     np_unit_span span;       /* np_unit.span points here */
     size_t engine_cfg_size;  /* bytes of the engine's configuration (compared by the eval cache) */
     const char *front_name;  /* the pipe's front stage: "R" (runs the engine) or "F" (places it) */
+    /*
+     * Optional (NULL: the scene texture's colour at the pixel, np_ref.h, as
+     * for every unit that renders the texture): the float reference of a
+     * span unit whose engine computes something else (the toy span unit of
+     * testbench/test_toy_span.c).
+     */
+    void (*ref)(const void *cfg, const uint64_t *in, double *out);
     /* The pipe's stage table, built by the first pipe_init. */
     np_stage_desc stages[1 + NP_SU_STAGES_MAX];
     int built;

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "np_rng.h"
 #include "np_texel.h"
 #include "unit_span.h"
 
@@ -77,15 +78,58 @@ static const np_unit_sweep tx_sweeps[] = {
     { "texel, weight bits", NULL, "weight_frac", rep_wt, sizeof rep_wt / sizeof rep_wt[0], 0, 3 },
 };
 
+/*
+ * The signals for the conformance test's width check (np_unit_span.trace):
+ * the pipeline's stages on random pixels and, every 16th, fractions at their
+ * extremes, every 16th (the next) coordinates at the s48 ends. The quadric's
+ * and the amplitude product's windows must give the roundings' bits.
+ */
+static const char *tx_trace(const void *ecfg, const np_tex_regs *r, np_rng *g, np_trace *t, size_t n)
+{
+    const np_texel_cfg *cfg = ecfg;
+    const unsigned F = np_texel_frac(cfg), W = np_texel_width(cfg);
+    const unsigned nf = NP_TEX_LAT_FRAC + 3u * cfg->weight_frac + NP_TEX_AMP_FRAC;
+    np_texel_front front;
+    np_texel_engine.init(&front, cfg, r);
+    for (unsigned i = 0; i < 20000; i++) {
+        np_texel_sig s;
+        memset(&s, 0, sizeof s);
+        for (unsigned o = 0; o < r->n_oct; o++)
+            for (int a = 0; a < 3; a++)
+                s.u[o][a] = i % 16u == 0 ? ((np_rng_next(g) & 0xff00000000ull) | (i & 32u ? 0xffffffffu : 0u))
+                                         : np_rng_next(g) & NP_MASK(NP_TEX_U_BITS);
+        for (int a = 0; a < 3; a++)
+            s.s[a] = i % 16u == 1 ? (i & 32u ? -((int64_t)1 << 47) : ((int64_t)1 << 47) - 1)
+                                  : np_sext(np_rng_next(g), NP_TEX_S_BITS);
+        for (unsigned k = 0; k < NP_TEXEL_STAGES; k++) {
+            np_texel_stages[k].fn(np_span_ctx_of(&front), &s);
+            np_texel_trace(cfg, r, k, &s, t, n);
+        }
+        if (np_tex_to_index(np_wrap_s128(s.qx, np_texel_q_window(cfg)), NP_TEX_Q_EXACT_FRAC, F, W) != s.q)
+            return "the quadric's window is too narrow for the rounding";
+        for (unsigned o = 0; o < r->n_oct; o++)
+            if (np_tex_to_index(np_wrap_s128(np_mul128((np_s128)r->oct[o].amp, s.l3[o]), np_texel_al_window(cfg)), nf,
+                                F, W) != s.N[o])
+                return "the amplitude product's window is too narrow for the rounding";
+    }
+    return NULL;
+}
+
 _Static_assert(sizeof(np_texel_front) <= NP_SU_CORE_MAX && sizeof(np_texel_sig) + NP_SU_SIG_HEAD <= NP_SU_SIG_MAX &&
                    (unsigned)NP_TEXEL_STAGES <= (unsigned)NP_SU_STAGES_MAX,
                "the engine fits the span-unit adapter");
 static np_su tx_su = {
-    .span = { &np_texel_engine, offsetof(tx_cfg, c), offsetof(tx_cfg, tex), tx_sweeps, 1, NULL, NULL },
+    .span = { &np_texel_engine, offsetof(tx_cfg, c), offsetof(tx_cfg, tex), tx_sweeps, 1, NULL, NULL, tx_trace },
     .engine_cfg_size = sizeof(np_texel_cfg),
     .front_name = "F",
 };
 NP_SU_DEFINE(tx_su, np_unit_texel);
+
+/* The conformance test's configurations besides the default (I, Fw, G, WT): 8 weight bits, narrow, the widest, the narrowest. */
+static const char *const tx_configs[] = {
+    "weight_frac=8", "idx_int=4,w_frac=8,guard=4,weight_frac=24", "idx_int=1,w_frac=24,guard=40,weight_frac=32",
+    "idx_int=11,w_frac=1,guard=0,weight_frac=1", NULL,
+};
 
 const np_unit np_unit_texel = {
     .name = "texel",
@@ -94,5 +138,6 @@ const np_unit np_unit_texel = {
     .cfg_check = cfg_check,
     .error_bound_lsb = error_bound,
     .timing = timing,
+    .conformance_configs = tx_configs,
     NP_SU_MEMBERS(tx_su),
 };
