@@ -67,24 +67,10 @@ typedef struct stream_args {
 } stream_args;
 
 /* "--name VALUE" or "--name=VALUE": 1 and *val set, 0 when argv[*i] is not it, -1 when VALUE is missing. */
+/* The option parser every vector command shares (vec_cli.c). */
 static int opt(int argc, char **argv, int *i, const char *name, const char **val)
 {
-    size_t n = strlen(name);
-    const char *a = argv[*i];
-    if (strncmp(a, name, n) != 0)
-        return 0;
-    if (a[n] == '=') {
-        *val = a + n + 1;
-        return 1;
-    }
-    if (a[n] != '\0')
-        return 0;
-    if (*i + 1 >= argc) {
-        np_err("stream", "%s needs a value", name);
-        return -1;
-    }
-    *val = argv[++*i];
-    return 1;
+    return np_vec_opt("stream", argc, argv, i, name, val);
 }
 
 static int num(const char *name, const char *v, uint64_t lo, uint64_t hi, uint64_t *out)
