@@ -4,4 +4,4 @@
 np_test_program(test_journal test_journal.c)
 np_add_cases(test_journal journal
   crc_kat round_trip torn_last_line torn_record corrupt_middle binding_mismatch cut_every_byte
-  kill_resume)
+  kill_resume open_run)

@@ -5,7 +5,7 @@
 # This file is also the script (cmake -P) that runs the command-line checks
 # registered below, which need an exact exit status or compare two outputs:
 #   cmake -DNOISEPIPE=<exe> -DCHECK=exit -DARGS=<a|b|c> -DEXPECT=<status> [-DMATCH=<regex>] -P sweep.cmake
-#   cmake -DNOISEPIPE=<exe> -DCHECK=resume -DJOURNAL=<file> -P sweep.cmake
+#   cmake -DNOISEPIPE=<exe> -DCHECK=resume|search_resume -DJOURNAL=<file> -P sweep.cmake
 #   cmake -DNOISEPIPE=<exe> -DCHECK=usage -P sweep.cmake
 if(CMAKE_SCRIPT_MODE_FILE)
   # Run noisepipe with the |-separated arguments; out: stdout + stderr.
@@ -60,6 +60,32 @@ if(CMAKE_SCRIPT_MODE_FILE)
     endforeach()
     np_run("sweep|--help" 0 out)
     np_run("bench|--help" 0 out)
+  elseif(CHECK STREQUAL "search_resume")
+    # A journal cut in the middle of a record (a kill), resumed on another thread count:
+    # the same summary as a run without a journal; another seed is exit 2 naming seed=.
+    file(REMOVE "${JOURNAL}")
+    set(common "search|--unit|classic3|-n|65536")
+    np_run("${common}|--threads|2|--journal|${JOURNAL}" 0 first)
+    file(READ "${JOURNAL}" text)
+    string(LENGTH "${text}" len)
+    math(EXPR half "${len} / 2")
+    string(SUBSTRING "${text}" 0 ${half} text)
+    file(WRITE "${JOURNAL}" "${text}")
+    np_run("${common}|--threads|1|--journal|${JOURNAL}|--resume" 0 resumed)
+    np_run("${common}|--threads|1" 0 whole)
+    if(NOT resumed MATCHES " [1-9][0-9]* resumed from the journal" OR NOT resumed MATCHES "dropping an incomplete last record")
+      message(FATAL_ERROR "the resumed search took no chunk from the journal, or kept its torn tail")
+    endif()
+    string(REGEX REPLACE "(inputs evaluated|wall time|noisepipe: journal)[^\n]*\n?" "" a "${resumed}")
+    string(REGEX REPLACE "(inputs evaluated|wall time)[^\n]*\n?" "" b "${whole}")
+    if(NOT a STREQUAL b)
+      message(FATAL_ERROR "resumed and uninterrupted searches differ:\n${a}\n----\n${b}")
+    endif()
+    np_run("${common}|--seed|2|--journal|${JOURNAL}|--resume" 2 other_seed)
+    if(NOT other_seed MATCHES "was written for 'seed=1', this run is 'seed=2'")
+      message(FATAL_ERROR "a journal of another seed was not refused naming seed=")
+    endif()
+    file(REMOVE "${JOURNAL}")
   elseif(CHECK STREQUAL "search_usage")
     foreach(bad "search" "search|--unit|nosuch" "search|--unit|classic3|-n|4095" "search|--unit|classic3|-n|x"
             "search|--unit|classic3|--config|bogus=1" "search|--unit|classic3|--resume" "search|--unit|classic3|--threads|0"
@@ -98,11 +124,13 @@ add_test(NAME sweep.cli_usage COMMAND ${CMAKE_COMMAND} -DCHECK=usage ${np_sweep_
 np_test_program(test_search test_search.c)
 np_add_cases(test_search search
   classic3_s8_l9_counterexample classic3_s9_l8_counterexample simplex3_t19_p19_counterexample
-  simplex3_t19_p21_pinned defaults_faithful classes threads journal_resume)
+  simplex3_t19_p21_pinned defaults_faithful classes threads journal_resume journal_refuse)
 # The command: a counterexample is exit 1 with the verdict; bad usage is exit 2.
 add_test(NAME search.cli_counterexample COMMAND ${CMAKE_COMMAND} -DCHECK=exit
   "-DARGS=search|--unit|classic3|--config|s_frac=4,lerp_frac=6|-n|4096"
   -DEXPECT=1 "-DMATCH=verdict: not faithful, counterexample \\(0x" ${np_sweep_script})
 add_test(NAME search.cli_proved COMMAND ${CMAKE_COMMAND} -DCHECK=exit
   "-DARGS=search|--unit|classic3|-n|8192" -DEXPECT=0 "-DMATCH=verdict: faithful \\(proved\\)" ${np_sweep_script})
+add_test(NAME search.cli_resume COMMAND ${CMAKE_COMMAND} -DCHECK=search_resume
+  -DJOURNAL=${CMAKE_CURRENT_BINARY_DIR}/search_cli.journal ${np_sweep_script})
 add_test(NAME search.cli_usage COMMAND ${CMAKE_COMMAND} -DCHECK=search_usage ${np_sweep_script})

@@ -4,7 +4,8 @@
  * answers, round trip, torn last line, torn multi-line record, a damaged
  * middle line (refused with its line number), binding mismatches, and
  * resume after a kill, simulated by cutting the file at every byte and done
- * for real with SIGKILL.
+ * for real with SIGKILL; the way in of a run's journal (np_jfile_open_run,
+ * np_jfile_bind) that the sweep and the search share.
  */
 #include <signal.h>
 #include <stdlib.h>
@@ -435,6 +436,52 @@ static int t_kill_resume(void)
     return 0;
 }
 
+/*
+ * A run's way in (np_jfile_open_run, np_jfile_bind): a binding that is not
+ * KEY=VALUE, too long, or one too many is refused; a missing file is
+ * started with resume, an existing one refused without it, resumed with it
+ * (its records handed on), refused naming the binding for another run.
+ */
+static int t_open_run(void)
+{
+    char path[256], err[1024], big[NP_JFILE_TEXT_MAX + 8];
+    tmp_path(path, sizeof path, "open_run");
+    np_jfile_binds b;
+    np_jfile_binds_init(&b);
+    memset(big, 'v', sizeof big - 1u);
+    big[sizeof big - 1u] = '\0';
+    NP_CHECK(np_jfile_bind(&b, "no key here") != 0 && np_jfile_bind(&b, "k=%s", big) != 0 && b.n == 0,
+             "a binding without KEY= or too long was taken");
+    for (unsigned k = 0; k < NP_JFILE_MAX_BINDINGS; k++)
+        NP_CHECK(np_jfile_bind(&b, "k%u=%u", k, k) == 0, "binding %u refused", k);
+    NP_CHECK(np_jfile_bind(&b, "one=too many") != 0, "binding %d taken", NP_JFILE_MAX_BINDINGS + 1);
+    np_jfile_binds_init(&b);
+    for (unsigned k = 0; k < N_BINDS; k++)
+        np_jfile_bind(&b, "%s", binds[k]);
+
+    np_jfile jf;
+    got g = { 0, 0, "", 0, 1 };
+    NP_CHECK(np_jfile_open_run(&jf, path, magic, &b, 1, collect, &g, err, sizeof err) == 0, "%s", err);
+    np_jfile_add(&jf, "rec 0");
+    NP_CHECK(np_jfile_commit(&jf, 1, err, sizeof err) == 0 && np_jfile_close(&jf) == 0, "%s", err);
+    NP_CHECK(np_jfile_open_run(&jf, path, magic, &b, 0, collect, &g, err, sizeof err) != 0 &&
+                 strstr(err, "exists: pass --resume") && jf.fd < 0,
+             "an existing journal was started again: %s", err);
+    NP_CHECK(np_jfile_open_run(&jf, path, magic, &b, 1, collect, &g, err, sizeof err) == 0 && g.n_records == 1,
+             "resumed %u records: %s", g.n_records, err);
+    np_jfile_close(&jf);
+    np_jfile_binds_init(&b);
+    np_jfile_bind(&b, "%s", binds[0]);
+    np_jfile_bind(&b, "%s", binds[1]);
+    np_jfile_bind(&b, "z=0x0001");
+    NP_CHECK(np_jfile_open_run(&jf, path, magic, &b, 1, collect, &g, err, sizeof err) != 0 &&
+                 strstr(err, "'z=0x0000', this run is 'z=0x0001': not resuming") && jf.fd < 0,
+             "a journal of another z was resumed: %s", err);
+    printf("another z: %s\n", err);
+    unlink(path);
+    return 0;
+}
+
 static const np_test_case cases[] = {
     { "crc_kat", t_crc_kat },
     { "round_trip", t_round_trip },
@@ -444,6 +491,7 @@ static const np_test_case cases[] = {
     { "binding_mismatch", t_binding_mismatch },
     { "cut_every_byte", t_cut_every_byte },
     { "kill_resume", t_kill_resume },
+    { "open_run", t_open_run },
     { NULL, NULL },
 };
 

@@ -3,7 +3,8 @@
  * The adversarial search (src/sweep/np_search.h, docs/search.md): the
  * counterexamples of issue 10 found again in a CI budget and pinned, the
  * defaults faithful by proof with no counterexample, the same bits for any
- * thread count, the journal.
+ * thread count, the journal (resumed to the same bits; refused when damaged
+ * or another run's).
  */
 #include <math.h>
 #include <stdio.h>
@@ -11,6 +12,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "np_crc32.h"
 #include "np_search.h"
 #include "np_test.h"
 #include "np_unit.h"
@@ -192,7 +194,75 @@ static int t_threads(void)
     return 0;
 }
 
-/* A journal: a run cut short (its chunk lines dropped after the fourth, a torn line) resumes to the same bits. */
+/* The whole file at path into buf (at most len bytes): its size. */
+static size_t slurp(const char *path, char *buf, size_t len)
+{
+    FILE *f = fopen(path, "rb");
+    size_t n = f ? fread(buf, 1, len, f) : 0;
+    if (f)
+        fclose(f);
+    return n;
+}
+
+static void spit(const char *path, const char *buf, size_t n)
+{
+    FILE *f = fopen(path, "wb");
+    NP_CHECK(f != NULL, "cannot write %s", path);
+    if (f) {
+        fwrite(buf, 1, n, f);
+        fclose(f);
+    }
+}
+
+/* The byte offset just after line `lines` (counting from 1) of buf[0..n), or n. */
+static size_t after_line(const char *buf, size_t n, unsigned lines)
+{
+    size_t at = 0;
+    for (unsigned seen = 0; at < n && seen < lines; at++)
+        seen += buf[at] == '\n';
+    return at;
+}
+
+/* The byte offset just after the k-th line that starts with "worst" (the end of the k-th record), or n. */
+static size_t after_record(const char *buf, size_t n, unsigned k)
+{
+    size_t at = 0;
+    for (unsigned seen = 0; at < n && seen < k;) {
+        seen += strncmp(buf + at, "worst", 5) == 0;
+        at = after_line(buf + at, n - at, 1) + at;
+    }
+    return at;
+}
+
+/* A name for a new file from the mkstemp template path (the file is not left behind). 0, or -1. */
+static int free_path(char *path)
+{
+    int fd = mkstemp(path);
+    NP_CHECK(fd >= 0, "mkstemp %s", path);
+    if (fd < 0)
+        return -1;
+    close(fd);
+    remove(path);
+    return 0;
+}
+
+static np_search_opts journal_opts(const np_unit *u, const void *cfg, const char *path)
+{
+    np_search_opts o;
+    memset(&o, 0, sizeof o);
+    o.unit = u;
+    o.cfg = cfg;
+    o.n = 65536;
+    o.seed = 7;
+    o.journal = path;
+    return o;
+}
+
+/*
+ * A journal: a run cut short (its records dropped after the fourth; then a
+ * torn record: the fifth's chunk line whole, its field line cut) resumes
+ * to the same bits.
+ */
 static int t_journal_resume(void)
 {
     np_unit_cfg cfg;
@@ -200,47 +270,125 @@ static int t_journal_resume(void)
     if (!u)
         return 0;
     char path[] = "/tmp/np_search_journal_XXXXXX";
-    int fd = mkstemp(path);
-    NP_CHECK(fd >= 0, "mkstemp");
-    if (fd < 0)
+    if (free_path(path) != 0)
         return 0;
-    close(fd);
-    remove(path);
-    np_search_opts o;
+    np_search_opts o = journal_opts(u, &cfg, path);
     np_search_result full, again;
-    char err[256];
-    memset(&o, 0, sizeof o);
-    o.unit = u;
-    o.cfg = &cfg;
-    o.n = 65536;
-    o.seed = 7;
-    o.journal = path;
+    char err[512];
     NP_CHECK(np_search_run(&o, &full, err, sizeof err) == 0, "%s", err);
     NP_CHECK(np_search_run(&o, &again, err, sizeof err) != 0 && strstr(err, "exists"), "an existing journal "
              "was overwritten: %s", err);
-    /* Keep the header and 4 chunk lines, then half a line. */
-    FILE *f = fopen(path, "rb");
-    char buf[1 << 16];
-    size_t n = f ? fread(buf, 1, sizeof buf, f) : 0;
-    if (f)
-        fclose(f);
-    size_t cut = 0;
-    for (unsigned lines = 0; cut < n && lines < 8; cut++)
-        lines += buf[cut] == '\n';
-    f = fopen(path, "wb");
-    if (f) {
-        fwrite(buf, 1, cut + 40 < n ? cut + 40 : cut, f);
-        fclose(f);
-    }
+    static char buf[1 << 16];
+    size_t n = slurp(path, buf, sizeof buf);
+    size_t cut = after_record(buf, n, 4);
+    size_t torn = after_line(buf + cut, n - cut, 1) + cut + 20;
+    NP_CHECK(torn < n, "the journal has fewer than 6 records");
+    spit(path, buf, torn < n ? torn : n);
     o.resume = 1;
     NP_CHECK(np_search_run(&o, &again, err, sizeof err) == 0, "%s", err);
     printf("resumed %llu of %llu chunks\n", (unsigned long long)again.chunks_resumed,
            (unsigned long long)again.chunks);
     NP_CHECK(again.chunks_resumed == 4, "resumed %llu chunks, expected 4", (unsigned long long)again.chunks_resumed);
     NP_CHECK(same_result(&full, &again), "a resumed search differs from the whole one");
-    o.seed = 8;
-    NP_CHECK(np_search_run(&o, &again, err, sizeof err) != 0 && strstr(err, "seed 7"),
-             "a journal of another seed was resumed: %s", err);
+    /* Resumed again, every chunk comes from the journal: still the same bits. */
+    NP_CHECK(np_search_run(&o, &again, err, sizeof err) == 0, "%s", err);
+    NP_CHECK(again.chunks_resumed == again.chunks, "resumed %llu of %llu chunks the second time",
+             (unsigned long long)again.chunks_resumed, (unsigned long long)again.chunks);
+    NP_CHECK(same_result(&full, &again), "a search resumed from a whole journal differs from the whole one");
+    remove(path);
+    return 0;
+}
+
+/*
+ * A journal that is not this run's, or cannot be trusted, is refused with
+ * a message: a damaged middle line with its line number, each binding of
+ * another run (unit, configuration, seed, budget) named, a record line that
+ * checks but does not parse, the format before np_jfile.
+ */
+static int t_journal_refuse(void)
+{
+    np_unit_cfg cfg, other;
+    const np_unit *u = configure("classic3", &cfg, NULL);
+    const np_unit *simplex = configure("simplex3", &other, NULL);
+    if (!u || !simplex)
+        return 0;
+    char path[] = "/tmp/np_search_refuse_XXXXXX";
+    if (free_path(path) != 0)
+        return 0;
+    np_search_opts o = journal_opts(u, &cfg, path);
+    np_search_result r;
+    char err[512];
+    NP_CHECK(np_search_run(&o, &r, err, sizeof err) == 0, "%s", err);
+    static char good[1 << 16], bad[1 << 16];
+    size_t n = slurp(path, good, sizeof good);
+    o.resume = 1;
+
+    /* Line 8, a class line in the middle of the first record: one digit changed. */
+    memcpy(bad, good, n);
+    size_t at = after_line(bad, n, 7);
+    char *digit = strpbrk(bad + at, "0123456789");
+    NP_CHECK(digit != NULL && digit < bad + after_line(bad, n, 8), "no digit on line 8");
+    if (digit)
+        *digit = *digit == '9' ? '8' : (char)(*digit + 1);
+    spit(path, bad, n);
+    NP_CHECK(np_search_run(&o, &r, err, sizeof err) != 0 && strstr(err, ":8: malformed or damaged line"),
+             "a damaged line 8 was not refused with its number: %s", err);
+    printf("damaged line: %s\n", err);
+    spit(path, good, n);
+
+    struct {
+        const char *what, *named;
+        const np_unit *u;
+        const void *cfg;
+        uint64_t seed, n;
+    } mismatch[] = {
+        { "another unit", "was written for 'unit=classic3'", simplex, &other, 7, 65536 },
+        { "another seed", "was written for 'seed=7', this run is 'seed=8'", u, &cfg, 8, 65536 },
+        { "another budget", "was written for 'n=65536', this run is 'n=65537'", u, &cfg, 7, 65537 },
+    };
+    np_unit_cfg cheap;
+    if (np_unit_configure(u, &cheap, "s_frac=10", err, sizeof err) == 0) {
+        o.cfg = &cheap;
+        NP_CHECK(np_search_run(&o, &r, err, sizeof err) != 0 && strstr(err, "was written for 'config=") &&
+                     strstr(err, "s_frac=12") && strstr(err, "this run is 'config=") && strstr(err, "s_frac=10"),
+                 "another config was not refused naming config=: %s", err);
+        printf("another config: %s\n", err);
+        o.cfg = &cfg;
+    }
+    for (unsigned k = 0; k < sizeof mismatch / sizeof mismatch[0]; k++) {
+        np_search_opts m = o;
+        m.unit = mismatch[k].u;
+        m.cfg = mismatch[k].cfg;
+        m.seed = mismatch[k].seed;
+        m.n = mismatch[k].n;
+        NP_CHECK(np_search_run(&m, &r, err, sizeof err) != 0 && strstr(err, mismatch[k].named) &&
+                     strstr(err, "not resuming"),
+                 "%s was not refused naming it: %s", mismatch[k].what, err);
+        printf("%s: %s\n", mismatch[k].what, err);
+    }
+    NP_CHECK(slurp(path, bad, sizeof bad) == n && memcmp(bad, good, n) == 0, "a refused journal was changed");
+
+    /* A record line with a good checksum that does not parse: a chunk index past the budget's. */
+    char line[128];
+    int len = snprintf(line, sizeof line, "chunk 99999 n=4096 over=0 cr=4096");
+    unsigned lineno = 1;
+    for (size_t i = 0; i < n; i++)
+        lineno += good[i] == '\n';
+    memcpy(bad, good, n);
+    n += (size_t)snprintf(bad + n, sizeof bad - n, "%s *%08x\n", line, (unsigned)np_crc32(0, line, (size_t)len));
+    spit(path, bad, n);
+    char where[32];
+    snprintf(where, sizeof where, ":%u: malformed chunk line", lineno);
+    NP_CHECK(np_search_run(&o, &r, err, sizeof err) != 0 && strstr(err, where),
+             "a malformed chunk line was not refused with its number %u: %s", lineno, err);
+    printf("malformed record: %s\n", err);
+
+    /* The format before np_jfile (FNV-1a check= lines) is named, not read. */
+    static const char v1[] = "noisepipe-search-journal 1\nunit classic3\n";
+    spit(path, v1, sizeof v1 - 1);
+    NP_CHECK(np_search_run(&o, &r, err, sizeof err) != 0 && strstr(err, "has format 'noisepipe-search-journal 1'"),
+             "a format 1 journal was not refused by name: %s", err);
+    printf("format 1: %s\n", err);
     remove(path);
     return 0;
 }
@@ -254,6 +402,7 @@ static const np_test_case cases[] = {
     { "classes", t_classes },
     { "threads", t_threads },
     { "journal_resume", t_journal_resume },
+    { "journal_refuse", t_journal_refuse },
     { NULL, NULL },
 };
 

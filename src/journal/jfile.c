@@ -60,6 +60,23 @@ const char *np_jfile_binding(const np_jfile_info *info, const char *key)
     return NULL;
 }
 
+void np_jfile_binds_init(np_jfile_binds *b) { b->n = 0; }
+
+int np_jfile_bind(np_jfile_binds *b, const char *fmt, ...)
+{
+    if (b->n == NP_JFILE_MAX_BINDINGS)
+        return -1;
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(b->text[b->n], NP_JFILE_TEXT_MAX, fmt, ap);
+    va_end(ap);
+    if (n < 0 || n >= NP_JFILE_TEXT_MAX || !is_binding(b->text[b->n]))
+        return -1;
+    b->ptr[b->n] = b->text[b->n];
+    b->n++;
+    return 0;
+}
+
 /* The file's bindings against bind[0..n_bind): the first difference, named. */
 static int check_bindings(const char *path, const np_jfile_info *info, const char *const *bind,
                           unsigned n_bind, char *err, size_t errlen)
@@ -252,6 +269,30 @@ int np_jfile_resume(np_jfile *jf, const char *path, const char *magic, const cha
         }
     }
     return rc;
+}
+
+int np_jfile_open_run(np_jfile *jf, const char *path, const char *magic, const np_jfile_binds *b,
+                      int resume, np_jfile_line_fn fn, void *ctx, char *err, size_t errlen)
+{
+    int rc = NP_JFILE_MISSING;
+    np_jfile_none(jf);
+    if (resume) {
+        np_jfile_info *info = malloc(sizeof *info); /* 16 KiB of bindings: not on the stack */
+        if (!info)
+            return np_errf(err, errlen, "out of memory");
+        rc = np_jfile_resume(jf, path, magic, b->ptr, b->n, fn, ctx, info, err, errlen);
+        free(info);
+        if (rc == NP_JFILE_MISMATCH) {
+            size_t n = strlen(err);
+            snprintf(err + n, errlen - n, ": not resuming (use another journal file)");
+        }
+    }
+    if (rc == NP_JFILE_MISSING) {
+        rc = np_jfile_create(jf, path, magic, b->ptr, b->n, 0, err, errlen);
+        if (rc == NP_JFILE_EXISTS)
+            np_errf(err, errlen, "journal %s exists: pass --resume to continue it, or remove it", path);
+    }
+    return rc == NP_JFILE_OK ? 0 : -1;
 }
 
 int np_jfile_create(np_jfile *jf, const char *path, const char *magic, const char *const *bind,

@@ -2,9 +2,10 @@
 /*
  * np_jfile.h - the journal file: an append-only text file of checksummed
  * lines, bound to what it describes, that a killed process leaves readable.
- * The exhaustive sweep (np_sweep.h) and the USB link's host (np_link.h) keep
- * their journals in it; docs/sweep.md and docs/usb-protocol.md give their
- * record lines.
+ * The exhaustive sweep (np_sweep.h), the adversarial search (np_search.h)
+ * and the USB link's host (np_link.h) keep their journals in it;
+ * docs/sweep.md, docs/search.md and docs/usb-protocol.md give their record
+ * lines.
  *
  *   MAGIC                              the kind and format version, e.g.
  *                                      "noisepipe-sweep-journal 2" (no checksum:
@@ -72,6 +73,19 @@ typedef struct np_jfile_info {
     uint64_t torn_bytes;  /* bytes after good_end: the torn tail */
 } np_jfile_info;
 
+/* A run's bindings, built with np_jfile_bind: ptr[0..n) is what np_jfile_create/read take. */
+typedef struct np_jfile_binds {
+    unsigned n;
+    char text[NP_JFILE_MAX_BINDINGS][NP_JFILE_TEXT_MAX];
+    const char *ptr[NP_JFILE_MAX_BINDINGS];
+} np_jfile_binds;
+
+/* No bindings yet. */
+void np_jfile_binds_init(np_jfile_binds *b);
+
+/* Add the binding "KEY=VALUE" that fmt formats. 0, or -1 (no room, too long, not KEY=VALUE). */
+int np_jfile_bind(np_jfile_binds *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
 /* The value of binding key in info, or NULL. */
 const char *np_jfile_binding(const np_jfile_info *info, const char *key);
 
@@ -111,6 +125,17 @@ int np_jfile_read(const char *path, const char *magic, const char *const *bind, 
 int np_jfile_resume(np_jfile *jf, const char *path, const char *magic, const char *const *bind,
                     unsigned n_bind, np_jfile_line_fn fn, void *ctx, np_jfile_info *info, char *err,
                     size_t errlen);
+
+/*
+ * A run's journal (the sweep's, the search's): with resume, np_jfile_resume,
+ * a missing file started afresh; without, np_jfile_create of a file that
+ * must not exist. The messages name the file and say what to do: an
+ * existing file without resume ("pass --resume to continue it, or remove
+ * it"), bindings of another run (": not resuming (use another journal
+ * file)" after the binding named). 0 (jf open), or -1 with err (jf closed).
+ */
+int np_jfile_open_run(np_jfile *jf, const char *path, const char *magic, const np_jfile_binds *b,
+                      int resume, np_jfile_line_fn fn, void *ctx, char *err, size_t errlen);
 
 /*
  * Start a journal: magic and bindings, written and synced. replace: truncate

@@ -2,11 +2,9 @@
 /* The adversarial error search (np_search.h): input classes, hill-climb, threads, journal. */
 #include "np_search.h"
 
-#include <errno.h>
 #include <inttypes.h>
 #include <math.h>
 #include <pthread.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,8 +12,10 @@
 
 #include "np_cli.h"
 #include "np_fixed.h"
+#include "np_jfile.h"
 #include "np_rng.h"
 #include "np_sweep.h"
+#include "sweep_internal.h"
 
 const char *const np_search_class_name[NP_SEARCH_CLASSES] = {
     "extremes", "lattice and cell faces", "equal-offset and unit faces", "worst rounding", "random",
@@ -269,7 +269,7 @@ typedef struct search_run {
     unsigned char *have;
     uint64_t next, wave_end, done;
     pthread_mutex_t mu;
-    FILE *jf;
+    np_jfile jf;
     int failed;
     char err[512];
     np_progress prog;
@@ -403,202 +403,183 @@ static void climb_run(const search_run *run, const np_search_pt *start, uint64_t
 /* ---------------------------------------------------------------- journal */
 
 /*
- * Text: four header lines, then one line per completed phase-1 chunk (in
- * completion order) with its statistics (counts decimal, doubles C99 hex)
- * and an FNV-1a checksum of the line. The climbs are not journalled: a
- * resumed run climbs again from the same worst list, so the same bits.
+ * A journal (np_jfile.h) bound to unit, configuration, seed and budget,
+ * then one record per completed phase-1 chunk, in the order chunks
+ * completed; a record is 3 + F lines for F output fields, the last one
+ * committing it:
+ *
+ *   noisepipe-search-journal 2
+ *   unit=classic3 *crc
+ *   config=out_bits=8 s_frac=12 lerp_frac=11 *crc
+ *   seed=7 *crc
+ *   n=65536 *crc
+ *   chunk 3 n=4096 over=0 cr=4096 *crc                          opens a record
+ *   field 0 max=0x1.2p-1 at=0x1234,0x0100,0xffff over=0 *crc    one per output field
+ *   class n=0,4096,0,0,0,0 max=-0x1p+0,0x1.2p-1,... *crc        per class, np_search_class_name order
+ *   worst 0x1234,0x0100,0xffff:0x1.2p-1 ... *crc                the W worst, ranked; commits
+ *
+ * Counts are decimal, doubles C99 hex (%a): a resumed chunk merges to the
+ * same bits as a computed one. Not bound, because the result does not
+ * depend on them: the thread count (np_search.h, Determinism) and
+ * stop_early (chunk k's statistics are the same whichever waves run). The
+ * climbs are not journalled: a resumed run climbs again from the same worst
+ * list, so the same bits.
  */
-#define JOURNAL_MAGIC "noisepipe-search-journal 1"
-enum { HEADER_LINES = 4, JLINE_MAX = 4096 };
+#define JOURNAL_MAGIC "noisepipe-search-journal 2"
 
-static uint32_t fnv1a(const char *s, size_t n)
-{
-    uint32_t h = 2166136261u;
-    for (size_t i = 0; i < n; i++)
-        h = (h ^ (uint32_t)(uint8_t)s[i]) * 16777619u;
-    return h;
-}
+/* Synced at most this often (s): a chunk takes milliseconds, a sync as long. */
+#define JOURNAL_SYNC_INTERVAL 1.0
 
-static void journal_header(const search_run *run, char lines[HEADER_LINES][JLINE_MAX])
+/* Add chunk k's record to the journal's pending lines. 0, or -1. */
+static int chunk_record(np_jfile *jf, uint64_t k, const np_search_stats *s)
 {
-    char cfgtext[JLINE_MAX - 16];
-    np_unit_cfg_format(run->su.u, run->su.cfg, cfgtext, sizeof cfgtext);
-    snprintf(lines[0], JLINE_MAX, "%s", JOURNAL_MAGIC);
-    snprintf(lines[1], JLINE_MAX, "unit %s", run->su.u->name);
-    snprintf(lines[2], JLINE_MAX, "config %s", cfgtext);
-    snprintf(lines[3], JLINE_MAX, "seed %" PRIu64 " n %" PRIu64, run->o->seed, run->o->n);
-}
-
-static size_t put(char *buf, size_t len, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
-static size_t put(char *buf, size_t len, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    int n = len < JLINE_MAX ? vsnprintf(buf + len, JLINE_MAX - len, fmt, ap) : 0;
-    va_end(ap);
-    return len + (n > 0 ? (size_t)n : 0u);
-}
-
-static size_t chunk_line(char *buf, uint64_t k, const np_search_stats *s)
-{
-    size_t len = put(buf, 0, "chunk %" PRIu64 " %" PRIu64 " %" PRIu64 " %" PRIu64 " %u", k, s->n, s->over, s->cr,
-                     s->n_out);
-    for (unsigned f = 0; f < s->n_out; f++)
-        len = put(buf, len, " %u %u %u %a %" PRIu64, s->fmax[f].in[0], s->fmax[f].in[1], s->fmax[f].in[2],
-                  s->fmax[f].err, s->fover[f]);
-    for (unsigned c = 0; c < NP_SEARCH_CLASSES; c++)
-        len = put(buf, len, " %" PRIu64 " %a", s->cls_n[c], s->cls_max[c]);
-    len = put(buf, len, " %u", s->n_worst);
-    for (unsigned i = 0; i < s->n_worst; i++)
-        len = put(buf, len, " %u %u %u %a", s->worst[i].in[0], s->worst[i].in[1], s->worst[i].in[2],
-                  s->worst[i].err);
-    return put(buf, len, " check=%08" PRIx32 "\n", fnv1a(buf, len));
-}
-
-/* Read the next whitespace-separated number of *p: 0, or -1. */
-static int rd_u(const char **p, uint64_t max, uint64_t *v)
-{
-    char *end;
-    while (**p == ' ')
-        (*p)++;
-    if (**p < '0' || **p > '9')
-        return -1;
-    errno = 0;
-    *v = strtoull(*p, &end, 10);
-    if (errno || *v > max || (*end != ' ' && *end != '\0'))
-        return -1;
-    *p = end;
-    return 0;
-}
-
-static int rd_d(const char **p, double *v)
-{
-    char *end;
-    while (**p == ' ')
-        (*p)++;
-    *v = strtod(*p, &end);
-    if (end == *p || (*end != ' ' && *end != '\0'))
-        return -1;
-    *p = end;
-    return 0;
-}
-
-static int rd_pt(const char **p, np_search_pt *pt)
-{
-    uint64_t v[3];
-    for (unsigned a = 0; a < 3; a++) {
-        if (rd_u(p, 0xffff, &v[a]) != 0)
-            return -1;
-        pt->in[a] = (uint16_t)v[a];
+    int rc = np_jfile_add(jf, "chunk %" PRIu64 " n=%" PRIu64 " over=%" PRIu64 " cr=%" PRIu64, k, s->n, s->over,
+                          s->cr);
+    for (unsigned f = 0; f < s->n_out && rc == 0; f++)
+        rc = np_jfile_add(jf, "field %u max=%a at=0x%04x,0x%04x,0x%04x over=%" PRIu64, f, s->fmax[f].err,
+                          (unsigned)s->fmax[f].in[0], (unsigned)s->fmax[f].in[1], (unsigned)s->fmax[f].in[2],
+                          s->fover[f]);
+    /* Room for the longest: a count is 20 digits, a %a double 24 characters, and a separator. */
+    char n[NP_SEARCH_CLASSES * 21], max[NP_SEARCH_CLASSES * 25], worst[NP_SEARCH_WORST * 47];
+    size_t ln = 0, lm = 0, lw = 0;
+    for (unsigned c = 0; c < NP_SEARCH_CLASSES; c++) {
+        ln += (size_t)snprintf(n + ln, sizeof n - ln, "%s%" PRIu64, c ? "," : "", s->cls_n[c]);
+        lm += (size_t)snprintf(max + lm, sizeof max - lm, "%s%a", c ? "," : "", s->cls_max[c]);
     }
-    return rd_d(p, &pt->err);
-}
-
-static int parse_chunk(const char *line, unsigned n_out, uint64_t *k, np_search_stats *s)
-{
-    const char *ck = strstr(line, " check=");
-    char *end;
-    if (!ck || strlen(ck) != 15 || strncmp(line, "chunk ", 6) != 0)
-        return -1;
-    unsigned long want = strtoul(ck + 7, &end, 16);
-    if (*end != '\0')
-        return -1;
-    size_t body = (size_t)(ck - line);
-    char tmp[JLINE_MAX];
-    if (body + 1 >= sizeof tmp)
-        return -1;
-    memcpy(tmp, line, body);
-    tmp[body] = '\0';
-    if ((uint32_t)want != fnv1a(tmp, body))
-        return -1;
-    const char *p = tmp + 6;
-    uint64_t v;
-    stats_init(s, n_out);
-    if (rd_u(&p, UINT64_MAX, k) || rd_u(&p, UINT64_MAX, &s->n) || rd_u(&p, UINT64_MAX, &s->over) ||
-        rd_u(&p, UINT64_MAX, &s->cr) || rd_u(&p, NP_UNIT_MAX_FIELDS, &v) || v != n_out)
-        return -1;
-    for (unsigned f = 0; f < n_out; f++)
-        if (rd_pt(&p, &s->fmax[f]) || rd_u(&p, UINT64_MAX, &s->fover[f]))
-            return -1;
-    for (unsigned c = 0; c < NP_SEARCH_CLASSES; c++)
-        if (rd_u(&p, UINT64_MAX, &s->cls_n[c]) || rd_d(&p, &s->cls_max[c]))
-            return -1;
-    if (rd_u(&p, NP_SEARCH_WORST, &v))
-        return -1;
-    s->n_worst = (unsigned)v;
+    worst[0] = '\0';
     for (unsigned i = 0; i < s->n_worst; i++)
-        if (rd_pt(&p, &s->worst[i]))
-            return -1;
-    return *p == '\0' && s->n == NP_SEARCH_CHUNK ? 0 : -1;
+        lw += (size_t)snprintf(worst + lw, sizeof worst - lw, " 0x%04x,0x%04x,0x%04x:%a", (unsigned)s->worst[i].in[0],
+                               (unsigned)s->worst[i].in[1], (unsigned)s->worst[i].in[2], s->worst[i].err);
+    if (rc == 0)
+        rc = np_jfile_add(jf, "class n=%s max=%s", n, max);
+    return rc == 0 ? np_jfile_add(jf, "worst%s", worst) : rc;
 }
 
+/* Reading back: a record's lines into s, committed into run->chunk/have by its worst line. */
+typedef struct chunk_reader {
+    search_run *run;
+    uint64_t k;
+    np_search_stats s;
+    unsigned next; /* the line expected: 0 chunk, 1..F field, F + 1 class, F + 2 worst */
+} chunk_reader;
+
+/* "0xXXXX,0xYYYY,0xZZZZ" at *p into in: 0 (*p after it), or -1. */
+static int parse_in(const char **p, uint16_t in[3])
+{
+    unsigned v[3];
+    int used = -1;
+    if (sscanf(*p, "0x%x,0x%x,0x%x%n", &v[0], &v[1], &v[2], &used) != 3 || used < 0 || v[0] > 0xffffu ||
+        v[1] > 0xffffu || v[2] > 0xffffu)
+        return -1;
+    for (unsigned a = 0; a < 3; a++)
+        in[a] = (uint16_t)v[a];
+    *p += used;
+    return 0;
+}
+
+/* The class line's lists, "n=a,b,... max=x,y,...": 0, or -1. */
+static int parse_classes(const char *p, np_search_stats *s)
+{
+    char *end;
+    uint64_t total = 0;
+    if (strncmp(p, "n=", 2) != 0)
+        return -1;
+    p += 2;
+    for (unsigned c = 0; c < NP_SEARCH_CLASSES; c++, p = end + 1) {
+        if (*p < '0' || *p > '9')
+            return -1;
+        s->cls_n[c] = strtoull(p, &end, 10);
+        total += s->cls_n[c];
+        if (*end != (c + 1u < NP_SEARCH_CLASSES ? ',' : ' '))
+            return -1;
+    }
+    if (strncmp(p, "max=", 4) != 0)
+        return -1;
+    p += 4;
+    for (unsigned c = 0; c < NP_SEARCH_CLASSES; c++, p = end + (*end != '\0')) {
+        s->cls_max[c] = strtod(p, &end);
+        if (end == p || *end != (c + 1u < NP_SEARCH_CLASSES ? ',' : '\0'))
+            return -1;
+    }
+    return total == s->n ? 0 : -1;
+}
+
+static int parse_worst(const char *p, np_search_stats *s)
+{
+    s->n_worst = 0;
+    while (*p == ' ') {
+        np_search_pt *w = &s->worst[s->n_worst];
+        char *end;
+        p++;
+        if (s->n_worst == NP_SEARCH_WORST || parse_in(&p, w->in) != 0 || *p++ != ':')
+            return -1;
+        w->err = strtod(p, &end);
+        if (end == p)
+            return -1;
+        p = end;
+        s->n_worst++;
+    }
+    return *p == '\0' && s->n_worst > 0 ? 0 : -1;
+}
+
+/* One record line read back (its checksum checked and cut off): NP_JFILE_OPEN, NP_JFILE_COMMIT, or -1. */
+static int resume_line(void *ctx, const np_jfile_info *info, char *line, uint64_t lineno, char *err,
+                       size_t errlen)
+{
+    chunk_reader *rd = ctx;
+    search_run *run = rd->run;
+    np_search_stats *s = &rd->s;
+    unsigned n_out = run->su.f.n_out;
+    int used = -1;
+    (void)info;
+    (void)lineno;
+    if (rd->next == 0) {
+        stats_init(s, n_out);
+        if (sscanf(line, "chunk %" SCNu64 " n=%" SCNu64 " over=%" SCNu64 " cr=%" SCNu64 "%n", &rd->k, &s->n,
+                   &s->over, &s->cr, &used) != 4 ||
+            used < 0 || line[used] != '\0' || rd->k >= run->n_chunks || s->n != NP_SEARCH_CHUNK ||
+            s->over > s->n || s->cr > s->n * n_out)
+            return np_errf(err, errlen, "malformed chunk line (a record starts with one)");
+    } else if (rd->next <= n_out) {
+        unsigned f, x, y, z;
+        np_search_pt *m = &s->fmax[rd->next - 1u];
+        if (sscanf(line, "field %u max=%la at=0x%x,0x%x,0x%x over=%" SCNu64 "%n", &f, &m->err, &x, &y, &z,
+                   &s->fover[rd->next - 1u], &used) != 6 ||
+            used < 0 || line[used] != '\0' || f != rd->next - 1u || x > 0xffffu || y > 0xffffu || z > 0xffffu ||
+            s->fover[f] > s->over)
+            return np_errf(err, errlen, "malformed field line (field %u of %u of chunk %" PRIu64 " expected)",
+                           rd->next - 1u, n_out, rd->k);
+        m->in[0] = (uint16_t)x;
+        m->in[1] = (uint16_t)y;
+        m->in[2] = (uint16_t)z;
+    } else if (rd->next == n_out + 1u) {
+        if (strncmp(line, "class ", 6) != 0 || parse_classes(line + 6, s) != 0)
+            return np_errf(err, errlen, "malformed class line of chunk %" PRIu64, rd->k);
+    } else {
+        if (strncmp(line, "worst", 5) != 0 || parse_worst(line + 5, s) != 0)
+            return np_errf(err, errlen, "malformed worst line of chunk %" PRIu64, rd->k);
+        if (run->have[rd->k] && !np_search_stats_equal(&run->chunk[rd->k], s))
+            return np_errf(err, errlen, "chunk %" PRIu64 " appears twice with different statistics", rd->k);
+        run->chunk[rd->k] = *s;
+        run->have[rd->k] = 1;
+        rd->next = 0;
+        return NP_JFILE_COMMIT;
+    }
+    rd->next++;
+    return NP_JFILE_OPEN;
+}
+
+/* Open the journal (np_jfile_open_run): chunks read back go into run->chunk/have. */
 static int journal_open(search_run *run, char *err, size_t errlen)
 {
-    const char *path = run->o->journal;
-    char hdr[HEADER_LINES][JLINE_MAX];
-    journal_header(run, hdr);
-    FILE *f = run->o->resume ? fopen(path, "rb") : NULL;
-    if (!f && run->o->resume && errno != ENOENT) {
-        snprintf(err, errlen, "cannot read journal %s: %s", path, strerror(errno));
-        return -1;
-    }
-    if (f) {
-        static char line[JLINE_MAX + 2];
-        unsigned lineno = 0;
-        long keep = 0;
-        int rc = 0;
-        while (rc == 0 && fgets(line, sizeof line, f)) {
-            size_t n = strlen(line);
-            if (n == 0 || line[n - 1] != '\n')
-                break; /* a torn last line: cut off below */
-            line[n - 1] = '\0';
-            lineno++;
-            if (lineno <= HEADER_LINES) {
-                if (strcmp(line, hdr[lineno - 1]) != 0) {
-                    snprintf(err, errlen, "journal %s was written for '%.200s', this run is '%.200s': not resuming",
-                             path, line, hdr[lineno - 1]);
-                    rc = -1;
-                }
-            } else {
-                uint64_t k;
-                np_search_stats s;
-                if (parse_chunk(line, run->su.f.n_out, &k, &s) != 0 || k >= run->n_chunks) {
-                    snprintf(err, errlen, "journal %s, line %u: malformed chunk line", path, lineno);
-                    rc = -1;
-                } else {
-                    run->chunk[k] = s;
-                    run->have[k] = 1;
-                }
-            }
-            keep = ftell(f);
-        }
-        fclose(f);
-        if (rc != 0)
-            return -1;
-        if (lineno < HEADER_LINES) {
-            snprintf(err, errlen, "journal %s: incomplete header", path);
-            return -1;
-        }
-        if (truncate(path, (off_t)keep) != 0) {
-            snprintf(err, errlen, "cannot truncate journal %s: %s", path, strerror(errno));
-            return -1;
-        }
-        run->jf = fopen(path, "ab");
-    } else {
-        run->jf = fopen(path, "wbx");
-        if (!run->jf && errno == EEXIST) {
-            snprintf(err, errlen, "journal %s exists: pass --resume to continue it, or remove it", path);
-            return -1;
-        }
-        if (run->jf)
-            for (unsigned k = 0; k < HEADER_LINES; k++)
-                fprintf(run->jf, "%s\n", hdr[k]);
-    }
-    if (!run->jf || fflush(run->jf) != 0) {
-        snprintf(err, errlen, "cannot write journal %s: %s", path, strerror(errno));
-        return -1;
-    }
-    return 0;
+    const np_search_opts *o = run->o;
+    np_jfile_binds b;
+    np_jfile_binds_init(&b);
+    if (np_sweep_bind_unit(&b, o->unit, o->cfg) != 0 || np_jfile_bind(&b, "seed=%" PRIu64, o->seed) != 0 ||
+        np_jfile_bind(&b, "n=%" PRIu64, o->n) != 0)
+        return np_errf(err, errlen, "journal %s: a binding is too long", o->journal);
+    chunk_reader rd = { .run = run, .next = 0 };
+    return np_jfile_open_run(&run->jf, o->journal, JOURNAL_MAGIC, &b, o->resume, resume_line, &rd, err, errlen);
 }
 
 /* ---------------------------------------------------------------- threads */
@@ -621,16 +602,23 @@ static void *chunk_worker(void *arg)
             continue;
         pthread_mutex_unlock(&run->mu);
         np_search_stats s;
-        char line[JLINE_MAX];
         chunk_run(run, k, &s);
-        size_t len = run->jf ? chunk_line(line, k, &s) : 0;
         pthread_mutex_lock(&run->mu);
         run->chunk[k] = s;
         run->have[k] = 1;
-        /* The line goes out whole before the next chunk is taken: a kill leaves at most a torn last line. */
-        if (len && (fwrite(line, 1, len, run->jf) != len || fflush(run->jf) != 0) && !run->failed) {
-            run->failed = 1;
-            snprintf(run->err, sizeof run->err, "cannot write journal %s: %s", run->o->journal, strerror(errno));
+        /* The record goes out in one write: a kill leaves at most a torn tail. */
+        if (run->jf.fd >= 0 && !run->failed) {
+            char jerr[sizeof run->err];
+            if (chunk_record(&run->jf, k, &s) != 0) {
+                np_jfile_discard(&run->jf);
+                run->failed = 1;
+                snprintf(run->err, sizeof run->err, "cannot write journal %s: line too long or out of memory",
+                         run->o->journal);
+            } else if (np_jfile_commit(&run->jf, np_now() - run->jf.last_sync >= JOURNAL_SYNC_INTERVAL, jerr,
+                                       sizeof jerr) != 0) {
+                run->failed = 1;
+                snprintf(run->err, sizeof run->err, "%s", jerr);
+            }
         }
         count_done(run, s.n);
     }
@@ -708,8 +696,7 @@ static int make_extremes(search_run *run)
 
 static void free_run(search_run *run)
 {
-    if (run->jf)
-        fclose(run->jf);
+    np_jfile_close(&run->jf);
     free(run->ext);
     free(run->chunk);
     free(run->have);
@@ -734,6 +721,7 @@ int np_search_run(const np_search_opts *o, np_search_result *res, char *err, siz
         return -1;
     }
     run->o = o;
+    np_jfile_none(&run->jf);
     search_unit_init(&run->su, o->unit, o->cfg);
     stats_init(&res->total, run->su.f.n_out);
     /* Phase 1: 3/4 of the budget in whole chunks; the climbs take the rest. */
@@ -799,11 +787,16 @@ int np_search_run(const np_search_opts *o, np_search_result *res, char *err, siz
     if (o->progress)
         np_progress_end(&run->prog);
     res->seconds = np_now() - t0;
-    if (run->jf && fclose(run->jf) != 0 && !run->failed) {
-        run->failed = 1;
-        snprintf(run->err, sizeof run->err, "cannot close journal %s", o->journal);
+    if (run->jf.fd >= 0 && !run->failed) {
+        char jerr[sizeof run->err];
+        if (np_jfile_sync(&run->jf, jerr, sizeof jerr) != 0) {
+            run->failed = 1;
+            snprintf(run->err, sizeof run->err, "%s", jerr);
+        } else if (np_jfile_close(&run->jf) != 0) {
+            run->failed = 1;
+            snprintf(run->err, sizeof run->err, "cannot close journal %s", o->journal);
+        }
     }
-    run->jf = NULL;
     int failed = run->failed;
     if (failed)
         snprintf(err, errlen, "%s", run->err);

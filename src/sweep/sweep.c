@@ -14,6 +14,7 @@
 #include "np_cli.h"
 #include "np_fixed.h"
 #include "np_jfile.h"
+#include "sweep_internal.h"
 
 /* ---------------------------------------------------------------- statistics */
 
@@ -304,22 +305,12 @@ int np_sweep_block(const np_unit *u, const void *cfg, uint16_t z, unsigned xcell
  * behind: resuming cuts it off and computes that block again.
  */
 #define JOURNAL_MAGIC "noisepipe-sweep-journal 2"
-enum { HEADER_BINDINGS = 3 };
 
-typedef struct journal_binds {
-    char text[HEADER_BINDINGS][NP_JFILE_TEXT_MAX];
-    const char *ptr[HEADER_BINDINGS];
-} journal_binds;
-
-static void journal_bindings(const np_sweep_opts *o, journal_binds *b)
+int np_sweep_bind_unit(np_jfile_binds *b, const np_unit *u, const void *cfg)
 {
     char cfgtext[NP_JFILE_TEXT_MAX - 16];
-    np_unit_cfg_format(o->unit, o->cfg, cfgtext, sizeof cfgtext);
-    snprintf(b->text[0], NP_JFILE_TEXT_MAX, "unit=%s", o->unit->name);
-    snprintf(b->text[1], NP_JFILE_TEXT_MAX, "config=%s", cfgtext);
-    snprintf(b->text[2], NP_JFILE_TEXT_MAX, "z=0x%04x", (unsigned)o->z);
-    for (unsigned k = 0; k < HEADER_BINDINGS; k++)
-        b->ptr[k] = b->text[k];
+    np_unit_cfg_format(u, cfg, cfgtext, sizeof cfgtext);
+    return np_jfile_bind(b, "unit=%s", u->name) != 0 || np_jfile_bind(b, "config=%s", cfgtext) != 0 ? -1 : 0;
 }
 
 /* Add the block line to the journal's pending record. 0, or -1. */
@@ -403,35 +394,16 @@ static int resume_line(void *ctx, const np_jfile_info *info, char *line, uint64_
     return NP_JFILE_COMMIT;
 }
 
-/*
- * Open the journal: resume it (its blocks into run->blk/have; a missing file
- * is started afresh) or start it (it must not exist).
- */
+/* Open the journal (np_jfile_open_run): blocks read back go into run->blk/have. */
 static int journal_open(sweep_run *run, char *err, size_t errlen)
 {
-    const char *path = run->o->journal;
-    journal_binds b;
-    journal_bindings(run->o, &b);
-    int rc = NP_JFILE_MISSING;
-    if (run->o->resume) {
-        np_jfile_info *info = malloc(sizeof *info);
-        if (!info)
-            return np_errf(err, errlen, "out of memory");
-        rc = np_jfile_resume(&run->jf, path, JOURNAL_MAGIC, b.ptr, HEADER_BINDINGS, resume_line, run,
-                             info, err, errlen);
-        free(info);
-        if (rc == NP_JFILE_MISMATCH) {
-            size_t n = strlen(err);
-            snprintf(err + n, errlen - n, ": not resuming (use another journal file)");
-        }
-    }
-    if (rc == NP_JFILE_MISSING) {
-        rc = np_jfile_create(&run->jf, path, JOURNAL_MAGIC, b.ptr, HEADER_BINDINGS, 0, err, errlen);
-        if (rc == NP_JFILE_EXISTS)
-            return np_errf(err, errlen, "journal %s exists: pass --resume to continue it, or remove it",
-                        path);
-    }
-    return rc == NP_JFILE_OK ? 0 : -1;
+    np_jfile_binds b;
+    np_jfile_binds_init(&b);
+    if (np_sweep_bind_unit(&b, run->o->unit, run->o->cfg) != 0 ||
+        np_jfile_bind(&b, "z=0x%04x", (unsigned)run->o->z) != 0)
+        return np_errf(err, errlen, "journal %s: a binding is too long", run->o->journal);
+    return np_jfile_open_run(&run->jf, run->o->journal, JOURNAL_MAGIC, &b, run->o->resume, resume_line, run, err,
+                             errlen);
 }
 
 /* ---------------------------------------------------------------- threads */

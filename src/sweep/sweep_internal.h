@@ -1,0 +1,16 @@
+/* SPDX-License-Identifier: MIT */
+/* sweep_internal.h - what the sweep (sweep.c) shares with the search (search.c); not installed. */
+#ifndef NP_SWEEP_INTERNAL_H
+#define NP_SWEEP_INTERNAL_H
+
+#include "np_jfile.h"
+#include "np_unit.h"
+
+/*
+ * The bindings of a run's journal (np_jfile.h) that name what it measures:
+ * unit=NAME and config=TEXT (np_unit_cfg_format, canonical). The sweep's
+ * journal adds z=, the search's seed= and n=. 0, or -1 (too long).
+ */
+int np_sweep_bind_unit(np_jfile_binds *b, const np_unit *u, const void *cfg);
+
+#endif /* NP_SWEEP_INTERNAL_H */
