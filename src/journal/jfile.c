@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* The journal file (np_jfile.h): checksummed lines, bindings, torn tails. */
 #include "np_jfile.h"
+#include "np_outfile.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -295,13 +296,26 @@ int np_jfile_open_run(np_jfile *jf, const char *path, const char *magic, const n
     return rc == NP_JFILE_OK ? 0 : -1;
 }
 
+/*
+ * Creation is atomic: the header is written and synced under a temporary
+ * name beside the journal, then published at path with link(2) (which, like
+ * O_EXCL, fails when path exists) or, with replace, rename(2). A kill at any
+ * moment leaves either no journal or one with its whole header, never an
+ * empty or half-written one that a resume would refuse.
+ */
 int np_jfile_create(np_jfile *jf, const char *path, const char *magic, const char *const *bind,
                     unsigned n_bind, int replace, char *err, size_t errlen)
 {
-    int rc = open_for(jf, path, O_WRONLY | O_CREAT | O_APPEND | (replace ? O_TRUNC : O_EXCL), err,
-                      errlen);
+    char tmp[sizeof jf->path];
+    if (strlen(path) + 24 >= sizeof tmp)
+        return fail(err, errlen, NP_JFILE_BAD, "journal path too long");
+    if (!replace && access(path, F_OK) == 0)
+        return fail(err, errlen, NP_JFILE_EXISTS, "journal %s exists", path);
+    snprintf(tmp, sizeof tmp, "%s.tmp%ld", path, (long)getpid());
+    int rc = open_for(jf, tmp, O_WRONLY | O_CREAT | O_APPEND | O_TRUNC, err, errlen);
     if (rc != NP_JFILE_OK)
         return rc;
+    int slot = np_interrupt_track(tmp); /* removed if a signal ends the run right here */
     /* The magic line carries no checksum: add it whole, then strip the suffix. */
     if (np_jfile_add(jf, "%s", magic) != 0)
         goto bad;
@@ -310,14 +324,32 @@ int np_jfile_create(np_jfile *jf, const char *path, const char *magic, const cha
     for (unsigned k = 0; k < n_bind; k++)
         if (!is_binding(bind[k]) || np_jfile_add(jf, "%s", bind[k]) != 0)
             goto bad;
-    if (np_jfile_commit(jf, 1, err, errlen) != 0) {
+    if (np_jfile_commit(jf, 1, err, errlen) != 0)
+        goto fail_io;
+    if (replace ? rename(tmp, path) != 0 : link(tmp, path) != 0) {
+        int e = errno;
+        np_interrupt_untrack(slot);
         np_jfile_close(jf);
-        return NP_JFILE_BAD;
+        unlink(tmp);
+        if (e == EEXIST)
+            return fail(err, errlen, NP_JFILE_EXISTS, "journal %s exists", path);
+        return fail(err, errlen, NP_JFILE_BAD, "cannot create journal %s: %s", path, strerror(e));
     }
+    if (!replace)
+        unlink(tmp);
+    np_interrupt_untrack(slot);
+    snprintf(jf->path, sizeof jf->path, "%s", path);
     return NP_JFILE_OK;
 bad:
+    np_interrupt_untrack(slot);
     np_jfile_close(jf);
+    unlink(tmp);
     return fail(err, errlen, NP_JFILE_BAD, "cannot write journal %s: bad or too long header line", path);
+fail_io:
+    np_interrupt_untrack(slot);
+    np_jfile_close(jf);
+    unlink(tmp);
+    return NP_JFILE_BAD;
 }
 
 int np_jfile_add(np_jfile *jf, const char *fmt, ...)

@@ -138,9 +138,11 @@ int np_jfile_open_run(np_jfile *jf, const char *path, const char *magic, const n
                       int resume, np_jfile_line_fn fn, void *ctx, char *err, size_t errlen);
 
 /*
- * Start a journal: magic and bindings, written and synced. replace: truncate
- * an existing file (the caller checked it may); else an existing file is
- * NP_JFILE_EXISTS and left alone.
+ * Start a journal: magic and bindings, written and synced under a temporary
+ * name and then published at path in one step (link(2), or rename(2) with
+ * replace), so a kill leaves no journal or a whole header, never an empty
+ * file. replace: replace an existing file (the caller checked it may); else
+ * an existing file is NP_JFILE_EXISTS and left alone.
  */
 int np_jfile_create(np_jfile *jf, const char *path, const char *magic, const char *const *bind,
                     unsigned n_bind, int replace, char *err, size_t errlen);
