@@ -1296,8 +1296,13 @@ static char *file_bytes(const char *path, size_t *n)
     fseek(f, 0, SEEK_END);
     long len = ftell(f);
     fseek(f, 0, SEEK_SET);
-    b = malloc((size_t)len + 1u);
+    b = len < 0 ? NULL : malloc((size_t)len + 1u);
+    if (!b) {
+        fclose(f);
+        return NULL;
+    }
     *n = fread(b, 1, (size_t)len, f);
+    b[*n] = '\0'; /* the callers search it as a string */
     fclose(f);
     return b;
 }
