@@ -10,16 +10,9 @@
 
 #include "np_cli.h"
 #include "np_texreg.h"
+#include "render_view.h"
 
-/* --- Camera and scan conversion --- */
-
-typedef struct view {
-    double eye[3], f[3], r[3], u[3];
-    double w, h;
-    const np_scene_camera *cam;
-} view;
-
-static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+/* --- Camera and scan conversion (render_view.h) --- */
 
 static void cross3(const double a[3], const double b[3], double o[3])
 {
@@ -30,12 +23,12 @@ static void cross3(const double a[3], const double b[3], double o[3])
 
 static void norm3(double v[3])
 {
-    double l = sqrt(dot3(v, v));
+    double l = sqrt(np_rdot3(v, v));
     for (int a = 0; a < 3; a++)
         v[a] /= l;
 }
 
-static void view_init(const np_scene *sc, view *v)
+void np_rview_init(const np_scene *sc, np_rview *v)
 {
     const np_scene_camera *c = &sc->cam;
     v->cam = c;
@@ -51,11 +44,10 @@ static void view_init(const np_scene *sc, view *v)
     v->h = (double)sc->height;
 }
 
-/* Screen position (x right, y down, pixel centres at +1/2) of P; -1 when P is not in front of the eye. */
-static int project(const view *v, const double P[3], double *sx, double *sy)
+int np_rview_project(const np_rview *v, const double P[3], double *sx, double *sy)
 {
     double d[3] = { P[0] - v->eye[0], P[1] - v->eye[1], P[2] - v->eye[2] };
-    double xc = dot3(d, v->r), yc = dot3(d, v->u), zc = dot3(d, v->f);
+    double xc = np_rdot3(d, v->r), yc = np_rdot3(d, v->u), zc = np_rdot3(d, v->f);
     if (v->cam->perspective) {
         if (!(zc > 1e-9))
             return -1;
@@ -70,29 +62,52 @@ static int project(const view *v, const double P[3], double *sx, double *sy)
     return 0;
 }
 
-/* Does the polygon face the camera? (Newell normal; counter-clockwise seen from the front.) */
-static int facing(const view *v, const np_scene_poly *p)
+double np_rview_depth(const np_rview *v, const double P[3])
 {
-    double n[3] = { 0, 0, 0 };
+    double d[3] = { P[0] - v->eye[0], P[1] - v->eye[1], P[2] - v->eye[2] };
+    return np_rdot3(d, v->f);
+}
+
+void np_rpoly_normal(const np_scene_poly *p, double n[3])
+{
+    n[0] = n[1] = n[2] = 0;
     for (unsigned i = 0; i < p->n; i++) {
         const double *a = p->p[i], *b = p->p[(i + 1) % p->n];
         n[0] += (a[1] - b[1]) * (a[2] + b[2]);
         n[1] += (a[2] - b[2]) * (a[0] + b[0]);
         n[2] += (a[0] - b[0]) * (a[1] + b[1]);
     }
-    if (v->cam->perspective) {
-        double d[3] = { p->p[0][0] - v->eye[0], p->p[0][1] - v->eye[1], p->p[0][2] - v->eye[2] };
-        return dot3(n, d) < 0;
-    }
-    return dot3(n, v->f) < 0;
 }
 
-typedef struct proj_poly {
-    unsigned n;
-    double x[NP_SCENE_MAX_VERTS], y[NP_SCENE_MAX_VERTS];
-    const np_scene_poly *p;
-    double ymin, ymax;
-} proj_poly;
+int np_rview_facing(const np_rview *v, const np_scene_poly *p)
+{
+    double n[3];
+    np_rpoly_normal(p, n);
+    if (v->cam->perspective) {
+        double d[3] = { p->p[0][0] - v->eye[0], p->p[0][1] - v->eye[1], p->p[0][2] - v->eye[2] };
+        return np_rdot3(n, d) < 0;
+    }
+    return np_rdot3(n, v->f) < 0;
+}
+
+int np_rproj_init(const np_rview *v, const np_scene_poly *p, unsigned id, np_rproj *q)
+{
+    q->n = p->n;
+    q->p = p;
+    q->id = id;
+    q->ymin = q->xmin = HUGE_VAL;
+    q->ymax = q->xmax = -HUGE_VAL;
+    int bad = 0;
+    for (unsigned k = 0; k < p->n; k++) {
+        bad |= np_rview_project(v, p->p[k], &q->x[k], &q->y[k]);
+        q->ymin = fmin(q->ymin, q->y[k]);
+        q->ymax = fmax(q->ymax, q->y[k]);
+        q->xmin = fmin(q->xmin, q->x[k]);
+        q->xmax = fmax(q->xmax, q->x[k]);
+    }
+    return bad ? -1 : 0;
+}
+
 
 static int push_span(np_render_frame *fr, size_t *cap, const np_rspan *s)
 {
@@ -108,10 +123,10 @@ static int push_span(np_render_frame *fr, size_t *cap, const np_rspan *s)
     return 0;
 }
 
-/* The span of polygon pp on row j (centre yc); 1 when it has pixels, 0 when none, -1 on a range error. */
-static int row_span(const np_scene *sc, const proj_poly *pp, unsigned j, np_rspan *out, char *err, size_t errlen)
+int np_rrow_span(const np_scene *sc, const np_rproj *pp, unsigned j, double ox, double oy, np_rspan *out, char *err,
+                 size_t errlen)
 {
-    double yc = (double)j + 0.5;
+    double yc = (double)j + oy;
     double xs[2], ts[2][3];
     unsigned hits = 0;
     for (unsigned i = 0; i < pp->n && hits < 3; i++) {
@@ -134,8 +149,8 @@ static int row_span(const np_scene *sc, const proj_poly *pp, unsigned j, np_rspa
     double xl = xs[l], xr = xs[rr];
     if (!(xr > xl))
         return 0;
-    /* Pixels i with xl <= i + 1/2 < xr, clipped to the image. */
-    double fi0 = ceil(xl - 0.5), fi1 = ceil(xr - 0.5);
+    /* Pixels i with xl <= i + ox < xr, clipped to the image. */
+    double fi0 = ceil(xl - ox), fi1 = ceil(xr - ox);
     if (fi0 < 0)
         fi0 = 0;
     if (fi1 > (double)sc->width)
@@ -146,10 +161,10 @@ static int row_span(const np_scene *sc, const proj_poly *pp, unsigned j, np_rspa
     out->hw.y = (uint16_t)j;
     out->hw.x0 = (uint16_t)fi0;
     out->hw.n = (uint32_t)(fi1 - fi0);
-    out->poly = (unsigned)(pp->p - sc->poly);
+    out->poly = pp->id;
     for (int a = 0; a < 3; a++) {
         out->ds[a] = (ts[rr][a] - ts[l][a]) / (xr - xl);
-        out->s0[a] = ts[l][a] + (fi0 + 0.5 - xl) * out->ds[a];
+        out->s0[a] = ts[l][a] + (fi0 + ox - xl) * out->ds[a];
         if (np_texreg_quantize(out->s0[a], NP_TEX_FC, NP_TEX_S_BITS, &out->hw.s[a]) ||
             np_texreg_quantize(out->ds[a], NP_TEX_FC, NP_TEX_DS_BITS, &out->hw.ds[a])) {
             snprintf(err, errlen, "%s: row %u: texture coordinate %g or its step %g per pixel is outside the "
@@ -174,9 +189,9 @@ int np_render_prepare(const np_scene *sc, np_render_frame *fr, char *err, size_t
         snprintf(err, errlen, "%s: texture: %s", sc->path, why);
         return -1;
     }
-    view v;
-    view_init(sc, &v);
-    proj_poly *pp = calloc(sc->n_poly ? sc->n_poly : 1, sizeof *pp);
+    np_rview v;
+    np_rview_init(sc, &v);
+    np_rproj *pp = calloc(sc->n_poly ? sc->n_poly : 1, sizeof *pp);
     if (!pp) {
         snprintf(err, errlen, "out of memory");
         return -1;
@@ -184,20 +199,9 @@ int np_render_prepare(const np_scene *sc, np_render_frame *fr, char *err, size_t
     unsigned np = 0;
     for (unsigned i = 0; i < sc->n_poly; i++) {
         const np_scene_poly *p = &sc->poly[i];
-        if (p->cull && !facing(&v, p))
+        if (p->cull && !np_rview_facing(&v, p))
             continue;
-        proj_poly *q = &pp[np];
-        q->n = p->n;
-        q->p = p;
-        q->ymin = HUGE_VAL;
-        q->ymax = -HUGE_VAL;
-        int bad = 0;
-        for (unsigned k = 0; k < p->n; k++) {
-            bad |= project(&v, p->p[k], &q->x[k], &q->y[k]);
-            q->ymin = fmin(q->ymin, q->y[k]);
-            q->ymax = fmax(q->ymax, q->y[k]);
-        }
-        if (bad) {
+        if (np_rproj_init(&v, p, i, &pp[np])) {
             free(pp);
             snprintf(err, errlen, "%s: polygon %u is not wholly in front of the camera (no near clipping)",
                      sc->path, i);
@@ -212,7 +216,7 @@ int np_render_prepare(const np_scene *sc, np_render_frame *fr, char *err, size_t
             if (yc < pp[i].ymin || yc >= pp[i].ymax)
                 continue;
             np_rspan s;
-            int rc = row_span(sc, &pp[i], j, &s, err, errlen);
+            int rc = np_rrow_span(sc, &pp[i], j, 0.5, 0.5, &s, err, errlen);
             if (rc < 0 || (rc > 0 && push_span(fr, &cap, &s))) {
                 if (rc > 0)
                     snprintf(err, errlen, "out of memory");
