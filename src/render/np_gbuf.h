@@ -43,10 +43,14 @@
  *                 polygon drawn (front-facing or not culled); a zero range
  *                 gives d = 0. Uncovered samples: NP_GBUF_DEPTH_FAR
  *                 (2^24 - 1, the far clear value).
- *   normal  3 x s8 Q0.7  the polygon's unit normal (Newell, world space)
- *                 turned towards the camera, each component
- *                 clamp(round_half_up(128 n), -127, 127) (PIN: symmetric
- *                 saturation, so 1.0 reads 127/128); uncovered: (0, 0, 0).
+ *   normal  3 x s8 Q0.7  the polygon's unit normal n (Newell, world space)
+ *                 turned towards the camera, each component coded
+ *                 round_half_up(127 n_i), |code| <= 127 (PIN: the design's
+ *                 s8 Q0.7 word; coding 127 n rather than 128 n keeps 1.0
+ *                 exact - the GPU's SNORM8 - so the word read as Q0.7 is
+ *                 (127/128) n: one common scale, which the cone test of
+ *                 aacount does not see (it is scale-free) and the light
+ *                 register absorbs); uncovered: (0, 0, 0). Decoded: code / 127.
  *   poly    u32   the scene polygon id (np_scene_poly_get); the hardware
  *                 G-buffer channel is its low 8 bits (PIN: polygon id u8);
  *                 uncovered: NP_GBUF_NONE.
@@ -76,7 +80,7 @@
  *   returns for the sub-span (the set-up stall), one pixel per clock, the
  *   pipeline drained once at the end - exactly the cycle-accurate model's
  *   count (np_span.h, "Timing") when every run starts at k = 0
- *   (gbuf.shade_cycles checks it against np_span_sim). A run that starts
+ *   (gbuf.shade_cycles checks it against np_span_sim fed the same runs). A run that starts
  *   at k0 > 0:
  *   - an engine with a seek (texel) places pixel k0 directly: u0 + k0 du and
  *     s + k0 ds, one more dependency level of the set-up engine after du:
@@ -98,15 +102,22 @@
  * --- Lighting (np_gbuf_light; scene key light.image, PIN) ---
  * Only when the scene's "light" section has "image": true (default false:
  * the light shades only the _lit views, and every existing image and hash
- * is unchanged). With the G-buffer normal n (3 x s8 Q0.7) and the light
- * direction l (3 x s16 Q0.15, clamp(round_half_up(32768 l), -32767, 32767))
- * and ambient a (u17 Q1.16, round_half_up(65536 ambient)):
- *   dot  s25 Q0.22   n . l, exact
- *   lam  u17 Q1.16   clamp(dot, 0, 2^22) >> 6, rounded half up
- *   L    u17 Q1.16   (a 2^16 + (2^16 - a) lam + 2^15) >> 16   (<= 1.0)
- *   c'   u8          (c L + 2^15) >> 16 per channel
- * The float reference uses c_ref (ambient + (1 - ambient) max(0, n . l))
- * with the exact normal.
+ * is unchanged). With the G-buffer normal code n (3 x s8, above), the light
+ * register l (3 x s17 Q1.15: round_half_up(2^15 (128/127) l_i), l the unit
+ * direction towards the light, so that n . l / 2^22 = (n/127) . l) and the
+ * ambient register a (u17 Q1.16, round_half_up(2^16 ambient)):
+ *   dot  s25 Q0.22   n . l, exact (|dot| < 3 * 127 * 33026 < 2^24)
+ *   lam  u17 Q1.16   clamp(dot, 0, 2^22) >> 6, rounded half up (|err| <= 2^-17)
+ *   L    u17 Q1.16   (a 2^16 + (2^16 - a) lam + 2^15) >> 16   (<= 1.0, |err| <= 2^-16)
+ *   c'   u8          (c L + 2^15) >> 16 per channel, rounded half up
+ * The float references light a sample with the decoded G-buffer normal
+ * (code / 127, as the unit sees it) and the exact l and ambient:
+ * c_ref (ambient + (1 - ambient) max(0, n . l)); the 16x16 ground truth with
+ * the exact normal. Against the former the unit's lit colour is within
+ * 1/2 LSB (final rounding) + 255 (2^-16 + |l_q - l| terms <= 3 * 127/127 *
+ * 2^-16) + the unlit colour's own error times L - within the render's 1 LSB
+ * on the scenes (gbuf.light); the normal's coding adds at most
+ * 255 (1 - ambient) |l|_1 / 254 <= 1.75 LSB against the exact normal.
  */
 #ifndef NP_GBUF_H
 #define NP_GBUF_H
@@ -126,7 +137,8 @@ enum {
     NP_GBUF_DEPTH_FAR = (1 << NP_GBUF_DEPTH_BITS) - 1,
     NP_GBUF_NORMAL_FRAC = 7,  /* s8 Q0.7 */
     NP_GBUF_RECIP_FRAC = 17,  /* the resolve's reciprocal ROM: u18 Q1.17 */
-    NP_GBUF_LIGHT_FRAC = 15,  /* light direction s16 Q0.15 */
+    NP_GBUF_NORMAL_ONE = 127, /* the normal code of 1.0 */
+    NP_GBUF_LIGHT_FRAC = 15,  /* light register s17 Q1.15 */
     NP_GBUF_L_FRAC = 16       /* ambient, lam, L: Q1.16 */
 };
 #define NP_GBUF_NONE UINT32_MAX
@@ -171,6 +183,8 @@ typedef struct np_gbuf {
     uint32_t *poly;       /* NP_GBUF_NONE where uncovered */
     uint32_t *span;       /* the sub-span; NP_GBUF_NONE where uncovered */
     uint16_t *k;          /* the pixel of the sub-span */
+    uint8_t *hits;        /* sub-spans (front faces drawn) containing the sample, saturating at 255: coverage
+                             checks (a closed mesh: 1 inside its outline, 0 outside) */
     /* Per pixel, w * h. */
     uint8_t *cover;       /* covered samples, 0..n */
     uint64_t covered_pixels;  /* pixels with cover > 0 */
@@ -244,12 +258,22 @@ void np_gbuf_resolve(const np_gbuf *g, const uint16_t *mask, const uint8_t *rgb,
  */
 typedef struct np_gbuf_lightq {
     int on;               /* the scene's light.image */
-    int32_t l[3];         /* s16 Q0.15 */
+    int32_t l[3];         /* s17 Q1.15, 2^15 (128/127) l */
     uint32_t a;           /* u17 Q1.16 */
 } np_gbuf_lightq;
 void np_gbuf_light_setup(const np_scene *sc, np_gbuf_lightq *q);
 uint32_t np_gbuf_light_factor(const np_gbuf_lightq *q, const int8_t n[3]); /* L, u17 Q1.16 */
 void np_gbuf_light(const np_gbuf_lightq *q, const int8_t n[3], uint8_t rgb[3]);
+
+/*
+ * Polygon id's unit normal turned towards the camera (world space, double)
+ * and its G-buffer code (round_half_up(127 n_i)); nq may be NULL.
+ */
+void np_gbuf_poly_normal(const np_scene *sc, uint32_t id, double n[3], int8_t nq[3]);
+/* A normal code decoded: code / 127. */
+void np_gbuf_normal_decode(const int8_t nq[3], double n[3]);
+/* The reference's light factor at normal n: ambient + (1 - ambient) max(0, n . l); 1 without light.image. */
+double np_gbuf_light_ref(const np_scene *sc, const double n[3]);
 
 /* --- Float references (double) --- */
 

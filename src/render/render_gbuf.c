@@ -57,14 +57,14 @@ void np_gbuf_light_setup(const np_scene *sc, np_gbuf_lightq *q)
     memset(q, 0, sizeof *q);
     q->on = sc->light_image;
     for (int a = 0; a < 3; a++)
-        q->l[a] = q_signed(sc->light_dir[a], NP_GBUF_LIGHT_FRAC, (1 << NP_GBUF_LIGHT_FRAC) - 1);
+        q->l[a] = q_signed(sc->light_dir[a] * 128.0 / (double)NP_GBUF_NORMAL_ONE, NP_GBUF_LIGHT_FRAC, 1 << 16);
     q->a = (uint32_t)floor(ldexp(sc->ambient, NP_GBUF_L_FRAC) + 0.5);
 }
 
 uint32_t np_gbuf_light_factor(const np_gbuf_lightq *q, const int8_t n[3])
 {
     const unsigned one = 1u << NP_GBUF_L_FRAC;
-    /* dot: s25 Q0.22 (|n_i| <= 127, |l_i| <= 32767: |dot| < 3 * 2^22), exact. */
+    /* dot: s25 Q0.22 (|n_i| <= 127, |l_i| <= 33026: |dot| < 2^24), exact. */
     int32_t dot = (int32_t)n[0] * q->l[0] + (int32_t)n[1] * q->l[1] + (int32_t)n[2] * q->l[2];
     const int32_t dfrac = NP_GBUF_NORMAL_FRAC + NP_GBUF_LIGHT_FRAC, shift = dfrac - NP_GBUF_L_FRAC;
     if (dot < 0)
@@ -86,6 +86,19 @@ void np_gbuf_light(const np_gbuf_lightq *q, const int8_t n[3], uint8_t rgb[3])
 }
 
 /* --- Scan conversion --- */
+
+/* The G-buffer's normal code: round_half_up(127 n_i) (np_gbuf.h). */
+static void normal_code(const double n[3], int8_t nq[3])
+{
+    for (int a = 0; a < 3; a++)
+        nq[a] = (int8_t)q_signed(n[a] * (double)NP_GBUF_NORMAL_ONE, 0, NP_GBUF_NORMAL_ONE);
+}
+
+void np_gbuf_normal_decode(const int8_t nq[3], double n[3])
+{
+    for (int a = 0; a < 3; a++)
+        n[a] = (double)nq[a] / (double)NP_GBUF_NORMAL_ONE;
+}
 
 /* The unit normal of p turned towards the camera (world space). */
 static void facing_normal(const np_rview *v, const np_scene_poly *p, double n[3])
@@ -223,6 +236,7 @@ void np_gbuf_free(np_gbuf *g)
     free(g->poly);
     free(g->span);
     free(g->k);
+    free(g->hits);
     free(g->cover);
     memset(g, 0, sizeof *g);
 }
@@ -279,8 +293,9 @@ int np_gbuf_build(const np_scene *sc, unsigned m, np_gbuf *g, char *err, size_t 
     g->poly = malloc(ns * sizeof *g->poly);
     g->span = malloc(ns * sizeof *g->span);
     g->k = calloc(ns, sizeof *g->k);
+    g->hits = calloc(ns, 1);
     g->cover = calloc(npx, 1);
-    if (!g->depth || !g->normal || !g->poly || !g->span || !g->k || !g->cover)
+    if (!g->depth || !g->normal || !g->poly || !g->span || !g->k || !g->hits || !g->cover)
         goto oom;
     for (size_t i = 0; i < ns; i++) {
         g->depth[i] = NP_GBUF_DEPTH_FAR;
@@ -312,8 +327,7 @@ int np_gbuf_build(const np_scene *sc, unsigned m, np_gbuf *g, char *err, size_t 
         double nf[3];
         facing_normal(&v, p, nf);
         int8_t nq[3];
-        for (int a = 0; a < 3; a++)
-            nq[a] = (int8_t)q_signed(nf[a], NP_GBUF_NORMAL_FRAC, 127);
+        normal_code(nf, nq);
         plane pl;
         plane_init(&v, p, &pl);
         np_gbuf_span gs;
@@ -351,6 +365,8 @@ int np_gbuf_build(const np_scene *sc, unsigned m, np_gbuf *g, char *err, size_t 
                         const unsigned x = gs.r.hw.x0 + k;
                         const size_t i = np_gbuf_index(g, x, j, a, b);
                         const uint32_t d = depth_code(plane_depth(&pl, (double)x + ox, sy), g->z_near, g->z_far);
+                        if (g->hits[i] < 255)
+                            g->hits[i]++;
                         if (d > g->depth[i])
                             continue;
                         g->depth[i] = d;
@@ -584,6 +600,23 @@ void np_gbuf_resolve(const np_gbuf *g, const uint16_t *mask, const uint8_t *rgb,
 
 /* --- Float references --- */
 
+void np_gbuf_poly_normal(const np_scene *sc, uint32_t id, double n[3], int8_t nq[3])
+{
+    np_rview v;
+    np_rview_init(sc, &v);
+    np_scene_poly tmp;
+    facing_normal(&v, np_scene_poly_get(sc, id, &tmp), n);
+    if (nq)
+        normal_code(n, nq);
+}
+
+double np_gbuf_light_ref(const np_scene *sc, const double n[3])
+{
+    if (!sc->light_image)
+        return 1.0;
+    return sc->ambient + (1.0 - sc->ambient) * fmax(0.0, np_rdot3(n, sc->light_dir));
+}
+
 /* The reference's lighting factor of polygon id (exact normal), 1 when the scene does not light the image. */
 static double light_f(const np_scene *sc, const np_rview *v, uint32_t id)
 {
@@ -592,17 +625,13 @@ static double light_f(const np_scene *sc, const np_rview *v, uint32_t id)
     np_scene_poly tmp;
     double n[3];
     facing_normal(v, np_scene_poly_get(sc, id, &tmp), n);
-    return sc->ambient + (1.0 - sc->ambient) * fmax(0.0, np_rdot3(n, sc->light_dir));
+    return np_gbuf_light_ref(sc, n);
 }
 
 int np_gbuf_reference_samples(const np_gbuf *g, double *out)
 {
     const np_scene *sc = g->sc;
-    np_rview v;
-    np_rview_init(sc, &v);
     const size_t ns = (size_t)g->w * g->h * g->n;
-    uint32_t last = NP_GBUF_NONE;
-    double lf = 1.0;
     for (size_t i = 0; i < ns; i++) {
         double *o = out + 3 * i;
         if (g->span[i] == NP_GBUF_NONE) {
@@ -613,12 +642,13 @@ int np_gbuf_reference_samples(const np_gbuf *g, double *out)
         double st[3];
         np_gbuf_texcoord_f(g, i, st);
         np_ref_colour(&sc->tex.cmap, np_ref_texture_f(&sc->tex, st, NULL), o);
-        if (g->poly[i] != last) {
-            last = g->poly[i];
-            lf = light_f(sc, &v, last);
+        if (sc->light_image) {
+            double n[3];
+            np_gbuf_normal_decode(g->normal[i], n);
+            const double lf = np_gbuf_light_ref(sc, n);
+            for (int ch = 0; ch < 3; ch++)
+                o[ch] *= lf;
         }
-        for (int ch = 0; ch < 3; ch++)
-            o[ch] *= lf;
     }
     return 0;
 }

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "np_cli.h"
+#include "np_gbuf.h"
 #include "np_texreg.h"
 #include "render_view.h"
 
@@ -109,20 +110,6 @@ int np_rproj_init(const np_rview *v, const np_scene_poly *p, unsigned id, np_rpr
 }
 
 
-static int push_span(np_render_frame *fr, size_t *cap, const np_rspan *s)
-{
-    if (fr->n_spans == *cap) {
-        size_t nc = *cap ? *cap * 2 : 1024;
-        np_rspan *ns = realloc(fr->spans, nc * sizeof *ns);
-        if (!ns)
-            return -1;
-        fr->spans = ns;
-        *cap = nc;
-    }
-    fr->spans[fr->n_spans++] = *s;
-    return 0;
-}
-
 int np_rrow_span(const np_scene *sc, const np_rproj *pp, unsigned j, double ox, double oy, np_rspan *out, char *err,
                  size_t errlen)
 {
@@ -180,67 +167,71 @@ int np_rrow_span(const np_scene *sc, const np_rproj *pp, unsigned j, double ox, 
     return 1;
 }
 
+/* Frame order: by row, then polygon id (scene order), then x - the order the scan converter has always given. */
+static int span_order(const void *pa, const void *pb)
+{
+    const np_rspan *a = pa, *b = pb;
+    if (a->hw.y != b->hw.y)
+        return a->hw.y < b->hw.y ? -1 : 1;
+    if (a->poly != b->poly)
+        return a->poly < b->poly ? -1 : 1;
+    return a->hw.x0 < b->hw.x0 ? -1 : a->hw.x0 > b->hw.x0;
+}
+
+/*
+ * The 1x1 frame is the G-buffer at m = 1 (np_gbuf.h): its spans are the
+ * visible runs of the sub-spans (a whole sub-span unless a nearer polygon
+ * hides part of it), so hidden surfaces are removed by depth and the units
+ * shade only what is seen.
+ */
 int np_render_prepare(const np_scene *sc, np_render_frame *fr, char *err, size_t errlen)
 {
     memset(fr, 0, sizeof *fr);
     fr->sc = sc;
-    char why[256];
-    if (np_texreg_compile(&sc->tex, &fr->regs, why, sizeof why)) {
-        snprintf(err, errlen, "%s: texture: %s", sc->path, why);
+    np_gbuf g;
+    if (np_gbuf_build(sc, 1, &g, err, errlen))
         return -1;
-    }
-    np_rview v;
-    np_rview_init(sc, &v);
-    np_rproj *pp = calloc(sc->n_poly ? sc->n_poly : 1, sizeof *pp);
-    if (!pp) {
-        snprintf(err, errlen, "out of memory");
-        return -1;
-    }
-    unsigned np = 0;
-    for (unsigned i = 0; i < sc->n_poly; i++) {
-        const np_scene_poly *p = &sc->poly[i];
-        if (p->cull && !np_rview_facing(&v, p))
-            continue;
-        if (np_rproj_init(&v, p, i, &pp[np])) {
-            free(pp);
-            snprintf(err, errlen, "%s: polygon %u is not wholly in front of the camera (no near clipping)",
-                     sc->path, i);
-            return -1;
-        }
-        np++;
-    }
+    fr->regs = g.regs;
     size_t cap = 0;
-    for (unsigned j = 0; j < sc->height; j++) {
-        double yc = (double)j + 0.5;
-        for (unsigned i = 0; i < np; i++) {
-            if (yc < pp[i].ymin || yc >= pp[i].ymax)
+    for (uint32_t si = 0; si < g.n_spans; si++) {
+        const np_rspan *sp = &g.spans[si].r;
+        uint32_t k = 0;
+        while (k < sp->hw.n) {
+            if (g.span[(size_t)sp->hw.y * g.w + sp->hw.x0 + k] != si) {
+                k++;
                 continue;
-            np_rspan s;
-            int rc = np_rrow_span(sc, &pp[i], j, 0.5, 0.5, &s, err, errlen);
-            if (rc < 0 || (rc > 0 && push_span(fr, &cap, &s))) {
-                if (rc > 0)
+            }
+            uint32_t k1 = k + 1;
+            while (k1 < sp->hw.n && g.span[(size_t)sp->hw.y * g.w + sp->hw.x0 + k1] == si)
+                k1++;
+            np_rspan s = *sp;
+            s.hw.x0 = (uint16_t)(sp->hw.x0 + k);
+            s.hw.n = k1 - k;
+            for (int a = 0; a < 3; a++) {
+                s.hw.s[a] = sp->hw.s[a] + (int64_t)k * sp->hw.ds[a];
+                s.s0[a] = sp->s0[a] + (double)k * sp->ds[a];
+            }
+            if (fr->n_spans == cap) {
+                size_t nc = cap ? cap * 2 : 1024;
+                np_rspan *ns = realloc(fr->spans, nc * sizeof *ns);
+                if (!ns) {
+                    np_gbuf_free(&g);
+                    np_render_frame_free(fr);
                     snprintf(err, errlen, "out of memory");
-                free(pp);
-                np_render_frame_free(fr);
-                return -1;
+                    return -1;
+                }
+                fr->spans = ns;
+                cap = nc;
             }
-            if (rc > 0) {
-                fr->pixels += s.hw.n;
-                if (s.hw.n > fr->longest)
-                    fr->longest = s.hw.n;
-            }
+            fr->spans[fr->n_spans++] = s;
+            fr->pixels += s.hw.n;
+            if (s.hw.n > fr->longest)
+                fr->longest = s.hw.n;
+            k = k1;
         }
     }
-    free(pp);
-    if (fr->pixels == 0 && !sc->allow_empty) {
-        /* Nothing to measure: "0 of 0 samples, PSNR inf" would pass any check. */
-        np_render_frame_free(fr);
-        snprintf(err, errlen,
-                 "the scene covers no pixel: every polygon faces away from the camera, is behind it or "
-                 "is off the image (is camera.eye inside the geometry?); set \"allow_empty\": true to "
-                 "render an empty image");
-        return -1;
-    }
+    np_gbuf_free(&g);
+    qsort(fr->spans, fr->n_spans, sizeof *fr->spans, span_order);
     size_t npx = (size_t)sc->width * sc->height;
     fr->mask = calloc(npx, 1);
     if (!fr->mask) {
@@ -285,11 +276,21 @@ int np_render_reference(np_render_frame *fr)
         np_progress_update(&pr, i + 1u); /* counted as it starts: the last update is 100 % */
         const np_rspan *s = &fr->spans[i];
         double *row = fr->ref + ((size_t)s->hw.y * sc->width + s->hw.x0) * 3;
+        double lf = 1.0; /* the scene's light on the image (light.image) */
+        if (sc->light_image) {
+            double n[3], nd[3];
+            int8_t nq[3];
+            np_gbuf_poly_normal(sc, s->poly, n, nq);
+            np_gbuf_normal_decode(nq, nd); /* the G-buffer's normal, as the unit sees it */
+            lf = np_gbuf_light_ref(sc, nd);
+        }
         for (uint32_t k = 0; k < s->hw.n; k++) {
             /* Equation 14: s0 + k ds. */
             double st[3] = { s->s0[0] + (double)k * s->ds[0], s->s0[1] + (double)k * s->ds[1],
                              s->s0[2] + (double)k * s->ds[2] };
             np_ref_colour(&sc->tex.cmap, np_ref_texture_f(&sc->tex, st, NULL), row + 3 * (size_t)k);
+            for (size_t ch = 0; ch < 3; ch++)
+                row[3 * (size_t)k + ch] *= lf;
         }
     }
     fr->ref_seconds = np_now() - t0;
