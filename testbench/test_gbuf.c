@@ -78,6 +78,256 @@ static int build(const np_scene *s, unsigned m, np_gbuf *g)
     return 0;
 }
 
+static int parse(const char *json, np_scene *s)
+{
+    char err[1024];
+    if (np_scene_parse(json, "test.json", s, err, sizeof err)) {
+        NP_CHECK(0, "%s", err);
+        return -1;
+    }
+    return 0;
+}
+
+/*
+ * A test scene: an orthographic camera looking down -z from (0, 0, 10), one
+ * world unit per pixel, so screen (X, Y) is world (X - w/2, h/2 - Y); the
+ * geometry text geom; wood's texture.
+ */
+static int flat_scene(unsigned w, unsigned h, const char *geom, const char *extra, np_scene *s)
+{
+    char json[8192];
+    snprintf(json, sizeof json,
+             "{\"noisepipe_scene\": 1, \"name\": \"t\", \"image\": {\"width\": %u, \"height\": %u},"
+             "\"camera\": {\"projection\": \"orthographic\", \"eye\": [0, 0, 10], \"target\": [0, 0, 0],"
+             "\"up\": [0, 1, 0], \"height\": %u %s}, \"geometry\": [%s],"
+             "\"texture\": {\"quadric\": {\"A\": 10, \"H\": 10}, \"octaves\": [{\"amplitude\": 1, \"scale\": [5, 5, 1]}],"
+             "\"colormap\": {\"mode\": \"repeat\", \"domain\": [0, 1], \"colors\": [[226, 176, 116], [204, 146, 86],"
+             "[150, 96, 50], [204, 146, 86]]}}, \"allow_empty\": true}",
+             w, h, h, extra ? extra : "", geom);
+    return parse(json, s);
+}
+
+/* A rectangle [X0, X1) x [Y0, Y1) in screen coordinates at world z, counter-clockwise seen from +z. */
+static void rect(char *buf, size_t n, unsigned w, unsigned h, double X0, double X1, double Y0, double Y1, double z)
+{
+    double x0 = X0 - w / 2.0, x1 = X1 - w / 2.0, y0 = h / 2.0 - Y1, y1 = h / 2.0 - Y0;
+    snprintf(buf, n,
+             "{\"type\": \"polygon\", \"vertices\": [[%.17g, %.17g, %.17g], [%.17g, %.17g, %.17g], [%.17g, %.17g, %.17g],"
+             "[%.17g, %.17g, %.17g]], \"texcoords\": [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]}",
+             x0, y0, z, x1, y0, z, x1, y1, z, x0, y1, z);
+}
+
+/*
+ * Image borders and edges through sample points, at every m: the covered
+ * samples are exactly those whose point lies in [X0, X1) x [Y0, Y1) (edges
+ * half-open: a sample on the left or top edge is in, on the right or bottom
+ * edge out), each covered once; a rectangle larger than the image covers
+ * every sample, in sub-spans from x = 0 over the whole width.
+ */
+static int borders(void)
+{
+    const unsigned w = 16, h = 12;
+    for (unsigned m = 1; m <= 4; m++) {
+        /* Edges on sample points where (a + 1/2)/m is exact in binary (m = 1, 2, 4), between samples for m = 3. */
+        const double e = m == 3 ? 1.0 / 3.0 : 0.5 / m, last = m == 3 ? 2.0 / 3.0 : (m - 0.5) / m;
+        const double R[][4] = {
+            { -3, w + 3.0, -2, h + 2.0 },           /* the whole image */
+            { 5 + e, 11 + e, 3 + e, 9 + e },        /* inside, edges on sample points */
+            { w - 1 + last, w + 5.0, -1, h + 1.0 }, /* only the last sample column of the last pixel */
+            { -5, e, -1, h + 1.0 },                 /* the first sample column: on the right edge, so none */
+            { -1, w + 1.0, h - 1 + last, h + 3.0 }, /* the last sample row */
+        };
+        for (size_t r = 0; r < sizeof R / sizeof R[0]; r++) {
+            char geom[1024];
+            rect(geom, sizeof geom, w, h, R[r][0], R[r][1], R[r][2], R[r][3], 0);
+            np_scene s;
+            np_gbuf g;
+            if (flat_scene(w, h, geom, NULL, &s) || build(&s, m, &g))
+                return 1;
+            uint64_t want = 0, bad = 0;
+            for (size_t i = 0; i < (size_t)w * h * g.n; i++) {
+                double sx, sy;
+                np_gbuf_position(&g, i, &sx, &sy);
+                int in = sx >= R[r][0] && sx < R[r][1] && sy >= R[r][2] && sy < R[r][3];
+                want += (uint64_t)in;
+                if ((g.poly[i] != NP_GBUF_NONE) != in || g.hits[i] != (uint8_t)in)
+                    bad++;
+            }
+            NP_CHECK(bad == 0, "m=%u rect %zu: %llu samples covered wrongly (of %llu)", m, r, (unsigned long long)bad,
+                     (unsigned long long)want);
+            NP_CHECK(g.covered_samples == want, "m=%u rect %zu: %llu covered, want %llu", m, r,
+                     (unsigned long long)g.covered_samples, (unsigned long long)want);
+            if (r == 0) {
+                NP_CHECK(g.n_spans == (size_t)h * g.n, "m=%u: %zu sub-spans, want %u", m, g.n_spans, h * g.n);
+                for (size_t k = 0; k < g.n_spans; k++)
+                    NP_CHECK(g.spans[k].r.hw.x0 == 0 && g.spans[k].r.hw.n == w, "m=%u: sub-span %zu at %u, %u", m,
+                             k, g.spans[k].r.hw.x0, g.spans[k].r.hw.n);
+                for (size_t p = 0; p < (size_t)w * h; p++)
+                    NP_CHECK(g.cover[p] == g.n, "m=%u: pixel %zu covered %u of %u", m, p, g.cover[p], g.n);
+            }
+            if (r == 2)
+                NP_CHECK(want == (uint64_t)h * m, "m=%u: the last column holds %llu samples", m, (unsigned long long)want);
+            np_gbuf_free(&g);
+            np_scene_free(&s);
+        }
+    }
+    return 0;
+}
+
+/*
+ * Shared edges: a square split along its diagonal into two triangles, the
+ * diagonal through sample points (a = b) at every m - each sample in the
+ * square covered exactly once, none outside; then the same on a fan of 8
+ * triangles around the centre.
+ */
+static int shared_edges(void)
+{
+    const unsigned w = 16, h = 16;
+    const double lo = 2 - w / 2.0, hi = 14 - w / 2.0; /* screen 2 .. 14 */
+    for (int fan = 0; fan < 2; fan++)
+        for (unsigned m = 1; m <= 4; m++) {
+            char geom[4096];
+            size_t at = 0;
+            if (!fan) {
+                at += (size_t)snprintf(geom, sizeof geom,
+                                       "{\"type\": \"polygon\", \"vertices\": [[%g, %g, 0], [%g, %g, 0], [%g, %g, 0]],"
+                                       "\"texcoords\": [[0,0,0],[1,0,0],[1,1,0]]},"
+                                       "{\"type\": \"polygon\", \"vertices\": [[%g, %g, 0], [%g, %g, 0], [%g, %g, 0]],"
+                                       "\"texcoords\": [[0,0,0],[1,1,0],[0,1,0]]}",
+                                       lo, hi, lo, lo, hi, lo, lo, hi, hi, lo, hi, hi);
+            } else {
+                const double P[8][2] = { { lo, lo }, { 0, lo }, { hi, lo }, { hi, 0 }, { hi, hi }, { 0, hi }, { lo, hi }, { lo, 0 } };
+                for (int t = 0; t < 8; t++)
+                    at += (size_t)snprintf(geom + at, sizeof geom - at,
+                                           "%s{\"type\": \"polygon\", \"vertices\": [[0.3, 0.1, 0], [%g, %g, 0], [%g, %g, 0]],"
+                                           "\"texcoords\": [[0,0,0],[1,0,0],[1,1,0]]}",
+                                           t ? "," : "", P[t][0], P[t][1], P[(t + 1) % 8][0], P[(t + 1) % 8][1]);
+            }
+            np_scene s;
+            np_gbuf g;
+            if (flat_scene(w, h, geom, NULL, &s) || build(&s, m, &g))
+                return 1;
+            uint64_t twice = 0, missed = 0, outside = 0;
+            for (size_t i = 0; i < (size_t)w * h * g.n; i++) {
+                double sx, sy;
+                np_gbuf_position(&g, i, &sx, &sy);
+                int in = sx >= 2 && sx < 14 && sy >= 2 && sy < 14;
+                twice += g.hits[i] > 1;
+                missed += in && g.hits[i] == 0;
+                outside += !in && g.hits[i] != 0;
+            }
+            printf("%s m=%u: %llu samples covered, twice %llu, missed %llu, outside %llu\n", fan ? "fan" : "diagonal", m,
+                   (unsigned long long)g.covered_samples, (unsigned long long)twice, (unsigned long long)missed,
+                   (unsigned long long)outside);
+            NP_CHECK(twice == 0 && missed == 0 && outside == 0, "%s m=%u: twice %llu missed %llu outside %llu",
+                     fan ? "fan" : "diagonal", m, (unsigned long long)twice, (unsigned long long)missed,
+                     (unsigned long long)outside);
+            np_gbuf_free(&g);
+            np_scene_free(&s);
+        }
+    return 0;
+}
+
+/*
+ * Depth quantisation at the far end: depth range [9, 10] from the eye at
+ * z = 10, so the plane z = 0 is code 2^24 - 1 and z = 1/(2^24 - 1) is
+ * 2^24 - 2. The nearer by one LSB wins in either order; equal codes: the
+ * later polygon wins; beyond the far end clamps to 2^24 - 1 (never wraps).
+ */
+static int depth_far(void)
+{
+    const unsigned w = 8, h = 8;
+    const double one = 1.0 / (double)NP_GBUF_DEPTH_FAR;
+    struct { double za, zb; uint32_t want_code; int want_b; } C[] = {
+        { 0, one, NP_GBUF_DEPTH_FAR - 1, 1 },   /* B nearer by 1 LSB, drawn second */
+        { one, 0, NP_GBUF_DEPTH_FAR - 1, 0 },   /* A nearer by 1 LSB, drawn first */
+        { 0, 0, NP_GBUF_DEPTH_FAR, 1 },         /* equal: the later */
+        { 0, -1, NP_GBUF_DEPTH_FAR, 1 },        /* B beyond far: clamped, equal, the later */
+        { -1, -2, NP_GBUF_DEPTH_FAR, 1 },
+        { 1, 0.5, 0, 0 },                       /* at near: code 0 */
+    };
+    for (size_t c = 0; c < sizeof C / sizeof C[0]; c++) {
+        char a[1024], b[1024], geom[2100];
+        rect(a, sizeof a, w, h, -1, w + 1.0, -1, h + 1.0, C[c].za);
+        rect(b, sizeof b, w, h, -1, w + 1.0, -1, h + 1.0, C[c].zb);
+        snprintf(geom, sizeof geom, "%s, %s", a, b);
+        np_scene s;
+        np_gbuf g;
+        if (flat_scene(w, h, geom, ", \"depth_range\": [9, 10]", &s) || build(&s, 2, &g))
+            return 1;
+        uint64_t bad = 0;
+        for (size_t i = 0; i < (size_t)w * h * g.n; i++)
+            bad += g.depth[i] != C[c].want_code || g.poly[i] != (uint32_t)C[c].want_b || g.depth[i] > NP_GBUF_DEPTH_FAR;
+        NP_CHECK(bad == 0, "case %zu: %llu samples: depth %u poly %u, want %u poly %d", c, (unsigned long long)bad,
+                 g.depth[0], g.poly[0], C[c].want_code, C[c].want_b);
+        np_gbuf_free(&g);
+        np_scene_free(&s);
+    }
+    return 0;
+}
+
+/* Shading full runs: the cost model's cycles equal the engine's cycle-accurate model fed the same descriptors. */
+static int shade_cycles(void)
+{
+    np_scene s;
+    if (load("wood", &s))
+        return 1;
+    np_render_unit_cfg us[NP_RENDER_MAX_UNITS];
+    int nu = units(&s, us);
+    for (unsigned m = 2; m <= 3; m++) {
+        np_gbuf g;
+        if (build(&s, m, &g))
+            return 1;
+        uint8_t *rgb = malloc((size_t)g.w * g.h * g.n * 3);
+        for (int k = 0; k < nu; k++) {
+            np_gbuf_cost c;
+            np_gbuf_shade(&g, us[k].u, us[k].cfg.bytes, NULL, rgb, &c);
+            const np_span_engine *e = us[k].u->span->engine;
+            np_span_sim sim;
+            NP_CHECK(np_span_sim_init(&sim, e, np_unit_span_cfg(us[k].u->span, us[k].cfg.bytes), &g.regs) == 0, "sim");
+            size_t next = 0;
+            while ((next < g.n_spans || !np_span_sim_idle(&sim)) && sim.stats.cycles < 100000000u) {
+                np_span_port p;
+                memset(&p, 0, sizeof p);
+                p.in_valid = next < g.n_spans;
+                p.in = p.in_valid ? &g.spans[next].r.hw : NULL;
+                p.out_ready = 1;
+                np_span_sim_eval(&sim, &p);
+                if (p.in_valid && p.in_ready)
+                    next++;
+                np_span_sim_clock(&sim, &p);
+            }
+            printf("wood m=%u %s: cost model %llu cycles (%llu runs, %llu set-up), cycle-accurate model %llu\n", m,
+                   us[k].u->name, (unsigned long long)c.cycles, (unsigned long long)c.runs, (unsigned long long)c.setup,
+                   (unsigned long long)sim.stats.cycles);
+            NP_CHECK(c.runs == g.n_spans, "every sub-span one run (%llu of %zu)", (unsigned long long)c.runs, g.n_spans);
+            NP_CHECK(c.cycles == sim.stats.cycles, "m=%u %s: %llu cycles, the cycle model %llu", m,
+                     us[k].u->name, (unsigned long long)c.cycles, (unsigned long long)sim.stats.cycles);
+            np_span_sim_free(&sim);
+        }
+        /* A partial mask: texel seeks, fdiff steps over the skipped pixels. */
+        const size_t npx = (size_t)g.w * g.h;
+        uint16_t *mask = malloc(npx * sizeof *mask);
+        for (size_t p = 0; p < npx; p++)
+            mask[p] = np_gbuf_mask_first(m, (unsigned)(p % g.n) + 1u);
+        const np_render_unit_cfg *tx = unit_named(us, nu, "texel"), *fd = unit_named(us, nu, "fdiff");
+        np_gbuf_cost ct, cf;
+        np_gbuf_shade(&g, tx->u, tx->cfg.bytes, mask, rgb, &ct);
+        np_gbuf_shade(&g, fd->u, fd->cfg.bytes, mask, rgb, &cf);
+        printf("wood m=%u adaptive mask: texel %llu samples %llu runs %llu seek clocks %llu cycles; fdiff %llu skipped "
+               "pixels %llu cycles\n", m, (unsigned long long)ct.samples, (unsigned long long)ct.runs,
+               (unsigned long long)ct.seek, (unsigned long long)ct.cycles, (unsigned long long)cf.skipped,
+               (unsigned long long)cf.cycles);
+        NP_CHECK(ct.samples == cf.samples && ct.seek > 0 && ct.skipped == 0 && cf.skipped > 0 && cf.seek == 0,
+                 "seek and skip accounted");
+        free(mask);
+        free(rgb);
+        np_gbuf_free(&g);
+    }
+    np_scene_free(&s);
+    return 0;
+}
+
 /* The paper's matrices: permutations of 0..n-1, B3's 0 at the centre, the first-s masks nested. */
 static int index_matrices(void)
 {
@@ -266,6 +516,10 @@ static const np_test_case cases[] = {
     { "resolve_exhaustive", resolve_exhaustive },
     { "centre_golden", centre_golden },
     { "full_ssaa", full_ssaa },
+    { "borders", borders },
+    { "shared_edges", shared_edges },
+    { "depth_far", depth_far },
+    { "shade_cycles", shade_cycles },
     { NULL, NULL },
 };
 

@@ -122,11 +122,21 @@ int np_rrow_span(const np_scene *sc, const np_rproj *pp, unsigned j, double ox, 
         /* Half-open in y: an edge covers [min y, max y), so a shared vertex counts once. */
         if (!((y0 <= yc && yc < y1) || (y1 <= yc && yc < y0)))
             continue;
-        double t = (yc - y0) / (y1 - y0);
+        /*
+         * From the upper end, whichever way the polygon runs along the edge:
+         * two polygons sharing it compute the same crossing bit for bit, so
+         * a sample exactly on it falls in exactly one (gbuf.shared_edges).
+         */
+        unsigned e0 = i, e1 = k;
+        if (y0 > y1) {
+            e0 = k;
+            e1 = i;
+        }
+        double t = (yc - pp->y[e0]) / (pp->y[e1] - pp->y[e0]);
         if (hits < 2) {
-            xs[hits] = pp->x[i] + t * (pp->x[k] - pp->x[i]);
+            xs[hits] = pp->x[e0] + t * (pp->x[e1] - pp->x[e0]);
             for (int a = 0; a < 3; a++)
-                ts[hits][a] = pp->p->t[i][a] + t * (pp->p->t[k][a] - pp->p->t[i][a]);
+                ts[hits][a] = pp->p->t[e0][a] + t * (pp->p->t[e1][a] - pp->p->t[e0][a]);
         }
         hits++;
     }
