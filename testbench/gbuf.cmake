@@ -6,4 +6,5 @@ np_test_program(test_gbuf test_gbuf.c)
 target_link_libraries(test_gbuf PRIVATE np_render)
 target_compile_definitions(test_gbuf PRIVATE NP_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 np_add_cases(test_gbuf gbuf
-  index_matrices resolve_exhaustive centre_golden full_ssaa borders shared_edges depth_far shade_cycles)
+  index_matrices resolve_exhaustive centre_golden full_ssaa borders shared_edges depth_far shade_cycles
+  ground_truth light mesh_sphere scene_keys)
