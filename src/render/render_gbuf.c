@@ -466,7 +466,7 @@ static int selected(const np_gbuf *g, const uint16_t *mask, uint32_t si, size_t 
 {
     if (g->span[i] != si)
         return 0;
-    return !mask || ((mask[i / g->n] >> (i % g->n)) & 1u);
+    return !mask || (((unsigned)mask[i / g->n] >> (i % g->n)) & 1u);
 }
 
 int np_gbuf_shade(const np_gbuf *g, const np_unit *u, const void *cfg, const uint16_t *mask, uint8_t *rgb,
@@ -496,7 +496,7 @@ int np_gbuf_shade(const np_gbuf *g, const np_unit *u, const void *cfg, const uin
         bg[ch] = round8(g->sc->background[ch]);
     const size_t ns = (size_t)g->w * g->h * g->n;
     for (size_t i = 0; i < ns; i++)
-        if (g->span[i] == NP_GBUF_NONE && (!mask || ((mask[i / g->n] >> (i % g->n)) & 1u)))
+        if (g->span[i] == NP_GBUF_NONE && (!mask || (((unsigned)mask[i / g->n] >> (i % g->n)) & 1u)))
             memcpy(rgb + 3 * i, bg, 3);
     for (uint32_t si = 0; si < g->n_spans; si++) {
         const np_gbuf_span *gs = &g->spans[si];
@@ -584,7 +584,7 @@ void np_gbuf_resolve(const np_gbuf *g, const uint16_t *mask, const uint8_t *rgb,
 {
     const size_t npx = (size_t)g->w * g->h;
     for (size_t p = 0; p < npx; p++) {
-        const uint16_t mk = mask ? mask[p] : (uint16_t)((1u << g->n) - 1u);
+        const unsigned mk = mask ? (unsigned)mask[p] : (1u << g->n) - 1u;
         uint32_t sum[3] = { 0, 0, 0 };
         unsigned s = 0;
         for (unsigned j = 0; j < g->n; j++)
