@@ -799,15 +799,16 @@ fail:
 
 /* --- Error measures --- */
 
-double np_gbuf_mse(const uint8_t *a, const double *b, const uint8_t *mask, size_t pixels)
+/* Sum of squared differences on [0, 1] over the masked pixels: a is a8 (8-bit) or af (double). */
+static double mse_of(const uint8_t *a8, const double *af, const double *b, const uint8_t *mask, size_t pixels)
 {
     double sum = 0;
     size_t cnt = 0;
     for (size_t p = 0; p < pixels; p++) {
         if (mask && !mask[p])
             continue;
-        for (size_t ch = 0; ch < 3; ch++) {
-            double d = ((double)a[3 * p + ch] - b[3 * p + ch]) / 255.0;
+        for (size_t i = 3 * p; i < 3 * p + 3; i++) {
+            double d = ((a8 ? (double)a8[i] : af[i]) - b[i]) / 255.0;
             sum += d * d;
         }
         cnt += 3;
@@ -815,20 +816,14 @@ double np_gbuf_mse(const uint8_t *a, const double *b, const uint8_t *mask, size_
     return cnt ? sum / (double)cnt : 0.0;
 }
 
+double np_gbuf_mse(const uint8_t *a, const double *b, const uint8_t *mask, size_t pixels)
+{
+    return mse_of(a, NULL, b, mask, pixels);
+}
+
 double np_gbuf_mse_f(const double *a, const double *b, const uint8_t *mask, size_t pixels)
 {
-    double sum = 0;
-    size_t cnt = 0;
-    for (size_t p = 0; p < pixels; p++) {
-        if (mask && !mask[p])
-            continue;
-        for (size_t ch = 0; ch < 3; ch++) {
-            double d = (a[3 * p + ch] - b[3 * p + ch]) / 255.0;
-            sum += d * d;
-        }
-        cnt += 3;
-    }
-    return cnt ? sum / (double)cnt : 0.0;
+    return mse_of(NULL, a, b, mask, pixels);
 }
 
 double np_gbuf_psnr_paper(double mse) { return mse > 0 ? 10.0 * log10(255.0 * 255.0 / mse) : HUGE_VAL; }
