@@ -220,9 +220,9 @@ double np_gbuf_depth_f(const np_gbuf *g, uint32_t d);
 typedef struct np_gbuf_cost {
     uint64_t samples;     /* covered samples shaded */
     uint64_t runs;        /* descriptor transactions */
-    uint64_t setup;       /* set-up stall clocks (seeks included) */
+    uint64_t setup;       /* set-up stall clocks (seeks and a sequential engine's set-ups while skipping included) */
     uint64_t seek;        /* of which seeks */
-    uint64_t skipped;     /* pixels a sequential engine stepped over to reach a run's start */
+    uint64_t skipped;     /* pixels a sequential engine stepped over to reach a run's start (a clock each) */
     uint64_t cycles;      /* the total */
 } np_gbuf_cost;
 

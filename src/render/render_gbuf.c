@@ -518,9 +518,11 @@ int np_gbuf_shade(const np_gbuf *g, const np_unit *u, const void *cfg, const uin
                     setup += seek;
                     c.seek += seek;
                 } else {
+                    /* A clock per skipped pixel, and the set-ups stepping over them needs. */
                     for (uint32_t s = 0; s < k; s++)
-                        setup += 1u + e->advance(core, &cnt);
+                        setup += e->advance(core, &cnt);
                     c.skipped += k;
+                    c.cycles += k;
                 }
             }
             c.runs++;
