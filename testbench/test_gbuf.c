@@ -168,6 +168,26 @@ static int borders(void)
                 for (size_t p = 0; p < (size_t)w * h; p++)
                     NP_CHECK(g.cover[p] == g.n, "m=%u: pixel %zu covered %u of %u", m, p, g.cover[p], g.n);
             }
+            if (r == 1) {
+                /* Texture (0, 0) at the bottom-left corner, s right and t up over 6 pixels: ds/dx = 1/6, dt/dy = -1/6. */
+                const np_gbuf_span *sp = &g.spans[0];
+                NP_CHECK(fabs(sp->r.ds[0] - 1.0 / 6.0) < 1e-12 && fabs(sp->r.ds[1]) < 1e-12 && fabs(sp->dsdy[0]) < 1e-12 &&
+                             fabs(sp->dsdy[1] + 1.0 / 6.0) < 1e-12 && sp->uv[0] == 0 && sp->uv[1] == 1,
+                         "m=%u: gradient (%g, %g) per x, (%g, %g) per y, uv axes %u %u", m, sp->r.ds[0], sp->r.ds[1],
+                         sp->dsdy[0], sp->dsdy[1], sp->uv[0], sp->uv[1]);
+                /* The sample's UV: the texture coordinate at its point. */
+                for (size_t i = 0; i < (size_t)w * h * g.n; i++)
+                    if (g.poly[i] != NP_GBUF_NONE) {
+                        double sx, sy, uv[2];
+                        int64_t q[2];
+                        np_gbuf_position(&g, i, &sx, &sy);
+                        np_gbuf_uv_f(&g, i, uv);
+                        np_gbuf_uv(&g, i, q);
+                        NP_CHECK(fabs(uv[0] - (sx - R[r][0]) / 6.0) < 1e-12 && fabs(uv[1] - (R[r][3] - sy) / 6.0) < 1e-12 &&
+                                     fabs((double)q[0] / 4294967296.0 - uv[0]) <= 0x1p-30,
+                                 "m=%u: sample %zu at (%g, %g): uv (%g, %g)", m, i, sx, sy, uv[0], uv[1]);
+                    }
+            }
             if (r == 2)
                 NP_CHECK(want == (uint64_t)h * m, "m=%u: the last column holds %llu samples", m, (unsigned long long)want);
             np_gbuf_free(&g);

@@ -167,6 +167,16 @@ typedef struct np_gbuf_span {
     np_rspan r;           /* r.hw: the descriptor (y, x0, n: pixels); r.s0, r.ds: the reference's doubles; r.poly */
     uint8_t a, b;         /* the sample offset in the pixel */
     uint8_t uv[2];        /* the texture axes that vary on the face (PIN above) */
+    /*
+     * The texture coordinate's change per pixel down the screen (r.ds is per
+     * pixel right): the polygon's screen-space gradient, from the affine map
+     * through its largest-area vertex triangle - exact for a triangle and for
+     * any polygon under an orthographic camera; under perspective, where the
+     * seed's edge interpolation is not one affine map on a polygon of more than
+     * three vertices, an estimate. With r.ds it is the Jacobian a level of
+     * detail (hatching) or an anisotropic filter reads.
+     */
+    double dsdy[3];
 } np_gbuf_span;
 
 typedef struct np_gbuf {

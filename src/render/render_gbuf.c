@@ -190,6 +190,28 @@ static void uv_axes(const np_scene_poly *p, uint8_t uv[2])
     uv[1] = (uint8_t)(drop == 2 ? 1 : 2);
 }
 
+/* d s / d y on the screen: the affine map through the projected polygon's largest-area vertex triangle. */
+static void screen_dsdy(const np_rproj *pp, double dsdy[3])
+{
+    double best = 0;
+    unsigned bi = 1;
+    for (unsigned i = 1; i + 1 < pp->n; i++) {
+        double a = fabs((pp->x[i] - pp->x[0]) * (pp->y[i + 1] - pp->y[0]) -
+                        (pp->x[i + 1] - pp->x[0]) * (pp->y[i] - pp->y[0]));
+        if (a > best) {
+            best = a;
+            bi = i;
+        }
+    }
+    const double dx1 = pp->x[bi] - pp->x[0], dy1 = pp->y[bi] - pp->y[0];
+    const double dx2 = pp->x[bi + 1] - pp->x[0], dy2 = pp->y[bi + 1] - pp->y[0];
+    const double det = dx1 * dy2 - dx2 * dy1;
+    for (int a = 0; a < 3; a++) {
+        const double dt1 = pp->p->t[bi][a] - pp->p->t[0][a], dt2 = pp->p->t[bi + 1][a] - pp->p->t[0][a];
+        dsdy[a] = det != 0 ? (dx1 * dt2 - dx2 * dt1) / det : 0.0;
+    }
+}
+
 /* The depth range: the scene's, or [min, max] of the view depth over the drawn polygons' vertices. */
 static void depth_range(const np_scene *sc, const np_rview *v, double *z0, double *z1)
 {
@@ -333,6 +355,7 @@ int np_gbuf_build(const np_scene *sc, unsigned m, np_gbuf *g, char *err, size_t 
         np_gbuf_span gs;
         memset(&gs, 0, sizeof gs);
         uv_axes(p, gs.uv);
+        screen_dsdy(&pp, gs.dsdy);
         double jlo = floor(pp.ymin - 1.0), jhi = ceil(pp.ymax);
         unsigned j0 = jlo < 0 ? 0u : (unsigned)jlo, j1 = jhi > (double)g->h ? g->h : (unsigned)jhi;
         for (unsigned b = 0; b < m; b++) {
