@@ -102,24 +102,23 @@ static const uint32_t rom10[1025] = {
 
 uint32_t np_wave_rom(unsigned a) { return a <= 1024u ? rom10[a] : 0u; }
 
-int32_t np_wave_sin(uint32_t th, unsigned rom_log2)
+static inline int32_t wave_sin(uint32_t th, unsigned rom_log2)
 {
-    unsigned q = th >> 30, L = rom_log2;
-    uint32_t x = th & UINT32_C(0x3fffffff);
-    if (q & 1u)
-        x = (UINT32_C(1) << 30) - x; /* the mirror, exact: (0, 2^30] */
-    unsigned sh = 30u - L;
-    uint32_t a = x >> sh;
-    int32_t v;
-    if (a >= (UINT32_C(1) << L)) {
-        v = 1 << NP_WAVE_SIN_FRAC; /* x = 2^30: the constant R[2^L] */
-    } else {
-        uint32_t f = (x >> (sh - NP_WAVE_IFRAC)) & (uint32_t)NP_MASK(NP_WAVE_IFRAC);
-        int64_t r0 = rom10[a << (10u - L)], r1 = rom10[(a + 1u) << (10u - L)];
-        v = (int32_t)(r0 + np_shr_round_half_up((r1 - r0) * (int64_t)f, NP_WAVE_IFRAC));
-    }
-    return q >= 2u ? -v : v;
+    /* Written without branches on the phase (the quadrant is data): the same arithmetic as the prose above. */
+    const unsigned L = rom_log2, sh = 30u - L;
+    const uint32_t q = th >> 30, x0 = th & UINT32_C(0x3fffffff);
+    const uint32_t mirror = (uint32_t)0 - (q & 1u); /* all ones in quadrants 1 and 3 */
+    const uint32_t x = (((UINT32_C(1) << 30) - x0) & mirror) | (x0 & ~mirror); /* the mirror, exact: (0, 2^30] */
+    const uint32_t a = x >> sh;                                   /* 0 .. 2^L; 2^L only for x = 2^30 (f = 0) */
+    const uint32_t a1 = a + (uint32_t)(a < (UINT32_C(1) << L));   /* R[2^L] = 2^17 is its own successor */
+    const uint32_t f = (x >> (sh - NP_WAVE_IFRAC)) & (uint32_t)NP_MASK(NP_WAVE_IFRAC);
+    const int64_t r0 = rom10[a << (10u - L)], r1 = rom10[a1 << (10u - L)];
+    const int32_t v = (int32_t)(r0 + np_shr_round_half_up((r1 - r0) * (int64_t)f, NP_WAVE_IFRAC));
+    const int32_t neg = -(int32_t)(q >> 1); /* all ones in quadrants 2 and 3 */
+    return (v ^ neg) - neg;
 }
+
+int32_t np_wave_sin(uint32_t th, unsigned rom_log2) { return wave_sin(th, rom_log2); }
 
 double np_wave_sin_bound(unsigned rom_log2)
 {
@@ -178,6 +177,47 @@ const char *np_wave_regs_check(const np_wave_cfg *c, const np_wave_regs *r)
     return NULL;
 }
 
+/* --- the datapath's pieces, shared by the stages and np_wave_eval --- */
+
+static inline uint32_t lane_phase(const np_wave_train *t, const np_wave_in *in)
+{
+    return (uint32_t)t->kx * in->i + (uint32_t)t->kz * in->j + t->phi + in->ph - t->om * in->t;
+}
+
+static inline unsigned smoothing(const np_wave_regs *r, uint16_t v)
+{
+    unsigned d = 0, m = 1u << r->mlog2;
+    if (v < r->width) {
+        unsigned a = v, b = (unsigned)r->width - 1u - v;
+        d = a < b ? a : b;
+    }
+    return d < m ? d : m;
+}
+
+static inline int32_t lane_amp(const np_wave_train *t, unsigned irr, int32_t w)
+{
+    int64_t ap = (int64_t)t->amp << (NP_WAVE_SIN_FRAC - NP_WAVE_AMP_FRAC);
+    if (irr)
+        ap -= np_shr_round_half_up((int64_t)t->airr * w, NP_WAVE_AMP_FRAC);
+    return (int32_t)ap;
+}
+
+static inline uint32_t gain_of(const np_wave_regs *r, unsigned sm, uint16_t g)
+{
+    return (uint32_t)sm * (g < r->gcap ? g : r->gcap);
+}
+
+static inline np_wave_out out_of(const np_wave_regs *r, int64_t ys, int64_t xs, int64_t zs, int64_t bc, uint32_t gm)
+{
+    unsigned ml = r->mlog2;
+    np_wave_out o;
+    int64_t yv = ys * (int64_t)gm + bc * ((int64_t)1 << (NP_WAVE_GAIN_FRAC + ml));
+    o.y = (int16_t)np_sat_s(np_shr_round_half_up(yv, 31u + ml), NP_WAVE_OUT_BITS);
+    o.dx = (int16_t)np_sat_s(np_shr_round_half_up(xs * (int64_t)gm, 35u + ml), NP_WAVE_OUT_BITS);
+    o.dz = (int16_t)np_sat_s(np_shr_round_half_up(zs * (int64_t)gm, 35u + ml), NP_WAVE_OUT_BITS);
+    return o;
+}
+
 /* --- stages --- */
 
 static const np_wave_unit *U(const void *cfg) { return cfg; }
@@ -187,23 +227,12 @@ static void stage_p(const void *cfg, void *sv)
     const np_wave_unit *u = U(cfg);
     np_wave_sig *s = sv;
     const np_wave_in *in = &s->in;
-    for (unsigned k = 0; k < u->c.trains; k++) {
-        const np_wave_train *t = &u->r.tr[k];
-        if (k >= u->r.n) {
-            s->th[k] = 0;
-            continue;
-        }
-        s->th[k] = (uint32_t)t->kx * in->i + (uint32_t)t->kz * in->j + t->phi + in->ph - t->om * in->t;
-    }
+    for (unsigned k = 0; k < u->c.trains; k++)
+        s->th[k] = k < u->r.n ? lane_phase(&u->r.tr[k], in) : 0u;
     s->p1 = u->r.pu * in->u + u->r.pt * in->t;
     s->p2 = u->r.pv * in->v;
     s->pc = (uint32_t)in->r * u->r.omc * in->t;
-    unsigned d = 0, m = 1u << u->r.mlog2;
-    if (in->v < u->r.width) {
-        unsigned a = in->v, b = (unsigned)u->r.width - 1u - in->v;
-        d = a < b ? a : b;
-    }
-    s->sm = d < m ? d : m;
+    s->sm = smoothing(&u->r, in->v);
 }
 
 static void stage_s(const void *cfg, void *sv)
@@ -225,16 +254,9 @@ static void stage_a(const void *cfg, void *sv)
     const np_wave_unit *u = U(cfg);
     np_wave_sig *s = sv;
     s->w = (int32_t)np_shr_round_half_up((int64_t)s->s1 * s->s2, NP_WAVE_SIN_FRAC);
-    for (unsigned k = 0; k < u->c.trains; k++) {
-        const np_wave_train *t = &u->r.tr[k];
-        int64_t amp = k < u->r.n ? (int64_t)t->amp : 0, airr = k < u->r.n ? (int64_t)t->airr : 0;
-        int64_t ap = amp << (NP_WAVE_SIN_FRAC - NP_WAVE_AMP_FRAC);
-        if (u->c.irr)
-            ap -= np_shr_round_half_up(airr * s->w, NP_WAVE_AMP_FRAC);
-        s->ap[k] = (int32_t)ap;
-    }
-    uint32_t g = s->in.g < u->r.gcap ? s->in.g : u->r.gcap;
-    s->gm = (uint32_t)s->sm * g;
+    for (unsigned k = 0; k < u->c.trains; k++)
+        s->ap[k] = k < u->r.n ? lane_amp(&u->r.tr[k], u->c.irr, s->w) : 0;
+    s->gm = gain_of(&u->r, s->sm, s->in.g);
 }
 
 static void stage_m(const void *cfg, void *sv)
@@ -269,11 +291,7 @@ static void stage_g(const void *cfg, void *sv)
 {
     const np_wave_unit *u = U(cfg);
     np_wave_sig *s = sv;
-    unsigned ml = u->r.mlog2;
-    int64_t yv = s->ys * (int64_t)s->gm + s->bc * ((int64_t)1 << (NP_WAVE_GAIN_FRAC + ml));
-    s->out.y = (int16_t)np_sat_s(np_shr_round_half_up(yv, 31u + ml), NP_WAVE_OUT_BITS);
-    s->out.dx = (int16_t)np_sat_s(np_shr_round_half_up(s->xs * (int64_t)s->gm, 35u + ml), NP_WAVE_OUT_BITS);
-    s->out.dz = (int16_t)np_sat_s(np_shr_round_half_up(s->zs * (int64_t)s->gm, 35u + ml), NP_WAVE_OUT_BITS);
+    s->out = out_of(&u->r, s->ys, s->xs, s->zs, s->bc, s->gm);
 }
 
 static const np_stage_desc stages[] = {
@@ -289,15 +307,65 @@ int np_wave_pipe_init(np_pipe *p, const np_wave_unit *u)
     return np_pipe_init(p, stages, N_STAGES, sizeof(np_wave_sig), u);
 }
 
-void np_wave_eval(const np_wave_unit *u, const np_wave_in *in, np_wave_out *out)
+/*
+ * The stages' arithmetic in a row on locals (the pieces above, so it cannot
+ * differ from the pipe: conformance.wave.cycle_vs_bitexact checks it too);
+ * lanes beyond the register set's n contribute 0, as in the pipe.
+ */
+static inline void eval_gen(const np_wave_unit *u, const np_wave_in *in, np_wave_out *out, unsigned irr, unsigned cap,
+                            unsigned n)
 {
-    np_wave_sig s;
-    memset(&s, 0, sizeof s);
-    s.in = *in;
-    for (unsigned k = 0; k < N_STAGES; k++)
-        stages[k].fn(u, &s);
-    *out = s.out;
+    const np_wave_regs *r = &u->r;
+    const unsigned L = u->c.rom_log2;
+    int32_t w = 0;
+    if (irr)
+        w = (int32_t)np_shr_round_half_up((int64_t)wave_sin(r->pu * in->u + r->pt * in->t, L) *
+                                              wave_sin(r->pv * in->v, L),
+                                          NP_WAVE_SIN_FRAC);
+    int64_t ys = 0, xs = 0, zs = 0;
+    for (unsigned k = 0; k < n; k++) {
+        const np_wave_train *t = &r->tr[k];
+        uint32_t th = lane_phase(t, in);
+        int64_t ap = lane_amp(t, irr, w);
+        int64_t sa = np_shr_round_half_up(ap * wave_sin(th, L), NP_WAVE_SIN_FRAC);
+        ys += np_shr_round_half_up(ap * wave_sin(th + (UINT32_C(1) << 30), L), 7);
+        xs -= sa * t->cx;
+        zs -= sa * t->cz;
+    }
+    int64_t bc = cap ? (int64_t)r->b * wave_sin((uint32_t)in->r * r->omc * in->t, L) : 0;
+    *out = out_of(r, ys, xs, zs, bc, gain_of(r, smoothing(r, in->v), in->g));
 }
+
+static inline unsigned lanes_of(const np_wave_unit *u) { return u->r.n < u->c.trains ? u->r.n : u->c.trains; }
+
+static inline void eval_one(const np_wave_unit *u, const np_wave_in *in, np_wave_out *out)
+{
+    eval_gen(u, in, out, u->c.irr, u->c.cap, lanes_of(u));
+}
+
+void np_wave_eval(const np_wave_unit *u, const np_wave_in *in, np_wave_out *out) { eval_one(u, in, out); }
+
+/* Runs of the commonest shapes with the lanes and effects as constants (the compiler specialises eval_gen). */
+#define RUN_OF(IRR, CAP, N)                                                                                        \
+    do {                                                                                                           \
+        for (size_t k = 0; k < n; k++)                                                                             \
+            eval_gen(u, &in[k], &out[k], IRR, CAP, N);                                                             \
+        return;                                                                                                    \
+    } while (0)
+
+void np_wave_eval_n(const np_wave_unit *u, const np_wave_in *in, np_wave_out *out, size_t n)
+{
+    const unsigned m = lanes_of(u);
+    if (!u->c.irr && !u->c.cap) {
+        if (m == 1)
+            RUN_OF(0, 0, 1);
+        if (m == 2)
+            RUN_OF(0, 0, 2);
+    }
+    for (size_t k = 0; k < n; k++)
+        eval_one(u, &in[k], &out[k]);
+}
+#undef RUN_OF
 
 double np_wave_error_bound_lsb(const np_wave_unit *u)
 {

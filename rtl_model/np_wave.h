@@ -192,6 +192,8 @@ double np_wave_sin_bound(unsigned rom_log2);
 
 /* Bit-exact model of one transaction. */
 void np_wave_eval(const np_wave_unit *u, const np_wave_in *in, np_wave_out *out);
+/* The same for n transactions (the host's frames: one call a run of points). */
+void np_wave_eval_n(const np_wave_unit *u, const np_wave_in *in, np_wave_out *out, size_t n);
 /* The error bound against the double reference from the same registers, LSB (max over y, dx, dz). */
 double np_wave_error_bound_lsb(const np_wave_unit *u);
 

@@ -10,6 +10,7 @@
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "np_math.h"
@@ -18,6 +19,8 @@
 #include "np_wave.h"
 #include "np_wave_host.h"
 #include "np_wave_ref.h"
+#include "np_wave_json.h"
+#include "np_wave_scene.h"
 
 static const double TWO_PI = 6.283185307179586;
 
@@ -572,6 +575,388 @@ static int pipe(void)
     return 0;
 }
 
+
+/* --- the host: boxes, rays, culling, the cycle model, the budget --- */
+
+#ifndef NP_WAVE_SCENES
+#define NP_WAVE_SCENES "vectors/scenes"
+#endif
+
+static int load_scene(const char *name, np_wave_scene *s, unsigned grid)
+{
+    char path[512], err[512] = "";
+    unsigned dropped = 0;
+    snprintf(path, sizeof path, "%s/%s", NP_WAVE_SCENES, name);
+    if (np_wave_scene_read(path, s, NULL, err, sizeof err) != 0) {
+        NP_CHECK(0, "%s", err);
+        return -1;
+    }
+    if (grid)
+        s->grid = grid;
+    if (np_wave_scene_prepare(s, &dropped, err, sizeof err) != 0) {
+        NP_CHECK(0, "%s", err);
+        return -1;
+    }
+    return 0;
+}
+
+typedef struct claims {
+    unsigned char *n;
+    unsigned grid;
+} claims;
+
+static void claim(void *ctx, unsigned i, unsigned j, unsigned a, unsigned r)
+{
+    (void)a;
+    (void)r;
+    claims *c = ctx;
+    c->n[j * c->grid + i]++;
+}
+
+/*
+ * Every grid point in exactly one ray (PIN half-open cells: s in (a, a + 1],
+ * w in [b, b + 1)): a small box at 3,600 angles (0.1 degree
+ * apart) x 16 sub-grid offsets of its origin, and at 0, 45, 90 degrees and
+ * 1e-6 rad: the walk claims each point of the box once and no other point
+ * (the box 8 x 8 on a 20^2 grid).
+ */
+static int ray_partition(void)
+{
+    enum { G = 20 };
+    unsigned char n[G * G];
+    claims c = { n, G };
+    unsigned long long configs = 0, points = 0, bad = 0;
+    static const double named[] = { 0.0, 0.7853981633974483, 1.5707963267948966, 1e-6 };
+    for (unsigned k = 0; k < 3600 + 4; k++) {
+        double ang = k < 3600 ? (double)k * TWO_PI / 3600.0 : named[k - 3600];
+        for (unsigned o = 0; o < 16; o++) {
+            np_wave_box b;
+            memset(&b, 0, sizeof b);
+            b.angle = ang;
+            np_wave_box_axes(&b);
+            b.steps = b.rays = 8;
+            /* The box's centre near the grid's centre, the origin at quarter offsets. */
+            b.ox = 10.0 - 4.0 * (b.ux - b.uz) + (o % 4u) * 0.25;
+            b.oz = 10.0 - 4.0 * (b.uz + b.ux) + (o / 4u) * 0.25;
+            memset(n, 0, sizeof n);
+            size_t got = np_wave_box_walk(&b, 1.0, G, claim, &c);
+            size_t want = 0;
+            for (unsigned j = 0; j < G; j++)
+                for (unsigned i = 0; i < G; i++) {
+                    unsigned a, r;
+                    unsigned in = (unsigned)np_wave_cell_of(&b, 1.0, i, j, &a, &r);
+                    want += in;
+                    if (n[j * G + i] != in) {
+                        bad++;
+                        NP_CHECK(bad > 5, "angle %.9g offset %u: point (%u, %u) claimed %u times, in the box: %u", ang, o,
+                                 i, j, n[j * G + i], in);
+                    }
+                }
+            NP_CHECK(got == want && want >= 36 && want <= 100, "angle %.9g: %zu claimed, %zu in the box", ang, got, want);
+            configs++;
+            points += got;
+        }
+    }
+    printf("%llu boxes (3,600 angles x 16 offsets, and 0, 45, 90 degrees, 1e-6 rad): %llu points, %llu claimed other "
+           "than once\n",
+           configs, points, bad);
+    NP_CHECK(bad == 0, "%llu", bad);
+    return 0;
+}
+
+/*
+ * Culling: scenario 2's camera sees all seven boxes; turned away it sees none,
+ * and the frame then costs the six plane tests a box, 42 cycles, O(k); a
+ * culled box costs zero per-point cycles (the full frame less the box's own
+ * set-up, rays and points) and its points are not computed. A box touching a
+ * frustum plane is kept; 1e-6 m further out it is culled.
+ */
+static int culling(void)
+{
+    static np_wave_scene s;
+    if (load_scene("wave_scenario2.json", &s, 128) != 0)
+        return 0;
+    np_wave_plan full, p;
+    np_wave_plan_full(&s, &full);
+    unsigned vis = 0;
+    for (unsigned k = 0; k < s.nbox; k++)
+        vis += (unsigned)full.visible[k];
+    NP_CHECK(vis == 7, "%u of 7 visible", vis);
+    uint64_t cf = np_wave_plan_cycles(&s, &full);
+    size_t n2 = (size_t)s.grid * s.grid;
+    int32_t *y = calloc(n2, 4), *dx = calloc(n2, 4), *dz = calloc(n2, 4);
+    for (unsigned k = 0; k < s.nbox; k++) {
+        p = full;
+        p.visible[k] = 0;
+        p.sel[k] = 0;
+        uint64_t c = np_wave_plan_cycles(&s, &p);
+        uint64_t own = NP_WAVE_CYC_BOX + NP_WAVE_CYC_TRAIN + (uint64_t)s.box[k].rays * NP_WAVE_CYC_RAY + s.box[k].npts +
+                       np_wave_stage_count();
+        NP_CHECK(cf - c == own, "box %u: culling saves %llu, its own cost is %llu", k, (unsigned long long)(cf - c),
+                 (unsigned long long)own);
+        np_wave_frame(&s, &p, 77, y, dx, dz);
+        unsigned nonzero = 0;
+        for (size_t q = 0; q < s.box[k].npts; q++) {
+            size_t at = (size_t)s.box[k].pts[q].j * s.grid + s.box[k].pts[q].i;
+            int covered = 0; /* a point another visible box also covers may move */
+            for (unsigned o = 0; o < s.nbox; o++)
+                for (size_t r = 0; o != k && !covered && r < s.box[o].npts; r++)
+                    covered = s.box[o].pts[r].i == s.box[k].pts[q].i && s.box[o].pts[r].j == s.box[k].pts[q].j;
+            nonzero += !covered && y[at] != 0;
+        }
+        NP_CHECK(nonzero == 0, "box %u culled: %u of its points moved", k, nonzero);
+    }
+    /* Turned away: the camera looks up and back. */
+    s.cam.target[0] = s.cam.eye[0];
+    s.cam.target[1] = s.cam.eye[1] + 100.0;
+    s.cam.target[2] = s.cam.eye[2] - 100.0;
+    np_wave_plan_full(&s, &p);
+    vis = 0;
+    for (unsigned k = 0; k < s.nbox; k++)
+        vis += (unsigned)p.visible[k];
+    uint64_t cn = np_wave_plan_cycles(&s, &p);
+    printf("scenario 2 at 128^2: 7 boxes visible, %llu cycles; camera turned away: %u visible, %llu cycles (7 x %d)\n",
+           (unsigned long long)cf, vis, (unsigned long long)cn, NP_WAVE_CYC_CULL);
+    NP_CHECK(vis == 0 && cn == 7u * NP_WAVE_CYC_CULL, "turned away: %u visible, %llu cycles", vis, (unsigned long long)cn);
+    /* Tangent: looking straight down from 100 m with a 90 degree field of view: the plane x = 100 at y = 0. */
+    s.cam.eye[0] = 0.0;
+    s.cam.eye[1] = 100.0;
+    s.cam.eye[2] = 0.0;
+    s.cam.target[0] = s.cam.target[1] = s.cam.target[2] = 0.0;
+    s.cam.up[0] = 0.0;
+    s.cam.up[1] = 0.0;
+    s.cam.up[2] = 1.0;
+    s.cam.fov_y = TWO_PI / 4.0;
+    s.cam.aspect = 1.0;
+    np_wave_box b;
+    memset(&b, 0, sizeof b);
+    b.angle = 0.0;
+    np_wave_box_axes(&b);
+    b.length = b.width = 100.0;
+    b.oz = -50.0;
+    b.ox = 100.0 - 1e-6;
+    int in = np_wave_box_visible(&s, &b);
+    b.ox = 100.0 + 1e-6;
+    int out = np_wave_box_visible(&s, &b);
+    printf("a box 1e-6 m inside the frustum's plane: %s; 1e-6 m outside: %s\n", in ? "kept" : "culled",
+           out ? "kept" : "culled");
+    NP_CHECK(in && !out, "tangent: %d %d", in, out);
+    /* The box grows sideways by the horizontal displacement: 0.5 m of it keeps a box 0.4 m outside. */
+    b.ox = 100.4;
+    b.grow = 0.5;
+    NP_CHECK(np_wave_box_visible(&s, &b), "grown box culled");
+    free(y);
+    free(dx);
+    free(dz);
+    np_wave_scene_free(&s);
+    return 0;
+}
+
+/*
+ * Cycles for 64^2 to 512^2 (scenario 1: two boxes of one and two trains, one
+ * lane: a train a pass) linear in points x trains within +-10 %; the bit-exact
+ * frame's heights are the unit's (every box point checked at 64^2 against eval).
+ */
+static int scaling(void)
+{
+    static np_wave_scene s;
+    double lo = 1e30, hi = 0.0;
+    for (unsigned g = 64; g <= 512; g *= 2) {
+        if (load_scene("wave_scenario1.json", &s, g) != 0)
+            return 0;
+        np_wave_plan p;
+        np_wave_plan_full(&s, &p);
+        uint64_t pt = 0;
+        for (unsigned k = 0; k < s.nbox; k++)
+            pt += (uint64_t)s.box[k].npts * s.box[k].unit.r.n;
+        double r = (double)np_wave_plan_cycles(&s, &p) / (double)pt;
+        printf("%u^2: %llu points x trains, %llu cycles: %.4f a point and train\n", g, (unsigned long long)pt,
+               (unsigned long long)np_wave_plan_cycles(&s, &p), r);
+        lo = r < lo ? r : lo;
+        hi = r > hi ? r : hi;
+        np_wave_scene_free(&s);
+    }
+    NP_CHECK(hi <= lo * 1.1, "cycles per point and train from %.4f to %.4f", lo, hi);
+    return 0;
+}
+
+/*
+ * The time budget: for budgets from the culling's floor (7 x 6 cycles) to the
+ * full frame, the scheduled frame's cycles never exceed the budget, and the
+ * RMS height error against the full field never grows as the budget grows
+ * (0 at the full budget).
+ */
+static int budget(void)
+{
+    static np_wave_scene s;
+    if (load_scene("wave_scenario2.json", &s, 128) != 0)
+        return 0;
+    s.effects |= NP_WAVE_FX_NOISE;
+    np_wave_plan full;
+    np_wave_plan_full(&s, &full);
+    uint64_t fc = np_wave_plan_cycles(&s, &full), floor_c = (uint64_t)NP_WAVE_CYC_CULL * s.nbox;
+    size_t n2 = (size_t)s.grid * s.grid;
+    int32_t *y = calloc(n2, 4), *yf = calloc(n2, 4), *dx = calloc(n2, 4), *dz = calloc(n2, 4);
+    np_wave_frame(&s, &full, 300, yf, dx, dz);
+    double prev = 1e30;
+    unsigned over = 0, rises = 0;
+    for (unsigned q = 0; q <= 64; q++) {
+        uint64_t b = floor_c + (fc - floor_c) * q / 64u;
+        np_wave_plan p;
+        np_wave_plan_budget(&s, b, &p);
+        uint64_t c = np_wave_frame(&s, &p, 300, y, dx, dz);
+        double e = 0.0;
+        for (size_t k = 0; k < n2; k++)
+            e += (double)(y[k] - yf[k]) * (double)(y[k] - yf[k]);
+        e = sqrt(e / (double)n2) / 1024.0;
+        over += c > b;
+        rises += e > prev;
+        if (q % 16 == 0)
+            printf("budget %6llu cycles: %6llu used, RMS height error %.4f m\n", (unsigned long long)b,
+                   (unsigned long long)c, e);
+        prev = e;
+        if (q == 64)
+            NP_CHECK(e == 0.0, "full budget: RMS %.4g", e);
+        if (q == 0)
+            NP_CHECK(e > 0.0, "the floor leaves nothing out");
+    }
+    NP_CHECK(over == 0 && rises == 0, "%u budgets exceeded, %u rises of the error", over, rises);
+    free(y);
+    free(yf);
+    free(dx);
+    free(dz);
+    np_wave_scene_free(&s);
+    return 0;
+}
+
+/*
+ * Overlapping boxes: scenario 1's two boxes overlap almost everywhere; the
+ * frame with both is, point for point, the sum of the frames of each alone,
+ * and each OBB holds both boxes' heights.
+ */
+static int overlap(void)
+{
+    static np_wave_scene s;
+    if (load_scene("wave_scenario1.json", &s, 96) != 0)
+        return 0;
+    size_t n2 = (size_t)s.grid * s.grid;
+    int32_t *y = calloc(n2, 4), *dx = calloc(n2, 4), *dz = calloc(n2, 4), *ya = calloc(n2, 4), *yb = calloc(n2, 4);
+    np_wave_plan p, a, b;
+    np_wave_plan_full(&s, &p);
+    a = p;
+    b = p;
+    a.sel[1] = 0;
+    b.sel[0] = 0;
+    np_wave_frame(&s, &p, 1234, y, dx, dz);
+    np_wave_frame(&s, &a, 1234, ya, dx, dz);
+    np_wave_frame(&s, &b, 1234, yb, dx, dz);
+    unsigned diff = 0;
+    for (size_t q = 0; q < n2; q++)
+        diff += y[q] != ya[q] + yb[q];
+    double h0 = (double)np_wave_range_lsb(&s.box[0].unit.r, 0) / 1024.0, h1 = (double)np_wave_range_lsb(&s.box[1].unit.r, 0) / 1024.0;
+    printf("two overlapping boxes: %u of %zu points differ from the sum of each alone; OBB heights %.3f and %.3f m "
+           "(own %.3f + %.3f)\n",
+           diff, n2, s.box[0].hmax, s.box[1].hmax, h0, h1);
+    NP_CHECK(diff == 0, "%u", diff);
+    NP_CHECK(fabs(s.box[0].hmax - (h0 + h1)) < 1e-12 && fabs(s.box[1].hmax - (h0 + h1)) < 1e-12, "OBB heights");
+    free(y);
+    free(dx);
+    free(dz);
+    free(ya);
+    free(yb);
+    np_wave_scene_free(&s);
+    return 0;
+}
+
+/*
+ * Shallow water and land: over land (depth <= 0) a ray's gain is 0 and no box
+ * moves the point; behind the island it recovers linearly over 16 grid units
+ * (PIN: the first cell after the last land action point has 1/16 of its
+ * Green's law gain); in shallow water it rises (Green's law) up to the 1.3 cap.
+ */
+static int land(void)
+{
+    static np_wave_scene s;
+    if (load_scene("wave_scenario1.json", &s, 256) != 0)
+        return 0;
+    size_t n2 = (size_t)s.grid * s.grid;
+    int32_t *y = calloc(n2, 4), *dx = calloc(n2, 4), *dz = calloc(n2, 4);
+    np_wave_plan p;
+    np_wave_plan_full(&s, &p);
+    np_wave_frame(&s, &p, 99, y, dx, dz);
+    unsigned land_pts = 0, moved = 0;
+    for (size_t q = 0; q < n2; q++)
+        if (s.depth[q] <= 0.0f) {
+            land_pts++;
+            moved += y[q] != 0 || dx[q] != 0 || dz[q] != 0;
+        }
+    /* Along box 0's rays (along +x): the gains after the last land cell. */
+    unsigned ramps = 0, bad_ramp = 0, gmax = 0;
+    const np_wave_box *b = &s.box[0];
+    for (size_t q = 1; q < b->npts; q++) {
+        gmax = b->pts[q].g > gmax ? b->pts[q].g : gmax;
+        const np_wave_pt *pp = &b->pts[q - 1];
+        /* A water point of gain 0 is in a cell whose action point is on land; the next cell starts the recovery. */
+        if (pp->b == b->pts[q].b && pp->g == 0 && s.depth[(size_t)pp->j * s.grid + pp->i] > 0.0f && b->pts[q].g > 0 &&
+            b->pts[q].a == pp->a + 1u) {
+            ramps++;
+            /* The first water cell after land: 1/16 of its Green's law gain, at most 1.3/16. */
+            bad_ramp += b->pts[q].g > (uint16_t)(1.3 * 16384.0 / 16.0 + 1.0);
+        }
+    }
+    printf("%u land points, %u moved by a box; %u rays leave the island, %u of them not at 1/16 gain; largest gain %.3f\n",
+           land_pts, moved, ramps, bad_ramp, gmax / 16384.0);
+    NP_CHECK(land_pts > 1000 && moved == 0, "%u of %u land points moved", moved, land_pts);
+    NP_CHECK(ramps >= 5 && bad_ramp == 0, "ramps %u bad %u", ramps, bad_ramp);
+    NP_CHECK(gmax > 16384 && gmax <= NP_WAVE_GCAP_DEF, "largest gain %u", gmax);
+    free(y);
+    free(dx);
+    free(dz);
+    np_wave_scene_free(&s);
+    return 0;
+}
+
+/* A scene whose surface may fold (1.3 sum k (A + a) > 1) is refused unless it sets allow_fold; bad fields are named. */
+static int scene_refusals(void)
+{
+    static np_wave_scene s;
+    char path[512], err[512] = "";
+    unsigned d = 0;
+    snprintf(path, sizeof path, "%s/wave_fold.json", NP_WAVE_SCENES);
+    NP_CHECK(np_wave_scene_read(path, &s, NULL, err, sizeof err) == 0, "%s", err);
+    NP_CHECK(s.allow_fold == 0, "the file allows folding");
+    int rc = np_wave_scene_prepare(&s, &d, err, sizeof err);
+    printf("wave_fold.json: %s\n", rc ? err : "accepted");
+    NP_CHECK(rc != 0 && strstr(err, "folds") && strstr(err, "allow_fold"), "refusal: %s", err);
+    np_wave_scene_free(&s);
+    NP_CHECK(np_wave_scene_read(path, &s, NULL, err, sizeof err) == 0, "%s", err);
+    s.allow_fold = 1;
+    NP_CHECK(np_wave_scene_prepare(&s, &d, err, sizeof err) == 0, "with allow_fold: %s", err);
+    np_wave_scene_free(&s);
+    /* Bad fields, named by path. */
+    static const char *const bad[][2] = {
+        { "{\"waves\": {\"boxes\": [{\"origin\": [0, 0], \"length\": 10, \"width\": 10, \"trains\": [{\"lambda\": 5, \"amp\": 0.1}]}], \"gird\": 64}}", "waves.gird" },
+        { "{\"waves\": {\"boxes\": [{\"origin\": [0, 0], \"length\": 10, \"width\": 10, \"trains\": [{\"lambda\": -5}]}]}}", "waves.boxes[0].trains[0].lambda" },
+        { "{\"waves\": {\"boxes\": [{\"origin\": [0, 0], \"length\": 10, \"width\": 10, \"trains\": []}]}}", "waves.boxes[0].trains" },
+        { "{\"waves\": {\"boxes\": [{\"origin\": [0, 0], \"length\": 10, \"width\": 10, \"trains\": [{\"lambda\": 5, \"amp\": 40}]}]}}", "waves.boxes[0].trains[0].amp" },
+    };
+    for (unsigned k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        snprintf(path, sizeof path, "wave_bad_%u.json", k);
+        FILE *f = fopen(path, "w");
+        NP_CHECK(f != NULL, "%s", path);
+        if (!f)
+            continue;
+        fputs(bad[k][0], f);
+        fclose(f);
+        err[0] = '\0';
+        NP_CHECK(np_wave_scene_read(path, &s, NULL, err, sizeof err) != 0, "%s accepted", bad[k][0]);
+        NP_CHECK(strstr(err, bad[k][1]) != NULL, "message '%s' does not name %s", err, bad[k][1]);
+        printf("  %s\n", err);
+        remove(path);
+    }
+    return 0;
+}
+
 static const np_test_case cases[] = {
     { "rom", rom },
     { "sincos_bound", sincos_bound },
@@ -587,6 +972,13 @@ static const np_test_case cases[] = {
     { "frame_wrap", frame_wrap },
     { "recurrence", recurrence },
     { "pipe", pipe },
+    { "ray_partition", ray_partition },
+    { "culling", culling },
+    { "scaling", scaling },
+    { "budget", budget },
+    { "overlap", overlap },
+    { "land", land },
+    { "scene_refusals", scene_refusals },
     { NULL, NULL },
 };
 NP_TEST_MAIN(cases)
