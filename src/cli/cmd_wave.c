@@ -22,7 +22,10 @@
 
 #include "np_cli.h"
 #include "np_cmd.h"
+#include "np_gbuf.h"
 #include "np_image.h"
+#include "np_render.h"
+#include "np_scene.h"
 #include "np_plot.h"
 #include "np_report.h"
 #include "np_unit.h"
@@ -30,12 +33,14 @@
 #include "np_wave_ref.h"
 
 static const char *const USAGE =
-    "usage: noisepipe wave SCENE.json [--frames N] [--first T] [--grid N] [--budget CYCLES] [-o DIR]\n"
+    "usage: noisepipe wave SCENE.json [--frames N] [--first T] [--grid N] [--budget CYCLES] [-o DIR [--render TEMPLATE]]\n"
     "       noisepipe wave check [--size N] [--frames N] [--trains N] [--regs S]\n"
     "       noisepipe wave bench SCENARIO1.json SCENARIO2.json [-o DIR]\n"
     "\n"
     "SCENE: frames of a wave scene (docs/wave.md, \"Scenes\") through the bit-exact model of the wave unit:\n"
-    "  per frame the cycles, the boxes visible and the height's range; -o DIR writes DIR/NAME-fNNNNNN.png.\n"
+    "  per frame the cycles, the boxes visible and the height's range; -o DIR writes DIR/NAME-fNNNNNN.png;\n"
+    "  --render TEMPLATE also renders it lit through the G-buffer renderer (the template's image, camera,\n"
+    "  light and colour map): DIR/NAME-lit-fNNNNNN.png.\n"
     "  A scene whose surface may fold (1.3 sum k (A + a) > 1) is refused (exit 2) unless it sets allow_fold.\n"
     "check: the model against the double reference from the same registers: N^2 points (default 512) at\n"
     "  F frames (default 1000) from 0 to 2^32 - 1, the last third next to 2^32; exit 1 over 1 LSB.\n"
@@ -188,6 +193,110 @@ static int write_png(const char *dir, const char *name, uint32_t t, const np_wav
     return rc;
 }
 
+/*
+ * The frame rendered lit through the G-buffer renderer (np_gbuf.h, issue 15):
+ * the template scene tpl (image, camera, light, texture) with two meshes
+ * added, the displaced water grid (p0 + (dx, y, dz)) and the terrain where it
+ * rises above -2 m; texture coordinate T = y / hm on the water (in [-1, 1])
+ * and 2 + h / island height on land, so the template's colour map colours
+ * both. Shaded on the texel unit, one sample a pixel. 0, or -1.
+ */
+static int render_lit(const char *tpl, const char *dir, const char *name, uint32_t t, const np_wave_scene *s,
+                      const int32_t *y, const int32_t *dx, const int32_t *dz)
+{
+    static np_scene sc;
+    char err[512];
+    if (np_scene_load(tpl, &sc, err, sizeof err) != 0) {
+        np_err("wave", "%s", err);
+        return -1;
+    }
+    unsigned n = s->grid;
+    double hm = 0.0;
+    for (unsigned k = 0; k < s->nbox; k++)
+        hm = s->box[k].hmax > hm ? s->box[k].hmax : hm;
+    hm = hm > 0.0 ? hm : 1.0;
+    np_scene_mesh *m = realloc(sc.mesh, (sc.n_mesh + 2u) * sizeof *m);
+    if (!m) {
+        np_scene_free(&sc);
+        return -1;
+    }
+    sc.mesh = m;
+    int rc = -1;
+    for (unsigned w = 0; w < 2; w++) {
+        np_scene_mesh *me = &sc.mesh[sc.n_mesh];
+        memset(me, 0, sizeof *me);
+        me->n_vert = n * n;
+        me->p = malloc((size_t)me->n_vert * sizeof *me->p);
+        me->t = malloc((size_t)me->n_vert * sizeof *me->t);
+        me->tri = malloc((size_t)2 * (n - 1u) * (n - 1u) * sizeof *me->tri);
+        sc.n_mesh++;
+        if (!me->p || !me->t || !me->tri)
+            goto done;
+        for (unsigned j = 0; j < n; j++)
+            for (unsigned i = 0; i < n; i++) {
+                size_t q = (size_t)j * n + i;
+                double x = i * s->spacing, z = j * s->spacing, h = -(double)s->depth[q];
+                if (w == 0) {
+                    me->p[q][0] = x + dx[q] / 1024.0;
+                    me->p[q][1] = y[q] / 1024.0;
+                    me->p[q][2] = z + dz[q] / 1024.0;
+                    me->t[q][0] = x;
+                    me->t[q][1] = y[q] / 1024.0 / hm;
+                    me->t[q][2] = z;
+                } else {
+                    me->p[q][0] = x;
+                    me->p[q][1] = h;
+                    me->p[q][2] = z;
+                    me->t[q][0] = x;
+                    me->t[q][1] = 2.0 + (h > 0.0 ? h : 0.0) / (s->isl_height > 0.0 ? s->isl_height : 1.0);
+                    me->t[q][2] = z;
+                }
+            }
+        for (unsigned j = 0; j + 1u < n; j++)
+            for (unsigned i = 0; i + 1u < n; i++) {
+                uint32_t a = j * n + i, b = a + 1u, c = a + n, d = c + 1u;
+                if (w == 1 && s->depth[a] > 2.0f && s->depth[b] > 2.0f && s->depth[c] > 2.0f && s->depth[d] > 2.0f)
+                    continue; /* terrain well under water: hidden by the water */
+                uint32_t(*tr)[3] = &me->tri[me->n_tri];
+                tr[0][0] = a, tr[0][1] = c, tr[0][2] = b;
+                tr[1][0] = b, tr[1][1] = c, tr[1][2] = d;
+                me->n_tri += 2;
+            }
+        me->first_id = sc.n_prims;
+        sc.n_prims += me->n_tri;
+    }
+    np_render_unit_cfg us[NP_RENDER_MAX_UNITS];
+    int nu = np_render_units(&sc, NULL, NULL, us, err, sizeof err), k;
+    for (k = 0; k < nu && strcmp(us[k].u->name, "texel") != 0; k++)
+        ;
+    if (nu < 0 || k == nu) {
+        np_err("wave", "%s: %s", tpl, nu < 0 ? err : "the texel unit does not render it");
+        goto done;
+    }
+    np_gbuf g;
+    if (np_gbuf_build(&sc, 1, &g, err, sizeof err) != 0) {
+        np_err("wave", "%s: %s", tpl, err);
+        goto done;
+    }
+    uint8_t *rgb = malloc((size_t)sc.width * sc.height * 3);
+    np_gbuf_cost cost;
+    if (rgb && np_gbuf_shade_first(&g, us[k].u, us[k].cfg.bytes, rgb, &cost) == 0) {
+        char path[1024];
+        snprintf(path, sizeof path, "%s/%s-lit-f%010u.png", dir, name, t);
+        rc = np_image_write_png(path, sc.width, sc.height, rgb, err, sizeof err);
+        if (rc != 0)
+            np_err("wave", "%s", err);
+        else
+            printf("    lit: %s (%u triangles, %llu shading cycles on texel)\n", path, sc.n_prims,
+                   (unsigned long long)cost.cycles);
+    }
+    free(rgb);
+    np_gbuf_free(&g);
+done:
+    np_scene_free(&sc);
+    return rc;
+}
+
 static const char *base_name(const char *path, char *buf, size_t n)
 {
     const char *b = strrchr(path, '/');
@@ -200,12 +309,16 @@ static const char *base_name(const char *path, char *buf, size_t n)
 
 static int cmd_scene(int argc, char **argv)
 {
-    const char *path = NULL, *dir = NULL;
+    const char *path = NULL, *dir = NULL, *tpl = NULL;
     uint64_t frames = 0, first = 0, grid = 0, budget = 0;
     int have_frames = 0, have_first = 0;
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "-o") == 0 && i + 1 < argc) {
             dir = argv[++i];
+            continue;
+        }
+        if (strcmp(argv[i], "--render") == 0 && i + 1 < argc) {
+            tpl = argv[++i];
             continue;
         }
         uint64_t *dst = strcmp(argv[i], "--frames") == 0   ? &frames
@@ -285,6 +398,8 @@ static int cmd_scene(int argc, char **argv)
         }
         printf("\n");
         if (dir && write_png(dir, name, t, &s, y) != 0)
+            rc = NP_EXIT_FAIL;
+        if (dir && tpl && render_lit(tpl, dir, name, t, &s, y, dx, dz) != 0)
             rc = NP_EXIT_FAIL;
     }
     free(y);
