@@ -21,6 +21,7 @@ static const np_cmd commands[] = {
     { "render", np_cmd_render, "render a scene with the float reference and the texture units (EXR + PNG)" },
     { "report", np_cmd_report, "write reports: gate and latency estimates, error against run time" },
     { "stream", np_cmd_stream, "stream vectors over USB to an FPGA board and verify the results" },
+    { "wave", np_cmd_wave, "the Gerstner wave unit on a scene: frames, the check against the reference, the benchmark" },
     { "help", cmd_help, "this list, or `noisepipe help COMMAND`" },
 };
 enum { N_COMMANDS = sizeof commands / sizeof commands[0] };

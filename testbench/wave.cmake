@@ -1,0 +1,22 @@
+# SPDX-License-Identifier: MIT
+# The Gerstner wave unit (seed 004): ROM, sin/cos bound, model against the double reference over
+# long times, the named stiff cases, the host's eq. (1) and dispersion, boxes and rays, culling,
+# the cycle model and the time budget (testbench/test_wave.c, docs/wave.md). The unit's vectors
+# and KAT are checked by conformance.wave.*.
+np_test_program(test_wave test_wave.c)
+target_link_libraries(test_wave PRIVATE np_render)
+target_compile_definitions(test_wave PRIVATE NP_WAVE_SCENES="${PROJECT_SOURCE_DIR}/vectors/scenes")
+np_add_cases(test_wave wave
+  rom sincos_bound vs_ref hist_year freq_drift fold nyquist a_gt_A range shallow wind frame_wrap recurrence pipe
+  ray_partition culling scaling budget overlap land scene_refusals)
+# The command: a folding scene is refused with exit 2 and a message naming allow_fold.
+add_test(NAME wave.cli_fold_refused COMMAND sh -c
+  "\"$0\" wave \"$1\" 2>&1; test $? -eq 2" $<TARGET_FILE:noisepipe> ${PROJECT_SOURCE_DIR}/vectors/scenes/wave_fold.json)
+set_tests_properties(wave.cli_fold_refused PROPERTIES PASS_REGULAR_EXPRESSION "allow_fold")
+# Lit through the G-buffer renderer (issue 15's np_gbuf): two frames of scenario 1 at 64^2, each
+# a height PNG and a lit PNG.
+add_test(NAME wave.cli_render_lit COMMAND sh -c
+  "rm -rf \"$3\" && \"$0\" wave \"$1\" --grid 64 --frames 2 -o \"$3\" --render \"$2\" && test -s \"$3/wave_scenario1-lit-f0000000000.png\" && test -s \"$3/wave_scenario1-lit-f0000000015.png\""
+  $<TARGET_FILE:noisepipe> ${PROJECT_SOURCE_DIR}/vectors/scenes/wave_scenario1.json
+  ${PROJECT_SOURCE_DIR}/vectors/scenes/wave_render.json ${CMAKE_CURRENT_BINARY_DIR}/wave_render_lit)
+set_tests_properties(wave.cli_render_lit PROPERTIES PASS_REGULAR_EXPRESSION "lit: .*lit: ")
