@@ -272,8 +272,8 @@ uint32_t np_aacount_rom(unsigned s)
 
 uint8_t np_aacount_resolve(uint32_t sum, unsigned s)
 {
-    uint64_t x = 2u * (uint64_t)sum + s; /* u13 */
-    return (uint8_t)((x * np_aacount_rom(s)) >> (NP_AAC_ROM_FRAC + 1u));
+    uint64_t x = (uint64_t)sum * np_aacount_rom(s); /* u12 x u18 */
+    return (uint8_t)((x + ((uint64_t)1 << (NP_AAC_ROM_FRAC - 1u))) >> NP_AAC_ROM_FRAC);
 }
 
 void np_aacount_tile_max(uint8_t *s, unsigned w, unsigned h)
@@ -618,10 +618,10 @@ size_t np_aacount_datapath(const np_aacount_cfg *c, np_op *ops, size_t max)
     np_dp_op(&d, "C", "s", NP_OP_MUX, 2, 5, 2, np_bits_for_range(0, (int64_t)n, 0), 0, 4);
     np_dp_op(&d, "C", NULL, NP_OP_LUT, 1, 5, n, 0, 0, 5);
     np_dp_op(&d, "C", NULL, NP_OP_REG, 1, 5u * 4u + 16u + 1u, 0, 0, 0, 0);
-    /* R: the resolve, one channel a lane x 3 (sum u12, 13 x 19 product, the ROM) */
+    /* R: the resolve, per channel (sum u12 x rom u18, + 2^16, the ROM) */
     np_dp_op(&d, "R", NULL, NP_OP_ROM, 3, 4, NP_AAC_ROM_BITS, 0, 0, 0);
-    np_dp_op(&d, "R", NULL, NP_OP_ADD, 3, 13, 0, 0, 0, 0);
-    np_dp_op(&d, "R", NULL, NP_OP_MUL, 3, 13, NP_AAC_ROM_BITS, 0, 0, 1);
+    np_dp_op(&d, "R", NULL, NP_OP_MUL, 3, 12, NP_AAC_ROM_BITS, 0, 0, 1);
+    np_dp_op(&d, "R", NULL, NP_OP_ADD, 3, 14, 0, 0, 0, 2);
     np_dp_op(&d, "R", NULL, NP_OP_REG, 1, 3u * 8u + 1u, 0, 0, 0, 0);
     /* the threshold registers the host loads */
     np_dp_op(&d, "C", NULL, NP_OP_REG, 1,

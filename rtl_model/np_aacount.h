@@ -72,13 +72,16 @@
  * Index 0 is the sample S was shaded at (for m = 3 the pixel centre).
  *
  * Resolve: the mean of the s shaded samples per channel, sum u12 (<= 16 x 255),
- *   out = ((2 sum + s) * rom[s]) >> 18,  rom[s] = ceil(2^17 / s)  (16 x u18 ROM,
- *   a 13 x 18 product), which is round-half-up(sum / s) = floor((2 sum + s) / (2 s))
- * for every s in 1..16 and every sum in 0..255 s (proved exhaustively:
- * aacount.resolve_exhaustive; 17 is the least fraction width: with 16, 102
- * pairs round wrong). Why it holds: rom = (2^17 + e) / s, 0 <= e < s, so the
- * product is (2 sum + s) / (2 s) + (2 sum + s) e / (s 2^18), and the added
- * term stays below the distance to the next multiple of 1 / (2 s).
+ *   out = (sum * rom[s] + 2^16) >> 17,  rom[s] = ceil(2^17 / s)  (16 x u18 ROM,
+ *   a 12 x 18 product and a constant add), which is round-half-up(sum / s) =
+ * floor((2 sum + s) / (2 s)) for every s in 1..16 and every sum in 0..255 s
+ * (proved exhaustively: aacount.resolve_exhaustive; 17 is the least fraction
+ * width: with 16, 102 pairs round wrong). Why it holds: rom = (2^17 + e) / s,
+ * 0 <= e < s, so sum * rom / 2^17 = sum / s + sum e / (s 2^17), and the added
+ * term (< 255 * 15 / 2^17 < 1/32) never carries sum / s + 1/2 across an
+ * integer: sum / s + 1/2 is a multiple of 1 / (2 s) and so at least 1 / (2 s)
+ * below the next integer unless it is one. The G-buffer renderer's
+ * np_gbuf_resolve8 (src/render/np_gbuf.h) is the same formula and ROM.
  *
  * Tile option (the paper's Fig. 6c): tile = 6 replaces every s of a 6 x 6 block
  * of pixels by the block's maximum (np_aacount_tile_max), after the unit.

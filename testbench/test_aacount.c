@@ -652,7 +652,7 @@ static int resolve_exhaustive(void)
     for (unsigned s = 1; s <= NP_AAC_N_MAX; s++) {
         uint64_t rom = ((1u << 16) + s - 1u) / s;
         for (uint32_t sum = 0; sum <= 255u * s; sum++)
-            fail16 += (unsigned)((((2u * (uint64_t)sum + s) * rom) >> 17) != (2u * sum + s) / (2u * s));
+            fail16 += (unsigned)(((sum * rom + (1u << 15)) >> 16) != (2u * sum + s) / (2u * s));
     }
     printf("resolve: %u (s, sum) pairs, every one round-half-up(sum / s) with rom[s] = ceil(2^17 / s) (16 x u18);"
            " with 16 fraction bits %u pairs fail\n",
