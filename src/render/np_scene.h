@@ -9,10 +9,18 @@
 #define NP_SCENE_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "np_ref.h"
 
-enum { NP_SCENE_MAX_VERTS = 8, NP_SCENE_MAX_POLYS = 4096, NP_SCENE_MAX_SIZE = 4096 };
+/*
+ * No cap on polygons: explicit polygons are a growing array, meshes are
+ * stored as shared vertices and index triangles (np_scene_mesh). Polygon ids
+ * (np_scene_poly_get) run over the explicit polygons, then each mesh's
+ * triangles, below NP_SCENE_MAX_PRIMS (ids fit a u32 with room for the
+ * G-buffer's "none").
+ */
+enum { NP_SCENE_MAX_VERTS = 8, NP_SCENE_MAX_SIZE = 4096, NP_SCENE_MAX_PRIMS = 1 << 26 };
 
 /* A convex polygon: object-space vertices and their texture coordinates. */
 typedef struct np_scene_poly {
@@ -27,7 +35,42 @@ typedef struct np_scene_camera {
     double eye[3], target[3], up[3];
     double height;                       /* orthographic: world units across the image height */
     double focal;                        /* perspective: image-plane distance, in half image heights */
+    /*
+     * "depth_range": [near, far], the view depths the G-buffer's u24 depth
+     * spans (np_gbuf.h); have_depth_range 0: the range of the drawn polygons.
+     */
+    int have_depth_range;
+    double depth_range[2];
 } np_scene_camera;
+
+/*
+ * A procedural mesh (geometry "sphere"): shared vertices with texture
+ * coordinates, counter-clockwise triangles seen from outside. Its triangles
+ * are polygons (np_scene_poly_get) with the ids first_id ...
+ */
+typedef struct np_scene_mesh {
+    uint32_t n_vert, n_tri;
+    double (*p)[3];                      /* n_vert positions */
+    double (*t)[3];                      /* n_vert texture coordinates */
+    uint32_t (*tri)[3];                  /* n_tri vertex triples */
+    uint32_t first_id;
+    int cull;
+} np_scene_mesh;
+
+/*
+ * "aa": the adaptive supersampling of seed 001 (design/scene-pipeline.md,
+ * Seed 001; the unit aacount). A metric whose constant the scene leaves out
+ * is off (left out of the unit's model, vectors and gates).
+ */
+typedef struct np_scene_aa {
+    int present;                         /* the scene has an "aa" section */
+    unsigned m;                          /* "m": 1..4 samples per pixel side (default 3) */
+    int have_cd, have_cn, have_cs;       /* which metrics the scene enables */
+    double c_d, c_n, c_s;                /* "c_d", "c_n", "c_s" >= 0: the metrics' constants */
+    double t_min, t_edge;                /* "t_min" (default 16/255), "t_edge" (default 1/8), 0..1 */
+    unsigned luma_taps;                  /* "luma_taps": 4 (default) or 5 (the centre too, as FXAA) */
+    unsigned tile;                       /* "tile": 0 (default, off) or 6: the 6x6 tile maximum (Fig. 6c) */
+} np_scene_aa;
 
 typedef struct np_scene {
     char name[64];
@@ -35,8 +78,11 @@ typedef struct np_scene {
     unsigned width, height;
     double background[3];                /* 0..255 */
     np_scene_camera cam;
-    unsigned n_poly;
+    unsigned n_poly;                     /* explicit polygons (cubes' faces, "polygon") */
     np_scene_poly *poly;
+    unsigned n_mesh;
+    np_scene_mesh *mesh;
+    uint32_t n_prims;                    /* every polygon id: n_poly + the meshes' triangles */
     np_ref_texture tex;
     unsigned probe_row;                  /* scanline of the noise-difference plot */
     int allow_empty;                     /* "allow_empty": true: an image that covers no pixel is not an error */
@@ -51,7 +97,20 @@ typedef struct np_scene {
      */
     double light_dir[3];
     double ambient;
+    /*
+     * "light.image": true - the light also shades the rendered images (the
+     * G-buffer renderer's shading, np_gbuf.h "Lighting", units and reference
+     * alike, so hashed); false (default) - only the _lit views, as above.
+     */
+    int light_image;
+    np_scene_aa aa;
 } np_scene;
+
+/*
+ * Polygon id (0 .. n_prims - 1): an explicit polygon (returned in place) or a
+ * mesh triangle (copied into tmp, returned). NULL past the last id.
+ */
+const np_scene_poly *np_scene_poly_get(const np_scene *s, uint32_t id, np_scene_poly *tmp);
 
 /*
  * 0, or -1 with "FILE: field 'a.b[2]': expected ..." in err. A path

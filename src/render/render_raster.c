@@ -9,17 +9,11 @@
 #include <string.h>
 
 #include "np_cli.h"
+#include "np_gbuf.h"
 #include "np_texreg.h"
+#include "render_view.h"
 
-/* --- Camera and scan conversion --- */
-
-typedef struct view {
-    double eye[3], f[3], r[3], u[3];
-    double w, h;
-    const np_scene_camera *cam;
-} view;
-
-static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+/* --- Camera and scan conversion (render_view.h) --- */
 
 static void cross3(const double a[3], const double b[3], double o[3])
 {
@@ -30,12 +24,12 @@ static void cross3(const double a[3], const double b[3], double o[3])
 
 static void norm3(double v[3])
 {
-    double l = sqrt(dot3(v, v));
+    double l = sqrt(np_rdot3(v, v));
     for (int a = 0; a < 3; a++)
         v[a] /= l;
 }
 
-static void view_init(const np_scene *sc, view *v)
+void np_rview_init(const np_scene *sc, np_rview *v)
 {
     const np_scene_camera *c = &sc->cam;
     v->cam = c;
@@ -51,11 +45,10 @@ static void view_init(const np_scene *sc, view *v)
     v->h = (double)sc->height;
 }
 
-/* Screen position (x right, y down, pixel centres at +1/2) of P; -1 when P is not in front of the eye. */
-static int project(const view *v, const double P[3], double *sx, double *sy)
+int np_rview_project(const np_rview *v, const double P[3], double *sx, double *sy)
 {
     double d[3] = { P[0] - v->eye[0], P[1] - v->eye[1], P[2] - v->eye[2] };
-    double xc = dot3(d, v->r), yc = dot3(d, v->u), zc = dot3(d, v->f);
+    double xc = np_rdot3(d, v->r), yc = np_rdot3(d, v->u), zc = np_rdot3(d, v->f);
     if (v->cam->perspective) {
         if (!(zc > 1e-9))
             return -1;
@@ -70,48 +63,57 @@ static int project(const view *v, const double P[3], double *sx, double *sy)
     return 0;
 }
 
-/* Does the polygon face the camera? (Newell normal; counter-clockwise seen from the front.) */
-static int facing(const view *v, const np_scene_poly *p)
+double np_rview_depth(const np_rview *v, const double P[3])
 {
-    double n[3] = { 0, 0, 0 };
+    double d[3] = { P[0] - v->eye[0], P[1] - v->eye[1], P[2] - v->eye[2] };
+    return np_rdot3(d, v->f);
+}
+
+void np_rpoly_normal(const np_scene_poly *p, double n[3])
+{
+    n[0] = n[1] = n[2] = 0;
     for (unsigned i = 0; i < p->n; i++) {
         const double *a = p->p[i], *b = p->p[(i + 1) % p->n];
         n[0] += (a[1] - b[1]) * (a[2] + b[2]);
         n[1] += (a[2] - b[2]) * (a[0] + b[0]);
         n[2] += (a[0] - b[0]) * (a[1] + b[1]);
     }
+}
+
+int np_rview_facing(const np_rview *v, const np_scene_poly *p)
+{
+    double n[3];
+    np_rpoly_normal(p, n);
     if (v->cam->perspective) {
         double d[3] = { p->p[0][0] - v->eye[0], p->p[0][1] - v->eye[1], p->p[0][2] - v->eye[2] };
-        return dot3(n, d) < 0;
+        return np_rdot3(n, d) < 0;
     }
-    return dot3(n, v->f) < 0;
+    return np_rdot3(n, v->f) < 0;
 }
 
-typedef struct proj_poly {
-    unsigned n;
-    double x[NP_SCENE_MAX_VERTS], y[NP_SCENE_MAX_VERTS];
-    const np_scene_poly *p;
-    double ymin, ymax;
-} proj_poly;
-
-static int push_span(np_render_frame *fr, size_t *cap, const np_rspan *s)
+int np_rproj_init(const np_rview *v, const np_scene_poly *p, unsigned id, np_rproj *q)
 {
-    if (fr->n_spans == *cap) {
-        size_t nc = *cap ? *cap * 2 : 1024;
-        np_rspan *ns = realloc(fr->spans, nc * sizeof *ns);
-        if (!ns)
-            return -1;
-        fr->spans = ns;
-        *cap = nc;
+    q->n = p->n;
+    q->p = p;
+    q->id = id;
+    q->ymin = q->xmin = HUGE_VAL;
+    q->ymax = q->xmax = -HUGE_VAL;
+    int bad = 0;
+    for (unsigned k = 0; k < p->n; k++) {
+        bad |= np_rview_project(v, p->p[k], &q->x[k], &q->y[k]);
+        q->ymin = fmin(q->ymin, q->y[k]);
+        q->ymax = fmax(q->ymax, q->y[k]);
+        q->xmin = fmin(q->xmin, q->x[k]);
+        q->xmax = fmax(q->xmax, q->x[k]);
     }
-    fr->spans[fr->n_spans++] = *s;
-    return 0;
+    return bad ? -1 : 0;
 }
 
-/* The span of polygon pp on row j (centre yc); 1 when it has pixels, 0 when none, -1 on a range error. */
-static int row_span(const np_scene *sc, const proj_poly *pp, unsigned j, np_rspan *out, char *err, size_t errlen)
+
+int np_rrow_span(const np_scene *sc, const np_rproj *pp, unsigned j, double ox, double oy, np_rspan *out, char *err,
+                 size_t errlen)
 {
-    double yc = (double)j + 0.5;
+    double yc = (double)j + oy;
     double xs[2], ts[2][3];
     unsigned hits = 0;
     for (unsigned i = 0; i < pp->n && hits < 3; i++) {
@@ -120,11 +122,21 @@ static int row_span(const np_scene *sc, const proj_poly *pp, unsigned j, np_rspa
         /* Half-open in y: an edge covers [min y, max y), so a shared vertex counts once. */
         if (!((y0 <= yc && yc < y1) || (y1 <= yc && yc < y0)))
             continue;
-        double t = (yc - y0) / (y1 - y0);
+        /*
+         * From the upper end, whichever way the polygon runs along the edge:
+         * two polygons sharing it compute the same crossing bit for bit, so
+         * a sample exactly on it falls in exactly one (gbuf.shared_edges).
+         */
+        unsigned e0 = i, e1 = k;
+        if (y0 > y1) {
+            e0 = k;
+            e1 = i;
+        }
+        double t = (yc - pp->y[e0]) / (pp->y[e1] - pp->y[e0]);
         if (hits < 2) {
-            xs[hits] = pp->x[i] + t * (pp->x[k] - pp->x[i]);
+            xs[hits] = pp->x[e0] + t * (pp->x[e1] - pp->x[e0]);
             for (int a = 0; a < 3; a++)
-                ts[hits][a] = pp->p->t[i][a] + t * (pp->p->t[k][a] - pp->p->t[i][a]);
+                ts[hits][a] = pp->p->t[e0][a] + t * (pp->p->t[e1][a] - pp->p->t[e0][a]);
         }
         hits++;
     }
@@ -134,8 +146,8 @@ static int row_span(const np_scene *sc, const proj_poly *pp, unsigned j, np_rspa
     double xl = xs[l], xr = xs[rr];
     if (!(xr > xl))
         return 0;
-    /* Pixels i with xl <= i + 1/2 < xr, clipped to the image. */
-    double fi0 = ceil(xl - 0.5), fi1 = ceil(xr - 0.5);
+    /* Pixels i with xl <= i + ox < xr, clipped to the image. */
+    double fi0 = ceil(xl - ox), fi1 = ceil(xr - ox);
     if (fi0 < 0)
         fi0 = 0;
     if (fi1 > (double)sc->width)
@@ -146,10 +158,10 @@ static int row_span(const np_scene *sc, const proj_poly *pp, unsigned j, np_rspa
     out->hw.y = (uint16_t)j;
     out->hw.x0 = (uint16_t)fi0;
     out->hw.n = (uint32_t)(fi1 - fi0);
-    out->poly = (unsigned)(pp->p - sc->poly);
+    out->poly = pp->id;
     for (int a = 0; a < 3; a++) {
         out->ds[a] = (ts[rr][a] - ts[l][a]) / (xr - xl);
-        out->s0[a] = ts[l][a] + (fi0 + 0.5 - xl) * out->ds[a];
+        out->s0[a] = ts[l][a] + (fi0 + ox - xl) * out->ds[a];
         if (np_texreg_quantize(out->s0[a], NP_TEX_FC, NP_TEX_S_BITS, &out->hw.s[a]) ||
             np_texreg_quantize(out->ds[a], NP_TEX_FC, NP_TEX_DS_BITS, &out->hw.ds[a])) {
             snprintf(err, errlen, "%s: row %u: texture coordinate %g or its step %g per pixel is outside the "
@@ -165,78 +177,71 @@ static int row_span(const np_scene *sc, const proj_poly *pp, unsigned j, np_rspa
     return 1;
 }
 
+/* Frame order: by row, then polygon id (scene order), then x - the order the scan converter has always given. */
+static int span_order(const void *pa, const void *pb)
+{
+    const np_rspan *a = pa, *b = pb;
+    if (a->hw.y != b->hw.y)
+        return a->hw.y < b->hw.y ? -1 : 1;
+    if (a->poly != b->poly)
+        return a->poly < b->poly ? -1 : 1;
+    return a->hw.x0 < b->hw.x0 ? -1 : a->hw.x0 > b->hw.x0;
+}
+
+/*
+ * The 1x1 frame is the G-buffer at m = 1 (np_gbuf.h): its spans are the
+ * visible runs of the sub-spans (a whole sub-span unless a nearer polygon
+ * hides part of it), so hidden surfaces are removed by depth and the units
+ * shade only what is seen.
+ */
 int np_render_prepare(const np_scene *sc, np_render_frame *fr, char *err, size_t errlen)
 {
     memset(fr, 0, sizeof *fr);
     fr->sc = sc;
-    char why[256];
-    if (np_texreg_compile(&sc->tex, &fr->regs, why, sizeof why)) {
-        snprintf(err, errlen, "%s: texture: %s", sc->path, why);
+    np_gbuf g;
+    if (np_gbuf_build(sc, 1, &g, err, errlen))
         return -1;
-    }
-    view v;
-    view_init(sc, &v);
-    proj_poly *pp = calloc(sc->n_poly ? sc->n_poly : 1, sizeof *pp);
-    if (!pp) {
-        snprintf(err, errlen, "out of memory");
-        return -1;
-    }
-    unsigned np = 0;
-    for (unsigned i = 0; i < sc->n_poly; i++) {
-        const np_scene_poly *p = &sc->poly[i];
-        if (p->cull && !facing(&v, p))
-            continue;
-        proj_poly *q = &pp[np];
-        q->n = p->n;
-        q->p = p;
-        q->ymin = HUGE_VAL;
-        q->ymax = -HUGE_VAL;
-        int bad = 0;
-        for (unsigned k = 0; k < p->n; k++) {
-            bad |= project(&v, p->p[k], &q->x[k], &q->y[k]);
-            q->ymin = fmin(q->ymin, q->y[k]);
-            q->ymax = fmax(q->ymax, q->y[k]);
-        }
-        if (bad) {
-            free(pp);
-            snprintf(err, errlen, "%s: polygon %u is not wholly in front of the camera (no near clipping)",
-                     sc->path, i);
-            return -1;
-        }
-        np++;
-    }
+    fr->regs = g.regs;
     size_t cap = 0;
-    for (unsigned j = 0; j < sc->height; j++) {
-        double yc = (double)j + 0.5;
-        for (unsigned i = 0; i < np; i++) {
-            if (yc < pp[i].ymin || yc >= pp[i].ymax)
+    for (uint32_t si = 0; si < g.n_spans; si++) {
+        const np_rspan *sp = &g.spans[si].r;
+        uint32_t k = 0;
+        while (k < sp->hw.n) {
+            if (g.span[(size_t)sp->hw.y * g.w + sp->hw.x0 + k] != si) {
+                k++;
                 continue;
-            np_rspan s;
-            int rc = row_span(sc, &pp[i], j, &s, err, errlen);
-            if (rc < 0 || (rc > 0 && push_span(fr, &cap, &s))) {
-                if (rc > 0)
+            }
+            uint32_t k1 = k + 1;
+            while (k1 < sp->hw.n && g.span[(size_t)sp->hw.y * g.w + sp->hw.x0 + k1] == si)
+                k1++;
+            np_rspan s = *sp;
+            s.hw.x0 = (uint16_t)(sp->hw.x0 + k);
+            s.hw.n = k1 - k;
+            for (int a = 0; a < 3; a++) {
+                s.hw.s[a] = sp->hw.s[a] + (int64_t)k * sp->hw.ds[a];
+                s.s0[a] = sp->s0[a] + (double)k * sp->ds[a];
+            }
+            if (fr->n_spans == cap) {
+                size_t nc = cap ? cap * 2 : 1024;
+                np_rspan *ns = realloc(fr->spans, nc * sizeof *ns);
+                if (!ns) {
+                    np_gbuf_free(&g);
+                    np_render_frame_free(fr);
                     snprintf(err, errlen, "out of memory");
-                free(pp);
-                np_render_frame_free(fr);
-                return -1;
+                    return -1;
+                }
+                fr->spans = ns;
+                cap = nc;
             }
-            if (rc > 0) {
-                fr->pixels += s.hw.n;
-                if (s.hw.n > fr->longest)
-                    fr->longest = s.hw.n;
-            }
+            fr->spans[fr->n_spans++] = s;
+            fr->pixels += s.hw.n;
+            if (s.hw.n > fr->longest)
+                fr->longest = s.hw.n;
+            k = k1;
         }
     }
-    free(pp);
-    if (fr->pixels == 0 && !sc->allow_empty) {
-        /* Nothing to measure: "0 of 0 samples, PSNR inf" would pass any check. */
-        np_render_frame_free(fr);
-        snprintf(err, errlen,
-                 "the scene covers no pixel: every polygon faces away from the camera, is behind it or "
-                 "is off the image (is camera.eye inside the geometry?); set \"allow_empty\": true to "
-                 "render an empty image");
-        return -1;
-    }
+    np_gbuf_free(&g);
+    qsort(fr->spans, fr->n_spans, sizeof *fr->spans, span_order);
     size_t npx = (size_t)sc->width * sc->height;
     fr->mask = calloc(npx, 1);
     if (!fr->mask) {
@@ -281,11 +286,21 @@ int np_render_reference(np_render_frame *fr)
         np_progress_update(&pr, i + 1u); /* counted as it starts: the last update is 100 % */
         const np_rspan *s = &fr->spans[i];
         double *row = fr->ref + ((size_t)s->hw.y * sc->width + s->hw.x0) * 3;
+        double lf = 1.0; /* the scene's light on the image (light.image) */
+        if (sc->light_image) {
+            double n[3], nd[3];
+            int8_t nq[3];
+            np_gbuf_poly_normal(sc, s->poly, n, nq);
+            np_gbuf_normal_decode(nq, nd); /* the G-buffer's normal, as the unit sees it */
+            lf = np_gbuf_light_ref(sc, nd);
+        }
         for (uint32_t k = 0; k < s->hw.n; k++) {
             /* Equation 14: s0 + k ds. */
             double st[3] = { s->s0[0] + (double)k * s->ds[0], s->s0[1] + (double)k * s->ds[1],
                              s->s0[2] + (double)k * s->ds[2] };
             np_ref_colour(&sc->tex.cmap, np_ref_texture_f(&sc->tex, st, NULL), row + 3 * (size_t)k);
+            for (size_t ch = 0; ch < 3; ch++)
+                row[3 * (size_t)k + ch] *= lf;
         }
     }
     fr->ref_seconds = np_now() - t0;

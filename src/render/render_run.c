@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "np_cli.h"
+#include "np_gbuf.h"
 
 /* Round half up to 8 bits: the units' colour stage rounding (np_tex_colour_round). */
 static uint8_t round8(double v) { return (uint8_t)floor(v + 0.5); }
@@ -31,6 +32,32 @@ static void put_pixels(const np_scene *sc, uint8_t *img, const np_tex_pixel *px,
 {
     for (uint32_t k = 0; k < n; k++)
         memcpy(img + ((size_t)px[k].y * sc->width + px[k].x) * 3, px[k].rgb, 3);
+}
+
+/*
+ * The scene's light on a unit's image (np_gbuf.h "Lighting", scene key
+ * light.image): each span's pixels lit with its polygon's quantised normal,
+ * as the G-buffer renderer lights a sample. Nothing without light.image.
+ */
+static void light_frame(const np_render_frame *fr, uint8_t *rgb)
+{
+    np_gbuf_lightq q;
+    np_gbuf_light_setup(fr->sc, &q);
+    if (!q.on)
+        return;
+    uint32_t last = NP_GBUF_NONE;
+    int8_t nq[3] = { 0, 0, 0 };
+    for (size_t i = 0; i < fr->n_spans; i++) {
+        const np_rspan *s = &fr->spans[i];
+        if (s->poly != last) {
+            double n[3];
+            np_gbuf_poly_normal(fr->sc, s->poly, n, nq);
+            last = s->poly;
+        }
+        uint8_t *px = rgb + ((size_t)s->hw.y * fr->sc->width + s->hw.x0) * 3;
+        for (uint32_t k = 0; k < s->hw.n; k++)
+            np_gbuf_light(&q, nq, px + 3 * (size_t)k);
+    }
 }
 
 /* Count pixels where a differs from b (covered pixels only). */
@@ -110,6 +137,7 @@ int np_render_engine(const np_render_frame *fr, const np_span_engine *e, const v
     }
     run->model_seconds = np_now() - t0;
     np_progress_end(&pr);
+    light_frame(fr, run->rgb);
     free(px);
     free(core);
     free(sig);
@@ -127,6 +155,7 @@ int np_render_engine(const np_render_frame *fr, const np_span_engine *e, const v
             return -1;
         }
         run->cycle_seconds = np_now() - t0;
+        light_frame(fr, c.rgb);
         run->have_cycles = 1;
         run->cycles = st.cycles;
         run->setup_stalls = st.setup_stalls;

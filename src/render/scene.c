@@ -2,6 +2,8 @@
 /* Scene files (np_scene.h), read with cJSON. */
 #include "np_scene.h"
 
+#include "np_math.h"
+
 #include <cjson/cJSON.h>
 #include <errno.h>
 #include <math.h>
@@ -16,6 +18,7 @@ typedef struct ctx {
     char *err;
     size_t errlen;
     int failed;
+    unsigned poly_cap; /* np_scene.poly's allocated entries */
 } ctx;
 
 static int fail(ctx *c, const char *field, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
@@ -167,7 +170,7 @@ static int parse_image(ctx *c, const cJSON *root, np_scene *s)
 
 static int parse_camera(ctx *c, const cJSON *root, np_scene *s)
 {
-    static const char *const keys[] = { "projection", "eye", "target", "up", "height", "focal", NULL };
+    static const char *const keys[] = { "projection", "eye", "target", "up", "height", "focal", "depth_range", NULL };
     static const char *const proj[] = { "orthographic", "perspective", NULL };
     const cJSON *cam = get(root, "camera");
     np_scene_camera *k = &s->cam;
@@ -201,6 +204,19 @@ static int parse_camera(ctx *c, const cJSON *root, np_scene *s)
         return fail(c, "camera.target", "must differ from camera.eye");
     if (!(u2 * n2 - dot * dot > 1e-12 * u2 * n2))
         return fail(c, "camera.up", "must not be parallel to the viewing direction");
+    const cJSON *dr = get(cam, "depth_range");
+    if (dr) {
+        if (!cJSON_IsArray(dr) || cJSON_GetArraySize(dr) != 2)
+            return fail(c, "camera.depth_range", "expected [near, far]");
+        if (read_number(c, cJSON_GetArrayItem(dr, 0), "camera.depth_range[0]", -COORD_MAX, COORD_MAX,
+                        &k->depth_range[0]) ||
+            read_number(c, cJSON_GetArrayItem(dr, 1), "camera.depth_range[1]", -COORD_MAX, COORD_MAX,
+                        &k->depth_range[1]))
+            return -1;
+        if (!(k->depth_range[1] > k->depth_range[0]))
+            return fail(c, "camera.depth_range", "far must exceed near");
+        k->have_depth_range = 1;
+    }
     return 0;
 }
 
@@ -209,7 +225,7 @@ static int check_polygon(ctx *c, const np_scene_poly *p, const char *field);
 /* "light" (np_scene.h): after the camera, whose frame gives the default direction. */
 static int parse_light(ctx *c, const cJSON *root, np_scene *s)
 {
-    static const char *const keys[] = { "direction", "ambient", NULL };
+    static const char *const keys[] = { "direction", "ambient", "image", NULL };
     const cJSON *li = get(root, "light");
     const np_scene_camera *k = &s->cam;
     double f[3], u[3], r[3], fu = 0, *d = s->light_dir, n2 = 0;
@@ -218,6 +234,10 @@ static int parse_light(ctx *c, const cJSON *root, np_scene *s)
         return -1;
     if (li && get(li, "ambient") && read_number(c, get(li, "ambient"), "light.ambient", 0, 1, &s->ambient))
         return -1;
+    const cJSON *im = li ? get(li, "image") : NULL;
+    if (im && !cJSON_IsBool(im))
+        return fail(c, "light.image", "expected true or false");
+    s->light_image = im && cJSON_IsTrue(im);
     if (li && get(li, "direction")) {
         if (read_vec3(c, get(li, "direction"), "light.direction", -COORD_MAX, COORD_MAX, d))
             return -1;
@@ -248,12 +268,61 @@ static int parse_light(ctx *c, const cJSON *root, np_scene *s)
     return 0;
 }
 
+/* "aa" (np_scene.h np_scene_aa): the adaptive supersampling's constants; a metric without its constant is off. */
+static int parse_aa(ctx *c, const cJSON *root, np_scene *s)
+{
+    static const char *const keys[] = { "m", "c_d", "c_n", "c_s", "t_min", "t_edge", "luma_taps", "tile", NULL };
+    const cJSON *aa = get(root, "aa");
+    np_scene_aa *q = &s->aa;
+    q->m = 3;
+    q->t_min = 16.0 / 255.0;
+    q->t_edge = 1.0 / 8.0;
+    q->luma_taps = 4;
+    if (!aa)
+        return 0;
+    if (need_object(c, aa, "aa") || check_keys(c, aa, "aa", keys))
+        return -1;
+    q->present = 1;
+    if (get(aa, "m") && read_uint(c, get(aa, "m"), "aa.m", 1, 4, &q->m))
+        return -1;
+    struct { const char *key, *field; int *have; double *v; } cs[] = {
+        { "c_d", "aa.c_d", &q->have_cd, &q->c_d }, { "c_n", "aa.c_n", &q->have_cn, &q->c_n },
+        { "c_s", "aa.c_s", &q->have_cs, &q->c_s },
+    };
+    for (size_t i = 0; i < sizeof cs / sizeof cs[0]; i++)
+        if (get(aa, cs[i].key)) {
+            if (read_number(c, get(aa, cs[i].key), cs[i].field, 0, 1e15, cs[i].v))
+                return -1;
+            *cs[i].have = 1;
+        }
+    if ((get(aa, "t_min") && read_number(c, get(aa, "t_min"), "aa.t_min", 0, 1, &q->t_min)) ||
+        (get(aa, "t_edge") && read_number(c, get(aa, "t_edge"), "aa.t_edge", 0, 1, &q->t_edge)) ||
+        (get(aa, "luma_taps") && read_uint(c, get(aa, "luma_taps"), "aa.luma_taps", 4, 5, &q->luma_taps)) ||
+        (get(aa, "tile") && read_uint(c, get(aa, "tile"), "aa.tile", 0, 6, &q->tile)))
+        return -1;
+    if (q->tile != 0 && q->tile != 6)
+        return fail(c, "aa.tile", "expected 0 (off) or 6 (the 6x6 tile maximum)");
+    return 0;
+}
+
+/* The explicit polygons grow by doubling: no cap but NP_SCENE_MAX_PRIMS over all ids. */
 static np_scene_poly *add_poly(ctx *c, np_scene *s, const char *field)
 {
-    if (s->n_poly >= NP_SCENE_MAX_POLYS) {
-        fail(c, field, "too many polygons (at most %d)", NP_SCENE_MAX_POLYS);
+    if (s->n_prims >= NP_SCENE_MAX_PRIMS) {
+        fail(c, field, "too many polygons (at most %d in a scene)", NP_SCENE_MAX_PRIMS);
         return NULL;
     }
+    if (s->n_poly == c->poly_cap) {
+        unsigned nc = c->poly_cap ? 2 * c->poly_cap : 64;
+        np_scene_poly *np = realloc(s->poly, (size_t)nc * sizeof *np);
+        if (!np) {
+            fail(c, field, "out of memory");
+            return NULL;
+        }
+        s->poly = np;
+        c->poly_cap = nc;
+    }
+    s->n_prims++;
     np_scene_poly *p = &s->poly[s->n_poly++];
     memset(p, 0, sizeof *p);
     p->cull = 1;
@@ -267,18 +336,126 @@ static const unsigned char cube_faces[6][4] = {
     { 0, 2, 3, 1 }, /* z = min */ { 4, 5, 7, 6 }, /* z = max */
 };
 
+/*
+ * {"type": "sphere", "center", "radius", "subdivisions" N, "texture_min",
+ * "texture_max", "cull"}: a tessellated sphere, N rings of latitude by 2N
+ * segments of longitude (vertex (i, j) at polar angle i/(2N) turns from +y,
+ * azimuth j/(2N) turns; np_sin_turns and np_cos_turns, so every machine
+ * builds the same points), 4 N (N - 1) triangles, texture coordinates affine
+ * in position (texture_min at center - radius, texture_max at center +
+ * radius, per axis). N = 2..2048 (16.8 million triangles at most).
+ */
+static int parse_sphere(ctx *c, const cJSON *o, const char *where, np_scene *s)
+{
+    static const char *const keys[] = { "type", "center", "radius", "subdivisions", "texture_min", "texture_max",
+                                        "cull", NULL };
+    char f[256];
+    double ce[3], r = 0, tmn[3], tmx[3];
+    unsigned N = 0;
+    if (check_keys(c, o, where, keys) ||
+        read_vec3(c, get(o, "center"), path_key(f, sizeof f, where, "center"), -COORD_MAX, COORD_MAX, ce) ||
+        read_number(c, get(o, "radius"), path_key(f, sizeof f, where, "radius"), 1e-6, COORD_MAX, &r) ||
+        read_uint(c, get(o, "subdivisions"), path_key(f, sizeof f, where, "subdivisions"), 2, 2048, &N) ||
+        read_vec3(c, get(o, "texture_min"), path_key(f, sizeof f, where, "texture_min"), -COORD_MAX, COORD_MAX,
+                  tmn) ||
+        read_vec3(c, get(o, "texture_max"), path_key(f, sizeof f, where, "texture_max"), -COORD_MAX, COORD_MAX,
+                  tmx))
+        return -1;
+    int cull = 1;
+    const cJSON *cu = get(o, "cull");
+    if (cu) {
+        if (!cJSON_IsBool(cu))
+            return fail(c, path_key(f, sizeof f, where, "cull"), "expected true or false");
+        cull = cJSON_IsTrue(cu);
+    }
+    const uint64_t seg = 2u * (uint64_t)N, nv = 2u + (uint64_t)(N - 1u) * seg, nt = 4u * (uint64_t)N * (N - 1u);
+    if ((uint64_t)s->n_prims + nt > NP_SCENE_MAX_PRIMS)
+        return fail(c, path_key(f, sizeof f, where, "subdivisions"), "too many polygons (at most %d in a scene)",
+                    NP_SCENE_MAX_PRIMS);
+    np_scene_mesh *nm = realloc(s->mesh, (s->n_mesh + 1u) * sizeof *nm);
+    if (!nm)
+        return fail(c, where, "out of memory");
+    s->mesh = nm;
+    np_scene_mesh *m = &s->mesh[s->n_mesh++];
+    memset(m, 0, sizeof *m);
+    m->n_vert = (uint32_t)nv;
+    m->n_tri = (uint32_t)nt;
+    m->cull = cull;
+    m->first_id = s->n_prims;
+    m->p = malloc((size_t)nv * sizeof *m->p);
+    m->t = malloc((size_t)nv * sizeof *m->t);
+    m->tri = malloc((size_t)nt * sizeof *m->tri);
+    if (!m->p || !m->t || !m->tri)
+        return fail(c, where, "out of memory");
+    /* Vertex 0: the pole +y; 1 + (i - 1) seg + j: ring i (1..N-1), segment j; nv - 1: the pole -y. */
+    for (uint64_t v = 0; v < nv; v++) {
+        double dir[3];
+        if (v == 0 || v == nv - 1) {
+            dir[0] = dir[2] = 0;
+            dir[1] = v == 0 ? 1.0 : -1.0;
+        } else {
+            uint64_t i = 1 + (v - 1) / seg, j = (v - 1) % seg;
+            double st, ct, sp, cp;
+            np_sincos_turns((double)i / (double)seg, &st, &ct);
+            np_sincos_turns((double)j / (double)seg, &sp, &cp);
+            dir[0] = st * cp;
+            dir[1] = ct;
+            dir[2] = st * sp;
+        }
+        for (int a = 0; a < 3; a++) {
+            m->p[v][a] = ce[a] + r * dir[a];
+            m->t[v][a] = tmn[a] + (tmx[a] - tmn[a]) * (dir[a] + 1.0) / 2.0;
+        }
+    }
+    /* Seen from outside, counter-clockwise (the azimuth turns from +x towards +z, i.e. clockwise seen from +y). */
+    uint64_t t = 0;
+    for (uint64_t j = 0; j < seg; j++) {
+        uint32_t a = (uint32_t)(1 + j), b = (uint32_t)(1 + (j + 1) % seg);
+        m->tri[t][0] = 0, m->tri[t][1] = b, m->tri[t][2] = a, t++;
+        uint32_t lo = (uint32_t)(1 + (N - 2u) * seg);
+        m->tri[t][0] = (uint32_t)(nv - 1), m->tri[t][1] = lo + a - 1u, m->tri[t][2] = lo + b - 1u, t++;
+    }
+    for (uint64_t i = 1; i + 1 < N; i++)
+        for (uint64_t j = 0; j < seg; j++) {
+            uint32_t a = (uint32_t)(1 + (i - 1) * seg + j), b = (uint32_t)(1 + (i - 1) * seg + (j + 1) % seg);
+            uint32_t a2 = (uint32_t)(a + seg), b2 = (uint32_t)(b + seg);
+            m->tri[t][0] = a, m->tri[t][1] = b, m->tri[t][2] = b2, t++;
+            m->tri[t][0] = a, m->tri[t][1] = b2, m->tri[t][2] = a2, t++;
+        }
+    s->n_prims += m->n_tri;
+    return 0;
+}
+
+const np_scene_poly *np_scene_poly_get(const np_scene *s, uint32_t id, np_scene_poly *tmp)
+{
+    if (id < s->n_poly)
+        return &s->poly[id];
+    for (unsigned i = 0; i < s->n_mesh; i++) {
+        const np_scene_mesh *m = &s->mesh[i];
+        if (id >= m->first_id && id - m->first_id < m->n_tri) {
+            const uint32_t *v = m->tri[id - m->first_id];
+            tmp->n = 3;
+            tmp->cull = m->cull;
+            for (int k = 0; k < 3; k++)
+                for (int a = 0; a < 3; a++) {
+                    tmp->p[k][a] = m->p[v[k]][a];
+                    tmp->t[k][a] = m->t[v[k]][a];
+                }
+            return tmp;
+        }
+    }
+    return NULL;
+}
+
 static int parse_geometry(ctx *c, const cJSON *root, np_scene *s)
 {
-    static const char *const types[] = { "cube", "polygon", NULL };
+    static const char *const types[] = { "cube", "polygon", "sphere", NULL };
     static const char *const cube_keys[] = { "type", "min", "max", "texture_min", "texture_max", NULL };
     static const char *const poly_keys[] = { "type", "vertices", "texcoords", "cull", NULL };
     const cJSON *g = get(root, "geometry");
     if (!g || !cJSON_IsArray(g) || cJSON_GetArraySize(g) < 1)
         return fail(c, "geometry", "%s (expected a non-empty array of objects)", g ? "wrong type" : "missing");
     int n = cJSON_GetArraySize(g);
-    s->poly = calloc((size_t)NP_SCENE_MAX_POLYS, sizeof *s->poly);
-    if (!s->poly)
-        return fail(c, "geometry", "out of memory");
     for (int i = 0; i < n; i++) {
         char where[64], f[256];
         const cJSON *o = cJSON_GetArrayItem(g, i);
@@ -287,7 +464,10 @@ static int parse_geometry(ctx *c, const cJSON *root, np_scene *s)
         if (need_object(c, o, where) ||
             read_string(c, get(o, "type"), path_key(f, sizeof f, where, "type"), types, &type))
             return -1;
-        if (type == 0) {
+        if (type == 2) {
+            if (parse_sphere(c, o, where, s))
+                return -1;
+        } else if (type == 0) {
             double mn[3], mx[3], tmn[3], tmx[3];
             if (check_keys(c, o, where, cube_keys) ||
                 read_vec3(c, get(o, "min"), path_key(f, sizeof f, where, "min"), -COORD_MAX, COORD_MAX, mn) ||
@@ -510,8 +690,8 @@ static int parse_texture(ctx *c, const cJSON *root, np_scene *s)
 int np_scene_parse(const char *json, const char *name, np_scene *s, char *err, size_t errlen)
 {
     static const char *const keys[] = { "noisepipe_scene", "name", "description", "image", "camera",
-                                        "geometry", "texture", "probe_row", "allow_empty", "light", NULL };
-    ctx c = { name, err, errlen, 0 };
+                                        "geometry", "texture", "probe_row", "allow_empty", "light", "aa", NULL };
+    ctx c = { name, err, errlen, 0, 0 };
     memset(s, 0, sizeof *s);
     snprintf(s->path, sizeof s->path, "%s", name);
     const char *end = NULL;
@@ -567,7 +747,7 @@ int np_scene_parse(const char *json, const char *name, np_scene *s, char *err, s
         goto out;
     }
     if (parse_image(&c, root, s) || parse_camera(&c, root, s) || parse_light(&c, root, s) ||
-        parse_geometry(&c, root, s) || parse_texture(&c, root, s))
+        parse_aa(&c, root, s) || parse_geometry(&c, root, s) || parse_texture(&c, root, s))
         goto out;
     s->probe_row = s->height / 2u;
     if (get(root, "probe_row"))
@@ -647,6 +827,15 @@ int np_scene_load(const char *path, np_scene *s, char *err, size_t errlen)
 
 void np_scene_free(np_scene *s)
 {
+    for (unsigned i = 0; i < s->n_mesh; i++) {
+        free(s->mesh[i].p);
+        free(s->mesh[i].t);
+        free(s->mesh[i].tri);
+    }
+    free(s->mesh);
+    s->mesh = NULL;
+    s->n_mesh = 0;
+    s->n_prims = 0;
     free(s->poly);
     s->poly = NULL;
     s->n_poly = 0;

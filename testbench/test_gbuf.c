@@ -1,0 +1,526 @@
+/* SPDX-License-Identifier: MIT */
+/* The G-buffer renderer (src/render/np_gbuf.h): samples, deferred shading, resolve, references, meshes. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "np_cli.h"
+#include "np_gbuf.h"
+#include "np_image.h"
+#include "np_render.h"
+#include "np_test.h"
+#include "np_texel.h"
+
+static void scene_path(char *buf, size_t n, const char *name)
+{
+    snprintf(buf, n, "%s/vectors/scenes/%s.json", NP_SOURCE_DIR, name);
+}
+
+static int load(const char *name, np_scene *s)
+{
+    char path[1024], err[1024];
+    scene_path(path, sizeof path, name);
+    if (np_scene_load(path, s, err, sizeof err)) {
+        NP_CHECK(0, "%s", err);
+        return -1;
+    }
+    return 0;
+}
+
+/* The units that render scene sc (the registry), configured for it. */
+static int units(const np_scene *sc, np_render_unit_cfg *us)
+{
+    char err[512];
+    int n = np_render_units(sc, NULL, NULL, us, err, sizeof err);
+    NP_CHECK(n > 0, "np_render_units: %s", n < 0 ? err : "none");
+    return n;
+}
+
+static const np_render_unit_cfg *unit_named(const np_render_unit_cfg *us, int n, const char *name)
+{
+    for (int i = 0; i < n; i++)
+        if (strcmp(us[i].u->name, name) == 0)
+            return &us[i];
+    return NULL;
+}
+
+/* The golden hash of scene image (vectors/images/hashes.txt). */
+static int golden(const char *scene, const char *image, char hex[65])
+{
+    char path[1024], line[1024];
+    snprintf(path, sizeof path, "%s/vectors/images/hashes.txt", NP_SOURCE_DIR);
+    FILE *f = fopen(path, "r");
+    NP_CHECK(f != NULL, "cannot open %s", path);
+    if (!f)
+        return -1;
+    int found = 0;
+    while (fgets(line, sizeof line, f)) {
+        char sc[64], im[16], h[65];
+        if (line[0] != '#' && sscanf(line, "%63s %15s %64s", sc, im, h) == 3 && strcmp(sc, scene) == 0 &&
+            strcmp(im, image) == 0) {
+            memcpy(hex, h, 65);
+            found = 1;
+        }
+    }
+    fclose(f);
+    NP_CHECK(found, "no golden hash for %s %s", scene, image);
+    return found ? 0 : -1;
+}
+
+static int build(const np_scene *s, unsigned m, np_gbuf *g)
+{
+    char err[1024];
+    if (np_gbuf_build(s, m, g, err, sizeof err)) {
+        NP_CHECK(0, "np_gbuf_build m=%u: %s", m, err);
+        return -1;
+    }
+    return 0;
+}
+
+static int parse(const char *json, np_scene *s)
+{
+    char err[1024];
+    if (np_scene_parse(json, "test.json", s, err, sizeof err)) {
+        NP_CHECK(0, "%s", err);
+        return -1;
+    }
+    return 0;
+}
+
+/*
+ * A test scene: an orthographic camera looking down -z from (0, 0, 10), one
+ * world unit per pixel, so screen (X, Y) is world (X - w/2, h/2 - Y); the
+ * geometry text geom; wood's texture.
+ */
+static int flat_scene(unsigned w, unsigned h, const char *geom, const char *extra, np_scene *s)
+{
+    char json[8192];
+    snprintf(json, sizeof json,
+             "{\"noisepipe_scene\": 1, \"name\": \"t\", \"image\": {\"width\": %u, \"height\": %u},"
+             "\"camera\": {\"projection\": \"orthographic\", \"eye\": [0, 0, 10], \"target\": [0, 0, 0],"
+             "\"up\": [0, 1, 0], \"height\": %u %s}, \"geometry\": [%s],"
+             "\"texture\": {\"quadric\": {\"A\": 10, \"H\": 10}, \"octaves\": [{\"amplitude\": 1, \"scale\": [5, 5, 1]}],"
+             "\"colormap\": {\"mode\": \"repeat\", \"domain\": [0, 1], \"colors\": [[226, 176, 116], [204, 146, 86],"
+             "[150, 96, 50], [204, 146, 86]]}}, \"allow_empty\": true}",
+             w, h, h, extra ? extra : "", geom);
+    return parse(json, s);
+}
+
+/* A rectangle [X0, X1) x [Y0, Y1) in screen coordinates at world z, counter-clockwise seen from +z. */
+static void rect(char *buf, size_t n, unsigned w, unsigned h, double X0, double X1, double Y0, double Y1, double z)
+{
+    double x0 = X0 - w / 2.0, x1 = X1 - w / 2.0, y0 = h / 2.0 - Y1, y1 = h / 2.0 - Y0;
+    snprintf(buf, n,
+             "{\"type\": \"polygon\", \"vertices\": [[%.17g, %.17g, %.17g], [%.17g, %.17g, %.17g], [%.17g, %.17g, %.17g],"
+             "[%.17g, %.17g, %.17g]], \"texcoords\": [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]}",
+             x0, y0, z, x1, y0, z, x1, y1, z, x0, y1, z);
+}
+
+/*
+ * Image borders and edges through sample points, at every m: the covered
+ * samples are exactly those whose point lies in [X0, X1) x [Y0, Y1) (edges
+ * half-open: a sample on the left or top edge is in, on the right or bottom
+ * edge out), each covered once; a rectangle larger than the image covers
+ * every sample, in sub-spans from x = 0 over the whole width.
+ */
+static int borders(void)
+{
+    const unsigned w = 16, h = 12;
+    for (unsigned m = 1; m <= 4; m++) {
+        /* Edges on sample points where (a + 1/2)/m is exact in binary (m = 1, 2, 4), between samples for m = 3. */
+        const double e = m == 3 ? 1.0 / 3.0 : 0.5 / m, last = m == 3 ? 2.0 / 3.0 : (m - 0.5) / m;
+        const double R[][4] = {
+            { -3, w + 3.0, -2, h + 2.0 },           /* the whole image */
+            { 5 + e, 11 + e, 3 + e, 9 + e },        /* inside, edges on sample points */
+            { w - 1 + last, w + 5.0, -1, h + 1.0 }, /* only the last sample column of the last pixel */
+            { -5, e, -1, h + 1.0 },                 /* the first sample column: on the right edge, so none */
+            { -1, w + 1.0, h - 1 + last, h + 3.0 }, /* the last sample row */
+        };
+        for (size_t r = 0; r < sizeof R / sizeof R[0]; r++) {
+            char geom[1024];
+            rect(geom, sizeof geom, w, h, R[r][0], R[r][1], R[r][2], R[r][3], 0);
+            np_scene s;
+            np_gbuf g;
+            if (flat_scene(w, h, geom, NULL, &s) || build(&s, m, &g))
+                return 1;
+            uint64_t want = 0, bad = 0;
+            for (size_t i = 0; i < (size_t)w * h * g.n; i++) {
+                double sx, sy;
+                np_gbuf_position(&g, i, &sx, &sy);
+                int in = sx >= R[r][0] && sx < R[r][1] && sy >= R[r][2] && sy < R[r][3];
+                want += (uint64_t)in;
+                if ((g.poly[i] != NP_GBUF_NONE) != in || g.hits[i] != (uint8_t)in)
+                    bad++;
+            }
+            NP_CHECK(bad == 0, "m=%u rect %zu: %llu samples covered wrongly (of %llu)", m, r, (unsigned long long)bad,
+                     (unsigned long long)want);
+            NP_CHECK(g.covered_samples == want, "m=%u rect %zu: %llu covered, want %llu", m, r,
+                     (unsigned long long)g.covered_samples, (unsigned long long)want);
+            if (r == 0) {
+                NP_CHECK(g.n_spans == (size_t)h * g.n, "m=%u: %zu sub-spans, want %u", m, g.n_spans, h * g.n);
+                for (size_t k = 0; k < g.n_spans; k++)
+                    NP_CHECK(g.spans[k].r.hw.x0 == 0 && g.spans[k].r.hw.n == w, "m=%u: sub-span %zu at %u, %u", m,
+                             k, g.spans[k].r.hw.x0, g.spans[k].r.hw.n);
+                for (size_t p = 0; p < (size_t)w * h; p++)
+                    NP_CHECK(g.cover[p] == g.n, "m=%u: pixel %zu covered %u of %u", m, p, g.cover[p], g.n);
+            }
+            if (r == 2)
+                NP_CHECK(want == (uint64_t)h * m, "m=%u: the last column holds %llu samples", m, (unsigned long long)want);
+            np_gbuf_free(&g);
+            np_scene_free(&s);
+        }
+    }
+    return 0;
+}
+
+/*
+ * Shared edges: a square split along its diagonal into two triangles, the
+ * diagonal through sample points (a = b) at every m - each sample in the
+ * square covered exactly once, none outside; then the same on a fan of 8
+ * triangles around the centre.
+ */
+static int shared_edges(void)
+{
+    const unsigned w = 16, h = 16;
+    const double lo = 2 - w / 2.0, hi = 14 - w / 2.0; /* screen 2 .. 14 */
+    for (int fan = 0; fan < 2; fan++)
+        for (unsigned m = 1; m <= 4; m++) {
+            char geom[4096];
+            size_t at = 0;
+            if (!fan) {
+                at += (size_t)snprintf(geom, sizeof geom,
+                                       "{\"type\": \"polygon\", \"vertices\": [[%g, %g, 0], [%g, %g, 0], [%g, %g, 0]],"
+                                       "\"texcoords\": [[0,0,0],[1,0,0],[1,1,0]]},"
+                                       "{\"type\": \"polygon\", \"vertices\": [[%g, %g, 0], [%g, %g, 0], [%g, %g, 0]],"
+                                       "\"texcoords\": [[0,0,0],[1,1,0],[0,1,0]]}",
+                                       lo, hi, lo, lo, hi, lo, lo, hi, hi, lo, hi, hi);
+            } else {
+                const double P[8][2] = { { lo, lo }, { 0, lo }, { hi, lo }, { hi, 0 }, { hi, hi }, { 0, hi }, { lo, hi }, { lo, 0 } };
+                for (int t = 0; t < 8; t++)
+                    at += (size_t)snprintf(geom + at, sizeof geom - at,
+                                           "%s{\"type\": \"polygon\", \"vertices\": [[0.3, 0.1, 0], [%g, %g, 0], [%g, %g, 0]],"
+                                           "\"texcoords\": [[0,0,0],[1,0,0],[1,1,0]]}",
+                                           t ? "," : "", P[t][0], P[t][1], P[(t + 1) % 8][0], P[(t + 1) % 8][1]);
+            }
+            np_scene s;
+            np_gbuf g;
+            if (flat_scene(w, h, geom, NULL, &s) || build(&s, m, &g))
+                return 1;
+            uint64_t twice = 0, missed = 0, outside = 0;
+            for (size_t i = 0; i < (size_t)w * h * g.n; i++) {
+                double sx, sy;
+                np_gbuf_position(&g, i, &sx, &sy);
+                int in = sx >= 2 && sx < 14 && sy >= 2 && sy < 14;
+                twice += g.hits[i] > 1;
+                missed += in && g.hits[i] == 0;
+                outside += !in && g.hits[i] != 0;
+            }
+            printf("%s m=%u: %llu samples covered, twice %llu, missed %llu, outside %llu\n", fan ? "fan" : "diagonal", m,
+                   (unsigned long long)g.covered_samples, (unsigned long long)twice, (unsigned long long)missed,
+                   (unsigned long long)outside);
+            NP_CHECK(twice == 0 && missed == 0 && outside == 0, "%s m=%u: twice %llu missed %llu outside %llu",
+                     fan ? "fan" : "diagonal", m, (unsigned long long)twice, (unsigned long long)missed,
+                     (unsigned long long)outside);
+            np_gbuf_free(&g);
+            np_scene_free(&s);
+        }
+    return 0;
+}
+
+/*
+ * Depth quantisation at the far end: depth range [9, 10] from the eye at
+ * z = 10, so the plane z = 0 is code 2^24 - 1 and z = 1/(2^24 - 1) is
+ * 2^24 - 2. The nearer by one LSB wins in either order; equal codes: the
+ * later polygon wins; beyond the far end clamps to 2^24 - 1 (never wraps).
+ */
+static int depth_far(void)
+{
+    const unsigned w = 8, h = 8;
+    const double one = 1.0 / (double)NP_GBUF_DEPTH_FAR;
+    struct { double za, zb; uint32_t want_code; int want_b; } C[] = {
+        { 0, one, NP_GBUF_DEPTH_FAR - 1, 1 },   /* B nearer by 1 LSB, drawn second */
+        { one, 0, NP_GBUF_DEPTH_FAR - 1, 0 },   /* A nearer by 1 LSB, drawn first */
+        { 0, 0, NP_GBUF_DEPTH_FAR, 1 },         /* equal: the later */
+        { 0, -1, NP_GBUF_DEPTH_FAR, 1 },        /* B beyond far: clamped, equal, the later */
+        { -1, -2, NP_GBUF_DEPTH_FAR, 1 },
+        { 1, 0.5, 0, 0 },                       /* at near: code 0 */
+    };
+    for (size_t c = 0; c < sizeof C / sizeof C[0]; c++) {
+        char a[1024], b[1024], geom[2100];
+        rect(a, sizeof a, w, h, -1, w + 1.0, -1, h + 1.0, C[c].za);
+        rect(b, sizeof b, w, h, -1, w + 1.0, -1, h + 1.0, C[c].zb);
+        snprintf(geom, sizeof geom, "%s, %s", a, b);
+        np_scene s;
+        np_gbuf g;
+        if (flat_scene(w, h, geom, ", \"depth_range\": [9, 10]", &s) || build(&s, 2, &g))
+            return 1;
+        uint64_t bad = 0;
+        for (size_t i = 0; i < (size_t)w * h * g.n; i++)
+            bad += g.depth[i] != C[c].want_code || g.poly[i] != (uint32_t)C[c].want_b || g.depth[i] > NP_GBUF_DEPTH_FAR;
+        NP_CHECK(bad == 0, "case %zu: %llu samples: depth %u poly %u, want %u poly %d", c, (unsigned long long)bad,
+                 g.depth[0], g.poly[0], C[c].want_code, C[c].want_b);
+        np_gbuf_free(&g);
+        np_scene_free(&s);
+    }
+    return 0;
+}
+
+/* Shading full runs: the cost model's cycles equal the engine's cycle-accurate model fed the same descriptors. */
+static int shade_cycles(void)
+{
+    np_scene s;
+    if (load("wood", &s))
+        return 1;
+    np_render_unit_cfg us[NP_RENDER_MAX_UNITS];
+    int nu = units(&s, us);
+    for (unsigned m = 2; m <= 3; m++) {
+        np_gbuf g;
+        if (build(&s, m, &g))
+            return 1;
+        uint8_t *rgb = malloc((size_t)g.w * g.h * g.n * 3);
+        for (int k = 0; k < nu; k++) {
+            np_gbuf_cost c;
+            np_gbuf_shade(&g, us[k].u, us[k].cfg.bytes, NULL, rgb, &c);
+            const np_span_engine *e = us[k].u->span->engine;
+            np_span_sim sim;
+            NP_CHECK(np_span_sim_init(&sim, e, np_unit_span_cfg(us[k].u->span, us[k].cfg.bytes), &g.regs) == 0, "sim");
+            size_t next = 0;
+            while ((next < g.n_spans || !np_span_sim_idle(&sim)) && sim.stats.cycles < 100000000u) {
+                np_span_port p;
+                memset(&p, 0, sizeof p);
+                p.in_valid = next < g.n_spans;
+                p.in = p.in_valid ? &g.spans[next].r.hw : NULL;
+                p.out_ready = 1;
+                np_span_sim_eval(&sim, &p);
+                if (p.in_valid && p.in_ready)
+                    next++;
+                np_span_sim_clock(&sim, &p);
+            }
+            printf("wood m=%u %s: cost model %llu cycles (%llu runs, %llu set-up), cycle-accurate model %llu\n", m,
+                   us[k].u->name, (unsigned long long)c.cycles, (unsigned long long)c.runs, (unsigned long long)c.setup,
+                   (unsigned long long)sim.stats.cycles);
+            NP_CHECK(c.runs == g.n_spans, "every sub-span one run (%llu of %zu)", (unsigned long long)c.runs, g.n_spans);
+            NP_CHECK(c.cycles == sim.stats.cycles, "m=%u %s: %llu cycles, the cycle model %llu", m,
+                     us[k].u->name, (unsigned long long)c.cycles, (unsigned long long)sim.stats.cycles);
+            np_span_sim_free(&sim);
+        }
+        /* A partial mask: texel seeks, fdiff steps over the skipped pixels. */
+        const size_t npx = (size_t)g.w * g.h;
+        uint16_t *mask = malloc(npx * sizeof *mask);
+        for (size_t p = 0; p < npx; p++)
+            mask[p] = np_gbuf_mask_first(m, (unsigned)(p % g.n) + 1u);
+        const np_render_unit_cfg *tx = unit_named(us, nu, "texel"), *fd = unit_named(us, nu, "fdiff");
+        np_gbuf_cost ct, cf;
+        np_gbuf_shade(&g, tx->u, tx->cfg.bytes, mask, rgb, &ct);
+        np_gbuf_shade(&g, fd->u, fd->cfg.bytes, mask, rgb, &cf);
+        printf("wood m=%u adaptive mask: texel %llu samples %llu runs %llu seek clocks %llu cycles; fdiff %llu skipped "
+               "pixels %llu cycles\n", m, (unsigned long long)ct.samples, (unsigned long long)ct.runs,
+               (unsigned long long)ct.seek, (unsigned long long)ct.cycles, (unsigned long long)cf.skipped,
+               (unsigned long long)cf.cycles);
+        NP_CHECK(ct.samples == cf.samples && ct.seek > 0 && ct.skipped == 0 && cf.skipped > 0 && cf.seek == 0,
+                 "seek and skip accounted");
+        free(mask);
+        free(rgb);
+        np_gbuf_free(&g);
+    }
+    np_scene_free(&s);
+    return 0;
+}
+
+/* The paper's matrices: permutations of 0..n-1, B3's 0 at the centre, the first-s masks nested. */
+static int index_matrices(void)
+{
+    for (unsigned m = 1; m <= 4; m++) {
+        unsigned seen = 0;
+        for (unsigned b = 0; b < m; b++)
+            for (unsigned a = 0; a < m; a++)
+                seen |= 1u << np_gbuf_order(m, a, b);
+        NP_CHECK(seen == (1u << (m * m)) - 1u, "B%u is not a permutation", m);
+        for (unsigned s = 0; s <= m * m; s++) {
+            uint16_t k = np_gbuf_mask_first(m, s);
+            NP_CHECK((unsigned)__builtin_popcount(k) == s, "B%u: first %u has %d samples", m, s, __builtin_popcount(k));
+            if (s > 0)
+                NP_CHECK((np_gbuf_mask_first(m, s - 1) & ~k) == 0, "B%u: masks not nested at %u", m, s);
+        }
+    }
+    NP_CHECK(np_gbuf_order(3, 1, 1) == 0, "B3's centre is %u", np_gbuf_order(3, 1, 1));
+    NP_CHECK(np_gbuf_order(4, 2, 2) == 0 && np_gbuf_order(4, 0, 0) == 1, "B4 as printed (0 and 1 swapped from Bayer)");
+    NP_CHECK(np_gbuf_order(2, 1, 0) == 2 && np_gbuf_order(2, 0, 1) == 3, "B2 = [[0,2],[3,1]]");
+    return 0;
+}
+
+/* The resolve over every (s, sum): the ROM's result is round_half_up(sum / s), and the ROM is ceil(2^17 / s). */
+static int resolve_exhaustive(void)
+{
+    uint64_t checked = 0;
+    for (unsigned s = 1; s <= NP_GBUF_N_MAX; s++) {
+        uint32_t want_rom = (uint32_t)(((1u << NP_GBUF_RECIP_FRAC) + s - 1u) / s);
+        NP_CHECK(NP_GBUF_RECIP[s] == want_rom, "ROM[%u] = %u, want %u", s, NP_GBUF_RECIP[s], want_rom);
+        for (uint32_t sum = 0; sum <= 255u * s; sum++) {
+            unsigned want = (2u * sum + s) / (2u * s); /* floor(sum / s + 1/2) */
+            unsigned got = np_gbuf_resolve8(sum, s);
+            if (got != want) {
+                NP_CHECK(0, "resolve s=%u sum=%u: %u, want %u", s, sum, got, want);
+                return 1;
+            }
+            checked++;
+        }
+    }
+    /* One fraction bit fewer does not suffice: the ROM's width is needed. */
+    unsigned bad = 0;
+    for (unsigned s = 1; s <= NP_GBUF_N_MAX && !bad; s++) {
+        uint64_t r = ((1u << (NP_GBUF_RECIP_FRAC - 1)) + s - 1u) / s;
+        for (uint32_t sum = 0; sum <= 255u * s; sum++)
+            if ((((uint64_t)sum * r + (1u << (NP_GBUF_RECIP_FRAC - 2))) >> (NP_GBUF_RECIP_FRAC - 1)) !=
+                (2u * sum + s) / (2u * s)) {
+                bad = 1;
+                break;
+            }
+    }
+    NP_CHECK(bad, "a %d-bit ROM would do: the spec's width is not minimal", NP_GBUF_RECIP_FRAC - 1);
+    printf("resolve: %llu (s, sum) pairs exact with ceil(2^%d / s); 2^%d fails\n", (unsigned long long)checked,
+           NP_GBUF_RECIP_FRAC, NP_GBUF_RECIP_FRAC - 1);
+    return 0;
+}
+
+/*
+ * Acceptance: with m = 3 the centre sample (B3's index 0) is today's 1x1
+ * image bit for bit on every unit that renders the seed scenes (golden
+ * hashes), and so is m = 1.
+ */
+static int centre_golden(void)
+{
+    const char *names[2] = { "wood", "marble" };
+    for (int i = 0; i < 2; i++) {
+        np_scene s;
+        if (load(names[i], &s))
+            return 1;
+        np_render_unit_cfg us[NP_RENDER_MAX_UNITS];
+        int nu = units(&s, us);
+        NP_CHECK(unit_named(us, nu, "texel") && unit_named(us, nu, "fdiff"), "texel and fdiff render %s", names[i]);
+        for (unsigned m = 1; m <= 3; m += 2) {
+            np_gbuf g;
+            if (build(&s, m, &g))
+                return 1;
+            uint8_t *rgb = malloc((size_t)g.w * g.h * 3);
+            for (int k = 0; k < nu; k++) {
+                char want[65], hex[65];
+                if (golden(names[i], us[k].u->name, want))
+                    continue;
+                np_gbuf_cost c;
+                NP_CHECK(np_gbuf_shade_first(&g, us[k].u, us[k].cfg.bytes, rgb, &c) == 0, "shade");
+                np_image_hash(g.w, g.h, rgb, hex);
+                printf("%s m=%u %s: S %s %s (%llu samples, %llu runs, %llu cycles)\n", names[i], m, us[k].u->name,
+                       hex, strcmp(hex, want) == 0 ? "= golden" : "CHANGED", (unsigned long long)c.samples,
+                       (unsigned long long)c.runs, (unsigned long long)c.cycles);
+                NP_CHECK(strcmp(hex, want) == 0, "%s m=%u %s: S is %s, golden %s", names[i], m, us[k].u->name, hex,
+                         want);
+            }
+            /* The reference's centre samples, rounded, are the golden reference image. */
+            char want[65], hex[65];
+            double *ref = malloc((size_t)g.w * g.h * g.n * 3 * sizeof *ref);
+            np_gbuf_reference_samples(&g, ref);
+            const unsigned j0 = (unsigned)__builtin_ctz(np_gbuf_mask_first(m, 1));
+            for (size_t p = 0; p < (size_t)g.w * g.h; p++)
+                for (int ch = 0; ch < 3; ch++)
+                    rgb[3 * p + (size_t)ch] = (uint8_t)floor(ref[3 * (p * g.n + j0) + (size_t)ch] + 0.5);
+            np_image_hash(g.w, g.h, rgb, hex);
+            if (golden(names[i], "ref", want) == 0)
+                NP_CHECK(strcmp(hex, want) == 0, "%s m=%u ref: %s, golden %s", names[i], m, hex, want);
+            free(ref);
+            free(rgb);
+            np_gbuf_free(&g);
+        }
+        np_scene_free(&s);
+    }
+    return 0;
+}
+
+/*
+ * Full m x m supersampling (every sample shaded, resolved) on texel: each
+ * sample is the unit's pixel k of its sub-span (the same bits as the span
+ * model), the image deterministic (two builds and shades agree) and hashed,
+ * and shading the samples in two halves gives the same bits as at once.
+ */
+static int full_ssaa(void)
+{
+    np_scene s;
+    if (load("marble", &s))
+        return 1;
+    np_render_unit_cfg us[NP_RENDER_MAX_UNITS];
+    int nu = units(&s, us);
+    const np_render_unit_cfg *tx = unit_named(us, nu, "texel");
+    NP_CHECK(tx != NULL, "texel renders marble");
+    if (!tx)
+        return 1;
+    for (unsigned m = 2; m <= 4; m++) {
+        np_gbuf g, g2;
+        if (build(&s, m, &g) || build(&s, m, &g2))
+            return 1;
+        const size_t npx = (size_t)g.w * g.h, ns = npx * g.n;
+        uint8_t *a = malloc(ns * 3), *b = malloc(ns * 3), *img = malloc(npx * 3), *img2 = malloc(npx * 3);
+        uint16_t *mask = malloc(npx * sizeof *mask);
+        np_gbuf_cost c, c2;
+        NP_CHECK(np_gbuf_shade(&g, tx->u, tx->cfg.bytes, NULL, a, &c) == 0, "shade");
+        /* The same samples in two halves (B index < n/2, then the rest), from a second build. */
+        memset(b, 0xA5, ns * 3);
+        uint16_t lo = np_gbuf_mask_first(m, g.n / 2), all = (uint16_t)((1u << g.n) - 1u);
+        for (size_t p = 0; p < npx; p++)
+            mask[p] = lo;
+        np_gbuf_shade(&g2, tx->u, tx->cfg.bytes, mask, b, &c2);
+        for (size_t p = 0; p < npx; p++)
+            mask[p] = (uint16_t)(all & ~lo);
+        np_gbuf_shade(&g2, tx->u, tx->cfg.bytes, mask, b, NULL);
+        NP_CHECK(memcmp(a, b, ns * 3) == 0, "m=%u: samples shaded in two halves differ", m);
+        np_gbuf_resolve(&g, NULL, a, img);
+        np_gbuf_resolve(&g2, NULL, b, img2);
+        NP_CHECK(memcmp(img, img2, npx * 3) == 0, "m=%u: resolve not deterministic", m);
+        NP_CHECK(c.samples == g.covered_samples, "m=%u: %llu samples shaded of %llu covered", m,
+                 (unsigned long long)c.samples, (unsigned long long)g.covered_samples);
+        /* Against the float references: within 1 LSB per sample, and the resolve near the double SSAA. */
+        double *ref = malloc(ns * 3 * sizeof *ref), *ss = malloc(npx * 3 * sizeof *ss);
+        np_gbuf_reference_samples(&g, ref);
+        double worst = 0;
+        for (size_t i = 0; i < ns * 3; i++)
+            worst = fmax(worst, fabs((double)a[i] - ref[i]));
+        NP_CHECK(worst <= 1.0, "m=%u: a sample differs from the reference by %.3f LSB", m, worst);
+        np_gbuf_reference_ssaa(&g, ss);
+        double worst_px = 0;
+        for (size_t i = 0; i < npx * 3; i++)
+            worst_px = fmax(worst_px, fabs((double)img[i] - ss[i]));
+        NP_CHECK(worst_px <= 1.5, "m=%u: resolved pixel %.3f LSB from the double SSAA", m, worst_px);
+        char hex[65];
+        np_image_hash(g.w, g.h, img, hex);
+        double mse = np_gbuf_mse(img, ss, g.cover, npx);
+        printf("marble m=%u full SSAA on texel: %s, %llu samples, %llu runs, %llu cycles; max sample error %.3f LSB, "
+               "pixel vs double SSAA %.3f LSB, MSE %.3e (PSNR %.2f dB paper / %.2f dB)\n",
+               m, hex, (unsigned long long)c.samples, (unsigned long long)c.runs, (unsigned long long)c.cycles, worst,
+               worst_px, mse, np_gbuf_psnr_paper(mse), np_gbuf_psnr(mse));
+        free(ref);
+        free(ss);
+        free(a);
+        free(b);
+        free(img);
+        free(img2);
+        free(mask);
+        np_gbuf_free(&g);
+        np_gbuf_free(&g2);
+    }
+    np_scene_free(&s);
+    return 0;
+}
+
+static const np_test_case cases[] = {
+    { "index_matrices", index_matrices },
+    { "resolve_exhaustive", resolve_exhaustive },
+    { "centre_golden", centre_golden },
+    { "full_ssaa", full_ssaa },
+    { "borders", borders },
+    { "shared_edges", shared_edges },
+    { "depth_far", depth_far },
+    { "shade_cycles", shade_cycles },
+    { NULL, NULL },
+};
+
+NP_TEST_MAIN(cases)
