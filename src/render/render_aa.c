@@ -60,7 +60,7 @@ static void resolve(const np_gbuf *g, const uint16_t *masks, const uint8_t *rgb,
 {
     const size_t npx = (size_t)g->w * g->h;
     for (size_t p = 0; p < npx; p++) {
-        uint16_t mk = masks ? masks[p] : (uint16_t)((1u << g->n) - 1u);
+        unsigned mk = masks ? (unsigned)masks[p] : (1u << g->n) - 1u;
         unsigned s = 0;
         uint32_t sum[3] = { 0, 0, 0 };
         for (unsigned j = 0; j < g->n; j++)
