@@ -45,11 +45,11 @@ static const np_render_unit_cfg *unit_named(const np_render_unit_cfg *us, int n,
     return NULL;
 }
 
-/* The golden hash of scene image (vectors/images/hashes.txt). */
-static int golden(const char *scene, const char *image, char hex[65])
+/* The hash of scene image in the checked-in list vectors/images/FILE. */
+static int golden_in(const char *file, const char *scene, const char *image, char hex[65])
 {
     char path[1024], line[1024];
-    snprintf(path, sizeof path, "%s/vectors/images/hashes.txt", NP_SOURCE_DIR);
+    snprintf(path, sizeof path, "%s/vectors/images/%s", NP_SOURCE_DIR, file);
     FILE *f = fopen(path, "r");
     NP_CHECK(f != NULL, "cannot open %s", path);
     if (!f)
@@ -64,9 +64,12 @@ static int golden(const char *scene, const char *image, char hex[65])
         }
     }
     fclose(f);
-    NP_CHECK(found, "no golden hash for %s %s", scene, image);
+    NP_CHECK(found, "no golden hash for %s %s in %s", scene, image, path);
     return found ? 0 : -1;
 }
+
+/* The golden hash of scene image (vectors/images/hashes.txt). */
+static int golden(const char *scene, const char *image, char hex[65]) { return golden_in("hashes.txt", scene, image, hex); }
 
 static int build(const np_scene *s, unsigned m, np_gbuf *g)
 {
@@ -164,6 +167,26 @@ static int borders(void)
                              k, g.spans[k].r.hw.x0, g.spans[k].r.hw.n);
                 for (size_t p = 0; p < (size_t)w * h; p++)
                     NP_CHECK(g.cover[p] == g.n, "m=%u: pixel %zu covered %u of %u", m, p, g.cover[p], g.n);
+            }
+            if (r == 1) {
+                /* Texture (0, 0) at the bottom-left corner, s right and t up over 6 pixels: ds/dx = 1/6, dt/dy = -1/6. */
+                const np_gbuf_span *sp = &g.spans[0];
+                NP_CHECK(fabs(sp->r.ds[0] - 1.0 / 6.0) < 1e-12 && fabs(sp->r.ds[1]) < 1e-12 && fabs(sp->dsdy[0]) < 1e-12 &&
+                             fabs(sp->dsdy[1] + 1.0 / 6.0) < 1e-12 && sp->uv[0] == 0 && sp->uv[1] == 1,
+                         "m=%u: gradient (%g, %g) per x, (%g, %g) per y, uv axes %u %u", m, sp->r.ds[0], sp->r.ds[1],
+                         sp->dsdy[0], sp->dsdy[1], sp->uv[0], sp->uv[1]);
+                /* The sample's UV: the texture coordinate at its point. */
+                for (size_t i = 0; i < (size_t)w * h * g.n; i++)
+                    if (g.poly[i] != NP_GBUF_NONE) {
+                        double sx, sy, uv[2];
+                        int64_t q[2];
+                        np_gbuf_position(&g, i, &sx, &sy);
+                        np_gbuf_uv_f(&g, i, uv);
+                        np_gbuf_uv(&g, i, q);
+                        NP_CHECK(fabs(uv[0] - (sx - R[r][0]) / 6.0) < 1e-12 && fabs(uv[1] - (R[r][3] - sy) / 6.0) < 1e-12 &&
+                                     fabs((double)q[0] / 4294967296.0 - uv[0]) <= 0x1p-30,
+                                 "m=%u: sample %zu at (%g, %g): uv (%g, %g)", m, i, sx, sy, uv[0], uv[1]);
+                    }
             }
             if (r == 2)
                 NP_CHECK(want == (uint64_t)h * m, "m=%u: the last column holds %llu samples", m, (unsigned long long)want);
@@ -440,7 +463,8 @@ static int centre_golden(void)
 /*
  * Full m x m supersampling (every sample shaded, resolved) on texel: each
  * sample is the unit's pixel k of its sub-span (the same bits as the span
- * model), the image deterministic (two builds and shades agree) and hashed,
+ * model), the image deterministic (two builds and shades agree) and hashed
+ * (vectors/images/gbuf_hashes.txt),
  * and shading the samples in two halves gives the same bits as at once.
  */
 static int full_ssaa(void)
@@ -490,8 +514,11 @@ static int full_ssaa(void)
         for (size_t i = 0; i < npx * 3; i++)
             worst_px = fmax(worst_px, fabs((double)img[i] - ss[i]));
         NP_CHECK(worst_px <= 1.5, "m=%u: resolved pixel %.3f LSB from the double SSAA", m, worst_px);
-        char hex[65];
+        char hex[65], want[65], key[16];
         np_image_hash(g.w, g.h, img, hex);
+        snprintf(key, sizeof key, "ssaa%u", m);
+        if (golden_in("gbuf_hashes.txt", "marble", key, want) == 0)
+            NP_CHECK(strcmp(hex, want) == 0, "marble %s on texel: %s, checked in %s", key, hex, want);
         double mse = np_gbuf_mse(img, ss, g.cover, npx);
         printf("marble m=%u full SSAA on texel: %s, %llu samples, %llu runs, %llu cycles; max sample error %.3f LSB, "
                "pixel vs double SSAA %.3f LSB, MSE %.3e (PSNR %.2f dB paper / %.2f dB)\n",
@@ -511,6 +538,309 @@ static int full_ssaa(void)
     return 0;
 }
 
+/*
+ * The ground truth: at q = m it is the double SSAA of the G-buffer bit for
+ * bit (same sample points, same span arithmetic); at q = 16 (256 samples a
+ * pixel) on wood at 64 x 64, full 4x4 supersampling is closer to it than 2x2,
+ * and 2x2 than one sample (the MSEs printed with both PSNRs).
+ */
+static int ground_truth(void)
+{
+    np_scene s;
+    char err[512];
+    if (load("marble", &s))
+        return 1;
+    const size_t npx = (size_t)s.width * s.height;
+    double *gt = malloc(npx * 3 * sizeof *gt), *ss = malloc(npx * 3 * sizeof *ss);
+    for (unsigned m = 2; m <= 4; m += 2) {
+        np_gbuf g;
+        if (build(&s, m, &g))
+            return 1;
+        np_gbuf_reference_ssaa(&g, ss);
+        NP_CHECK(np_gbuf_ground_truth(&s, m, gt, err, sizeof err) == 0, "%s", err);
+        NP_CHECK(memcmp(gt, ss, npx * 3 * sizeof *gt) == 0, "m=%u: ground truth at q = m differs from the SSAA", m);
+        np_gbuf_free(&g);
+    }
+    np_scene_free(&s);
+    free(gt);
+    free(ss);
+    if (load("wood", &s))
+        return 1;
+    s.width = s.height = 64; /* the same view, 4x coarser pixels: the ground truth stays quick */
+    const size_t n64 = 64 * 64;
+    gt = malloc(n64 * 3 * sizeof *gt);
+    ss = malloc(n64 * 3 * sizeof *ss);
+    double t0 = np_now();
+    NP_CHECK(np_gbuf_ground_truth(&s, 16, gt, err, sizeof err) == 0, "%s", err);
+    double tgt = np_now() - t0, mse[5] = { 0 };
+    for (unsigned m = 1; m <= 4; m++) {
+        np_gbuf g;
+        if (build(&s, m, &g))
+            return 1;
+        np_gbuf_reference_ssaa(&g, ss);
+        mse[m] = np_gbuf_mse_f(ss, gt, NULL, n64);
+        printf("wood 64x64: double SSAA %ux%u against the 16x16 ground truth: MSE %.3e, PSNR %.2f dB (paper's) "
+               "%.2f dB\n", m, m, mse[m], np_gbuf_psnr_paper(mse[m]), np_gbuf_psnr(mse[m]));
+        np_gbuf_free(&g);
+    }
+    printf("bench ground truth 16x16, 64x64 pixels: %.3f s\n", tgt);
+    NP_CHECK(mse[4] < mse[2] && mse[2] < mse[1] && mse[4] > 0, "SSAA does not converge: %g %g %g", mse[1], mse[2],
+             mse[4]);
+    /* The error helpers: MSE on [0, 1], the paper's PSNR and the consistent one differ by 10 log10(255^2). */
+    uint8_t a[3] = { 10, 20, 30 };
+    double b[3] = { 11, 20, 27 };
+    double e = np_gbuf_mse(a, b, NULL, 1);
+    NP_CHECK(fabs(e - 10.0 / 3.0 / 65025.0) < 1e-18, "mse %g", e);
+    NP_CHECK(fabs(np_gbuf_psnr_paper(e) - np_gbuf_psnr(e) - 20.0 * log10(255.0)) < 1e-9, "psnr definitions");
+    NP_CHECK(fabs(np_gbuf_psnr_paper(5.0e-5) - 91.14) < 0.01, "the paper's 2x2 row: MSE 5.0e-5 prints %.2f dB, "
+             "the paper 91.14", np_gbuf_psnr_paper(5.0e-5));
+    free(gt);
+    free(ss);
+    np_scene_free(&s);
+    return 0;
+}
+
+/*
+ * Lighting (np_gbuf.h "Lighting"): the factor L against the exact formula on
+ * the quantised inputs (|error| <= 1 LSB of Q1.16) over random normals and
+ * lights and the axes; the lit colour within 1/2 LSB + 255 2^-16 of c L;
+ * boxes.json (light.image) on texel, every sample at m = 3 within 1 LSB of
+ * the reference; a scene without light.image is not lit.
+ */
+static int light(void)
+{
+    np_scene s;
+    if (load("boxes", &s))
+        return 1;
+    NP_CHECK(s.light_image == 1, "boxes.json lights its image");
+    np_gbuf_lightq q;
+    np_gbuf_light_setup(&s, &q);
+    uint64_t st = 0x9E3779B97F4A7C15u;
+    double worst_L = 0, worst_c = 0;
+    for (int it = 0; it < 200000; it++) {
+        int8_t n[3];
+        for (int a = 0; a < 3; a++) {
+            st += 0x9E3779B97F4A7C15u;
+            uint64_t z = st;
+            z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9u;
+            z = (z ^ (z >> 27)) * 0x94D049BB133111EBu;
+            z ^= z >> 31;
+            n[a] = it < 6 ? (int8_t)(a == it / 2 ? (it % 2 ? -127 : 127) : 0) : (int8_t)((int)(z % 255u) - 127);
+        }
+        double dot = ((double)n[0] * q.l[0] + (double)n[1] * q.l[1] + (double)n[2] * q.l[2]) / 4194304.0;
+        double a = (double)q.a / 65536.0;
+        double L = a + (1 - a) * fmin(1.0, fmax(0.0, dot));
+        double Lq = (double)np_gbuf_light_factor(&q, n) / 65536.0;
+        worst_L = fmax(worst_L, fabs(Lq - L) * 65536.0);
+        uint8_t c[3] = { (uint8_t)(it & 255), 255, 0 };
+        np_gbuf_light(&q, n, c);
+        worst_c = fmax(worst_c, fabs((double)c[0] - (double)(it & 255) * Lq));
+        worst_c = fmax(worst_c, fabs((double)c[1] - 255.0 * Lq));
+    }
+    printf("light: L within %.3f LSB of Q1.16, lit colour within %.4f LSB of c L\n", worst_L, worst_c);
+    NP_CHECK(worst_L <= 1.0, "L off by %.3f LSB", worst_L);
+    NP_CHECK(worst_c <= 0.5, "lit colour off by %.4f LSB", worst_c);
+    np_render_unit_cfg us[NP_RENDER_MAX_UNITS];
+    int nu = units(&s, us);
+    const np_render_unit_cfg *tx = unit_named(us, nu, "texel");
+    np_gbuf g;
+    if (!tx || build(&s, 3, &g))
+        return 1;
+    const size_t ns = (size_t)g.w * g.h * g.n;
+    uint8_t *rgb = malloc(ns * 3);
+    double *ref = malloc(ns * 3 * sizeof *ref);
+    np_gbuf_shade(&g, tx->u, tx->cfg.bytes, NULL, rgb, NULL);
+    np_gbuf_reference_samples(&g, ref);
+    double worst = 0, mean = 0;
+    for (size_t i = 0; i < ns * 3; i++) {
+        worst = fmax(worst, fabs((double)rgb[i] - ref[i]));
+        mean += (double)rgb[i] - ref[i];
+    }
+    printf("boxes m=3 lit on texel: max %.3f LSB, mean %+.4f LSB over %zu samples\n", worst, mean / (double)(ns * 3), ns);
+    NP_CHECK(worst <= 1.0, "lit samples %.3f LSB from the reference", worst);
+    /* Its full 3x3 supersampling, resolved, is checked in (depth edges and light together). */
+    uint8_t *img = malloc((size_t)g.w * g.h * 3);
+    char hex[65], want[65];
+    np_gbuf_resolve(&g, NULL, rgb, img);
+    np_image_hash(g.w, g.h, img, hex);
+    printf("boxes ssaa3 %s\n", hex);
+    if (golden_in("gbuf_hashes.txt", "boxes", "ssaa3", want) == 0)
+        NP_CHECK(strcmp(hex, want) == 0, "boxes ssaa3 on texel: %s, checked in %s", hex, want);
+    free(img);
+    /* The normals: unit length within the code's rounding, turned to the camera (no lit colour above unlit). */
+    uint64_t longn = 0;
+    for (size_t i = 0; i < ns; i++)
+        if (g.poly[i] != NP_GBUF_NONE) {
+            double n[3];
+            np_gbuf_normal_decode(g.normal[i], n);
+            double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            longn += fabs(l - 1.0) > 1.5 * sqrt(3.0) / 254.0;
+        }
+    NP_CHECK(longn == 0, "%llu normals off unit length", (unsigned long long)longn);
+    free(rgb);
+    free(ref);
+    np_gbuf_free(&g);
+    s.light_image = 0;
+    np_gbuf_light_setup(&s, &q);
+    int8_t n0[3] = { 0, 127, 0 };
+    uint8_t c0[3] = { 200, 100, 50 };
+    np_gbuf_light(&q, n0, c0);
+    NP_CHECK(c0[0] == 200 && c0[1] == 100 && c0[2] == 50, "unlit scene lit");
+    np_scene_free(&s);
+    return 0;
+}
+
+/*
+ * A mesh of 101,760 triangles (a sphere of 160 rings, radius 100 pixels) renders: the winding
+ * faces out, no sample is covered twice (front faces of a convex mesh), every
+ * sample inside the outline is covered and none outside, the depth is the
+ * sphere's within the tessellation's sag; the 1x1 render (noisepipe render's
+ * path) covers the same pixels on texel. The time is printed (bench line).
+ */
+static int mesh_sphere(void)
+{
+    const unsigned w = 256, h = 256;
+    const char *geom = "{\"type\": \"sphere\", \"center\": [0, 0, -150], \"radius\": 100, \"subdivisions\": 160,"
+                       "\"texture_min\": [0, 0, 0], \"texture_max\": [2, 2, 2]}";
+    np_scene s;
+    if (flat_scene(w, h, geom, NULL, &s))
+        return 1;
+    NP_CHECK(s.n_prims == 4u * 160u * 159u && s.n_mesh == 1, "%u polygons", s.n_prims);
+    uint64_t inward = 0;
+    np_scene_poly tmp;
+    for (uint32_t id = 0; id < s.n_prims; id++) {
+        const np_scene_poly *p = np_scene_poly_get(&s, id, &tmp);
+        double n[3] = { 0, 0, 0 }, c[3] = { 0, 0, 0 };
+        for (unsigned k = 0; k < 3; k++) {
+            const double *a = p->p[k], *b = p->p[(k + 1) % 3];
+            n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+            n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+            n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+            for (int x = 0; x < 3; x++)
+                c[x] += a[x] - (x == 2 ? -150.0 : 0.0); /* from the centre */
+        }
+        inward += n[0] * c[0] + n[1] * c[1] + n[2] * c[2] <= 0;
+    }
+    NP_CHECK(inward == 0, "%llu triangles wound inwards", (unsigned long long)inward);
+    for (unsigned m = 1; m <= 2; m++) {
+        np_gbuf g;
+        double t0 = np_now();
+        if (build(&s, m, &g))
+            return 1;
+        double tb = np_now() - t0;
+        uint64_t twice = 0, missed = 0, outside = 0, far = 0;
+        double worst_z = 0;
+        for (size_t i = 0; i < (size_t)w * h * g.n; i++) {
+            double sx, sy;
+            np_gbuf_position(&g, i, &sx, &sy);
+            double x = sx - w / 2.0, y = h / 2.0 - sy, r = sqrt(x * x + y * y);
+            twice += g.hits[i] > 1;
+            missed += r < 99.5 && g.hits[i] != 1;
+            outside += r > 100.0 && g.hits[i] != 0;
+            if (g.poly[i] != NP_GBUF_NONE && r < 99.0) {
+                double z = 160.0 - sqrt(1e4 - r * r); /* the eye at z = 10, the sphere's front at -150 + sqrt */
+                double got = np_gbuf_depth_f(&g, g.depth[i]);
+                worst_z = fmax(worst_z, fabs(got - z));
+                far += got < z - 1e-6; /* the facets lie inside the sphere: never nearer than it */
+            }
+        }
+        printf("bench mesh: %u triangles, %ux%u at m=%u: G-buffer %.3f s, %zu sub-spans, %llu samples covered; depth "
+               "within %.4f of the sphere\n", s.n_prims, w, h, m, tb, g.n_spans, (unsigned long long)g.covered_samples,
+               worst_z);
+        NP_CHECK(twice == 0 && missed == 0 && outside == 0, "m=%u: twice %llu, missed %llu, outside %llu", m,
+                 (unsigned long long)twice, (unsigned long long)missed, (unsigned long long)outside);
+        /* Sag of a facet: R (1 - cos(pi / 160)) = 0.019; across a facet at the rim the depth changes fast. */
+        NP_CHECK(far == 0 && worst_z < 1.0, "m=%u: depth off the sphere by %.4f (%llu nearer)", m, worst_z,
+                 (unsigned long long)far);
+        if (m == 1) {
+            np_render_frame fr;
+            char err[512];
+            NP_CHECK(np_render_prepare(&s, &fr, err, sizeof err) == 0, "%s", err);
+            NP_CHECK(fr.pixels == g.covered_pixels, "1x1 frame: %llu pixels, the G-buffer %llu",
+                     (unsigned long long)fr.pixels, (unsigned long long)g.covered_pixels);
+            np_render_unit_cfg us[NP_RENDER_MAX_UNITS];
+            int nu = units(&s, us);
+            const np_render_unit_cfg *tx = unit_named(us, nu, "texel");
+            np_render_run run;
+            t0 = np_now();
+            NP_CHECK(tx && np_render_reference(&fr) == 0 && np_render_unit(&fr, tx->u, tx->cfg.bytes, 0, &run) == 0,
+                     "render");
+            printf("bench mesh: 1x1 frame %zu spans, reference and texel %.3f s, texel max %.3f LSB\n", fr.n_spans,
+                   np_now() - t0, run.err.max_lsb);
+            NP_CHECK(run.err.max_lsb <= 1.0, "texel %.3f LSB", run.err.max_lsb);
+            np_render_run_free(&run);
+            np_render_frame_free(&fr);
+        }
+        np_gbuf_free(&g);
+    }
+    np_scene_free(&s);
+    /* sphere.json: 998,000 triangles (the time is printed, not asserted). */
+    if (load("sphere", &s))
+        return 1;
+    np_gbuf g;
+    double t0 = np_now();
+    if (build(&s, 1, &g))
+        return 1;
+    printf("bench mesh: sphere.json, %u polygons (%llu drawn), %ux%u at m=1: G-buffer %.3f s, %llu pixels covered\n",
+           s.n_prims, (unsigned long long)g.polys_drawn, g.w, g.h, np_now() - t0,
+           (unsigned long long)g.covered_pixels);
+    NP_CHECK(s.n_prims == 6u + 4u * 500u * 499u && g.covered_pixels > 0, "sphere.json: %u polygons", s.n_prims);
+    np_gbuf_free(&g);
+    np_scene_free(&s);
+    return 0;
+}
+
+/* The new scene keys: aa, light.image, camera.depth_range, sphere; each malformed one refused naming the field. */
+static int scene_keys(void)
+{
+    np_scene s;
+    if (load("boxes", &s))
+        return 1;
+    NP_CHECK(s.aa.present && s.aa.m == 3 && !s.aa.have_cd && s.aa.luma_taps == 4 && s.aa.tile == 0 &&
+                 fabs(s.aa.t_min - 16.0 / 255.0) < 1e-15 && s.aa.t_edge == 0.125,
+             "boxes aa defaults");
+    np_scene_free(&s);
+    if (load("wood", &s))
+        return 1;
+    NP_CHECK(!s.aa.present && !s.light_image && !s.cam.have_depth_range && s.n_prims == 6, "wood has none");
+    np_scene_free(&s);
+    char geom[1024];
+    rect(geom, sizeof geom, 8, 8, 1, 7, 1, 7, 0);
+    /* Each: a top-level field, a camera field, the geometry (NULL: the rectangle), the message wanted. */
+    const char *B[][4] = {
+        { "", ", \"depth_range\": [2, 1]", NULL, "field 'camera.depth_range': far must exceed near" },
+        { "", ", \"depth_range\": 1", NULL, "field 'camera.depth_range': expected [near, far]" },
+        { "\"aa\": {\"m\": 5},", "", NULL, "field 'aa.m'" },
+        { "\"aa\": {\"tile\": 4},", "", NULL, "field 'aa.tile': expected 0 (off) or 6" },
+        { "\"aa\": {\"c_x\": 1},", "", NULL, "field 'aa.c_x': unknown field" },
+        { "\"aa\": {\"c_d\": -1},", "", NULL, "field 'aa.c_d'" },
+        { "\"light\": {\"image\": 1},", "", NULL, "field 'light.image': expected true or false" },
+        { "", "",
+          "{\"type\": \"sphere\", \"center\": [0,0,0], \"radius\": 1, \"subdivisions\": 1, \"texture_min\": [0,0,0],"
+          "\"texture_max\": [1,1,1]}", "field 'geometry[0].subdivisions'" },
+        { "", "",
+          "{\"type\": \"sphere\", \"center\": [0,0,0], \"radius\": 0, \"subdivisions\": 8, \"texture_min\": [0,0,0],"
+          "\"texture_max\": [1,1,1]}", "field 'geometry[0].radius'" },
+        { "", "",
+          "{\"type\": \"sphere\", \"center\": [0,0,0], \"radius\": 1, \"subdivisions\": 8, \"texture_min\": [0,0,0],"
+          "\"texture_max\": [1,1,1], \"cull\": 3}", "field 'geometry[0].cull'" },
+    };
+    for (size_t i = 0; i < sizeof B / sizeof B[0]; i++) {
+        char json[8192], err[1024];
+        snprintf(json, sizeof json,
+                 "{\"noisepipe_scene\": 1, \"name\": \"t\", \"image\": {\"width\": 8, \"height\": 8}, %s"
+                 "\"camera\": {\"projection\": \"orthographic\", \"eye\": [0, 0, 10], \"target\": [0, 0, 0],"
+                 "\"up\": [0, 1, 0], \"height\": 8 %s}, \"geometry\": [%s], \"texture\": {\"quadric\": {\"A\": 1},"
+                 "\"colormap\": {\"mode\": \"clamp\", \"domain\": [0, 1], \"colors\": [[0,0,0],[255,255,255]]}}}",
+                 B[i][0], B[i][1], B[i][2] ? B[i][2] : geom);
+        int rc = np_scene_parse(json, "t.json", &s, err, sizeof err);
+        NP_CHECK(rc != 0 && strstr(err, B[i][3]), "want \"%s\", got \"%s\"", B[i][3], rc ? err : "(accepted)");
+        if (rc == 0)
+            np_scene_free(&s);
+    }
+    return 0;
+}
+
 static const np_test_case cases[] = {
     { "index_matrices", index_matrices },
     { "resolve_exhaustive", resolve_exhaustive },
@@ -520,6 +850,10 @@ static const np_test_case cases[] = {
     { "shared_edges", shared_edges },
     { "depth_far", depth_far },
     { "shade_cycles", shade_cycles },
+    { "ground_truth", ground_truth },
+    { "light", light },
+    { "mesh_sphere", mesh_sphere },
+    { "scene_keys", scene_keys },
     { NULL, NULL },
 };
 

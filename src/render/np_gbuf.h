@@ -111,13 +111,17 @@
  *   L    u17 Q1.16   (a 2^16 + (2^16 - a) lam + 2^15) >> 16   (<= 1.0, |err| <= 2^-16)
  *   c'   u8          (c L + 2^15) >> 16 per channel, rounded half up
  * The float references light a sample with the decoded G-buffer normal
- * (code / 127, as the unit sees it) and the exact l and ambient:
- * c_ref (ambient + (1 - ambient) max(0, n . l)); the 16x16 ground truth with
- * the exact normal. Against the former the unit's lit colour is within
- * 1/2 LSB (final rounding) + 255 (2^-16 + |l_q - l| terms <= 3 * 127/127 *
- * 2^-16) + the unlit colour's own error times L - within the render's 1 LSB
- * on the scenes (gbuf.light); the normal's coding adds at most
- * 255 (1 - ambient) |l|_1 / 254 <= 1.75 LSB against the exact normal.
+ * n_d = code / 127 (what the unit sees) and the exact light and ambient:
+ * c_ref (ambient + (1 - ambient) max(0, n_d . l)); the 16x16 ground truth
+ * with the exact normal. Bound against the former: L is within 2^-16 of its
+ * formula on the registers (lam's and L's roundings), the registers move it
+ * by at most 2^-17 (a) + sqrt(3) 2^-16 (l, |n_d|_1 <= sqrt 3), so
+ * |L - L_ref| <= 3.3 2^-16; then |c' - c_ref L_ref| <= 1/2 (rounding) +
+ * e_c (the unlit colour's error, times L <= 1) + 255 * 3.3 2^-16 (0.013):
+ * 0.513 + e_c LSB, 1.024 LSB for the units' e_c <= 0.511; measured 0.947 on
+ * boxes.json (gbuf.light). The normal's coding (|n_d - n|_i <= 1/254) moves
+ * n . l by at most sqrt(3)/254, i.e. 1.74 (1 - ambient) LSB against the
+ * exact normal.
  */
 #ifndef NP_GBUF_H
 #define NP_GBUF_H
@@ -167,6 +171,16 @@ typedef struct np_gbuf_span {
     np_rspan r;           /* r.hw: the descriptor (y, x0, n: pixels); r.s0, r.ds: the reference's doubles; r.poly */
     uint8_t a, b;         /* the sample offset in the pixel */
     uint8_t uv[2];        /* the texture axes that vary on the face (PIN above) */
+    /*
+     * The texture coordinate's change per pixel down the screen (r.ds is per
+     * pixel right): the polygon's screen-space gradient, from the affine map
+     * through its largest-area vertex triangle - exact for a triangle and for
+     * any polygon under an orthographic camera; under perspective, where the
+     * seed's edge interpolation is not one affine map on a polygon of more than
+     * three vertices, an estimate. With r.ds it is the Jacobian a level of
+     * detail (hatching) or an anisotropic filter reads.
+     */
+    double dsdy[3];
 } np_gbuf_span;
 
 typedef struct np_gbuf {
@@ -220,9 +234,9 @@ double np_gbuf_depth_f(const np_gbuf *g, uint32_t d);
 typedef struct np_gbuf_cost {
     uint64_t samples;     /* covered samples shaded */
     uint64_t runs;        /* descriptor transactions */
-    uint64_t setup;       /* set-up stall clocks (seeks included) */
+    uint64_t setup;       /* set-up stall clocks (seeks and a sequential engine's set-ups while skipping included) */
     uint64_t seek;        /* of which seeks */
-    uint64_t skipped;     /* pixels a sequential engine stepped over to reach a run's start */
+    uint64_t skipped;     /* pixels a sequential engine stepped over to reach a run's start (a clock each) */
     uint64_t cycles;      /* the total */
 } np_gbuf_cost;
 

@@ -9,8 +9,10 @@
  * each polygon edge and along each span in screen space (the seed's
  * equations 13 and 14; no perspective correction), so along a span
  *   s(k) = s0 + k ds,  k = 0 .. n - 1.
- * Hidden surfaces: back-facing polygons are culled; overlapping front faces
- * are drawn in scene order (the last wins) - enough for convex objects.
+ * Hidden surfaces: back-facing polygons are culled, the rest depth-tested
+ * per pixel: the frame is the G-buffer at m = 1 (np_gbuf.h) and its spans are
+ * the visible runs of the G-buffer's sub-spans, ordered by row, polygon id,
+ * x (on convex objects: every polygon's whole row span, as before).
  *
  * The float reference evaluates f and the colour map in double at
  * s0 + k ds. The units read each span's descriptor (np_span): s0 and ds
@@ -32,7 +34,7 @@
 typedef struct np_rspan {
     np_span hw;           /* what the units read */
     double s0[3], ds[3];  /* what the reference uses */
-    unsigned poly;        /* the scene polygon (np_scene.poly index): its normal shades the views */
+    unsigned poly;        /* the scene polygon id (np_scene_poly_get): its normal shades the views */
 } np_rspan;
 
 typedef struct np_render_frame {
@@ -136,7 +138,9 @@ int np_render_write_ref(const char *base, const np_render_frame *fr, char *err, 
  * (np_scene.light_dir, ambient): each covered pixel's colour times
  * ambient + (1 - ambient) max(0, n . light), n the normal of its polygon
  * turned towards the camera, rounded half up; background unchanged. For
- * looking at only: never hashed, never compared. 0, or -1 (out of memory).
+ * looking at only: never hashed, never compared. A scene whose light shades
+ * the image itself (light.image, np_gbuf.h) gets the image unchanged. 0, or
+ * -1 (out of memory).
  */
 int np_render_shade(const np_render_frame *fr, const uint8_t *rgb, uint8_t *out);
 

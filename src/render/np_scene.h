@@ -20,7 +20,7 @@
  * triangles, below NP_SCENE_MAX_PRIMS (ids fit a u32 with room for the
  * G-buffer's "none").
  */
-enum { NP_SCENE_MAX_VERTS = 8, NP_SCENE_MAX_SIZE = 4096, NP_SCENE_MAX_PRIMS = 1 << 26 };
+enum { NP_SCENE_MAX_VERTS = 8, NP_SCENE_MAX_SIZE = 4096, NP_SCENE_MAX_PRIMS = 1 << 24 };
 
 /* A convex polygon: object-space vertices and their texture coordinates. */
 typedef struct np_scene_poly {

@@ -190,6 +190,28 @@ static void uv_axes(const np_scene_poly *p, uint8_t uv[2])
     uv[1] = (uint8_t)(drop == 2 ? 1 : 2);
 }
 
+/* d s / d y on the screen: the affine map through the projected polygon's largest-area vertex triangle. */
+static void screen_dsdy(const np_rproj *pp, double dsdy[3])
+{
+    double best = 0;
+    unsigned bi = 1;
+    for (unsigned i = 1; i + 1 < pp->n; i++) {
+        double a = fabs((pp->x[i] - pp->x[0]) * (pp->y[i + 1] - pp->y[0]) -
+                        (pp->x[i + 1] - pp->x[0]) * (pp->y[i] - pp->y[0]));
+        if (a > best) {
+            best = a;
+            bi = i;
+        }
+    }
+    const double dx1 = pp->x[bi] - pp->x[0], dy1 = pp->y[bi] - pp->y[0];
+    const double dx2 = pp->x[bi + 1] - pp->x[0], dy2 = pp->y[bi + 1] - pp->y[0];
+    const double det = dx1 * dy2 - dx2 * dy1;
+    for (int a = 0; a < 3; a++) {
+        const double dt1 = pp->p->t[bi][a] - pp->p->t[0][a], dt2 = pp->p->t[bi + 1][a] - pp->p->t[0][a];
+        dsdy[a] = det != 0 ? (dx1 * dt2 - dx2 * dt1) / det : 0.0;
+    }
+}
+
 /* The depth range: the scene's, or [min, max] of the view depth over the drawn polygons' vertices. */
 static void depth_range(const np_scene *sc, const np_rview *v, double *z0, double *z1)
 {
@@ -333,6 +355,7 @@ int np_gbuf_build(const np_scene *sc, unsigned m, np_gbuf *g, char *err, size_t 
         np_gbuf_span gs;
         memset(&gs, 0, sizeof gs);
         uv_axes(p, gs.uv);
+        screen_dsdy(&pp, gs.dsdy);
         double jlo = floor(pp.ymin - 1.0), jhi = ceil(pp.ymax);
         unsigned j0 = jlo < 0 ? 0u : (unsigned)jlo, j1 = jhi > (double)g->h ? g->h : (unsigned)jhi;
         for (unsigned b = 0; b < m; b++) {
@@ -466,7 +489,7 @@ static int selected(const np_gbuf *g, const uint16_t *mask, uint32_t si, size_t 
 {
     if (g->span[i] != si)
         return 0;
-    return !mask || ((mask[i / g->n] >> (i % g->n)) & 1u);
+    return !mask || (((unsigned)mask[i / g->n] >> (i % g->n)) & 1u);
 }
 
 int np_gbuf_shade(const np_gbuf *g, const np_unit *u, const void *cfg, const uint16_t *mask, uint8_t *rgb,
@@ -496,7 +519,7 @@ int np_gbuf_shade(const np_gbuf *g, const np_unit *u, const void *cfg, const uin
         bg[ch] = round8(g->sc->background[ch]);
     const size_t ns = (size_t)g->w * g->h * g->n;
     for (size_t i = 0; i < ns; i++)
-        if (g->span[i] == NP_GBUF_NONE && (!mask || ((mask[i / g->n] >> (i % g->n)) & 1u)))
+        if (g->span[i] == NP_GBUF_NONE && (!mask || (((unsigned)mask[i / g->n] >> (i % g->n)) & 1u)))
             memcpy(rgb + 3 * i, bg, 3);
     for (uint32_t si = 0; si < g->n_spans; si++) {
         const np_gbuf_span *gs = &g->spans[si];
@@ -518,9 +541,11 @@ int np_gbuf_shade(const np_gbuf *g, const np_unit *u, const void *cfg, const uin
                     setup += seek;
                     c.seek += seek;
                 } else {
+                    /* A clock per skipped pixel, and the set-ups stepping over them needs. */
                     for (uint32_t s = 0; s < k; s++)
-                        setup += 1u + e->advance(core, &cnt);
+                        setup += e->advance(core, &cnt);
                     c.skipped += k;
+                    c.cycles += k;
                 }
             }
             c.runs++;
@@ -584,7 +609,7 @@ void np_gbuf_resolve(const np_gbuf *g, const uint16_t *mask, const uint8_t *rgb,
 {
     const size_t npx = (size_t)g->w * g->h;
     for (size_t p = 0; p < npx; p++) {
-        const uint16_t mk = mask ? mask[p] : (uint16_t)((1u << g->n) - 1u);
+        const unsigned mk = mask ? (unsigned)mask[p] : (1u << g->n) - 1u;
         uint32_t sum[3] = { 0, 0, 0 };
         unsigned s = 0;
         for (unsigned j = 0; j < g->n; j++)
@@ -799,15 +824,16 @@ fail:
 
 /* --- Error measures --- */
 
-double np_gbuf_mse(const uint8_t *a, const double *b, const uint8_t *mask, size_t pixels)
+/* Sum of squared differences on [0, 1] over the masked pixels: a is a8 (8-bit) or af (double). */
+static double mse_of(const uint8_t *a8, const double *af, const double *b, const uint8_t *mask, size_t pixels)
 {
     double sum = 0;
     size_t cnt = 0;
     for (size_t p = 0; p < pixels; p++) {
         if (mask && !mask[p])
             continue;
-        for (size_t ch = 0; ch < 3; ch++) {
-            double d = ((double)a[3 * p + ch] - b[3 * p + ch]) / 255.0;
+        for (size_t i = 3 * p; i < 3 * p + 3; i++) {
+            double d = ((a8 ? (double)a8[i] : af[i]) - b[i]) / 255.0;
             sum += d * d;
         }
         cnt += 3;
@@ -815,20 +841,14 @@ double np_gbuf_mse(const uint8_t *a, const double *b, const uint8_t *mask, size_
     return cnt ? sum / (double)cnt : 0.0;
 }
 
+double np_gbuf_mse(const uint8_t *a, const double *b, const uint8_t *mask, size_t pixels)
+{
+    return mse_of(a, NULL, b, mask, pixels);
+}
+
 double np_gbuf_mse_f(const double *a, const double *b, const uint8_t *mask, size_t pixels)
 {
-    double sum = 0;
-    size_t cnt = 0;
-    for (size_t p = 0; p < pixels; p++) {
-        if (mask && !mask[p])
-            continue;
-        for (size_t ch = 0; ch < 3; ch++) {
-            double d = (a[3 * p + ch] - b[3 * p + ch]) / 255.0;
-            sum += d * d;
-        }
-        cnt += 3;
-    }
-    return cnt ? sum / (double)cnt : 0.0;
+    return mse_of(NULL, a, b, mask, pixels);
 }
 
 double np_gbuf_psnr_paper(double mse) { return mse > 0 ? 10.0 * log10(255.0 * 255.0 / mse) : HUGE_VAL; }

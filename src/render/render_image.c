@@ -131,13 +131,15 @@ int np_render_shade(const np_render_frame *fr, const uint8_t *rgb, uint8_t *out)
 {
     const np_scene *sc = fr->sc;
     memcpy(out, rgb, (size_t)sc->width * sc->height * 3);
+    if (sc->light_image)
+        return 0; /* the image is lit already (light.image): the view is the image */
     double *k = malloc((sc->n_prims ? sc->n_prims : 1) * sizeof *k);
     if (!k)
         return -1;
     np_scene_poly tmp;
     for (uint32_t p = 0; p < sc->n_prims; p++)
         k[p] = lambert(sc, np_scene_poly_get(sc, p, &tmp));
-    /* Spans in frame order: where front faces overlap the last wins, as in the units' images. */
+    /* Spans in frame order (they do not overlap: hidden parts are removed by depth). */
     for (size_t i = 0; i < fr->n_spans; i++) {
         const np_rspan *s = &fr->spans[i];
         size_t at = ((size_t)s->hw.y * sc->width + s->hw.x0) * 3;

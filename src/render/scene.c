@@ -343,7 +343,8 @@ static const unsigned char cube_faces[6][4] = {
  * azimuth j/(2N) turns; np_sin_turns and np_cos_turns, so every machine
  * builds the same points), 4 N (N - 1) triangles, texture coordinates affine
  * in position (texture_min at center - radius, texture_max at center +
- * radius, per axis). N = 2..2048 (16.8 million triangles at most).
+ * radius, per axis). N = 2..1024 (4.2 million triangles; a scene holds at
+ * most NP_SCENE_MAX_PRIMS polygons in all, so a fuzzed scene stays in memory).
  */
 static int parse_sphere(ctx *c, const cJSON *o, const char *where, np_scene *s)
 {
@@ -355,7 +356,7 @@ static int parse_sphere(ctx *c, const cJSON *o, const char *where, np_scene *s)
     if (check_keys(c, o, where, keys) ||
         read_vec3(c, get(o, "center"), path_key(f, sizeof f, where, "center"), -COORD_MAX, COORD_MAX, ce) ||
         read_number(c, get(o, "radius"), path_key(f, sizeof f, where, "radius"), 1e-6, COORD_MAX, &r) ||
-        read_uint(c, get(o, "subdivisions"), path_key(f, sizeof f, where, "subdivisions"), 2, 2048, &N) ||
+        read_uint(c, get(o, "subdivisions"), path_key(f, sizeof f, where, "subdivisions"), 2, 1024, &N) ||
         read_vec3(c, get(o, "texture_min"), path_key(f, sizeof f, where, "texture_min"), -COORD_MAX, COORD_MAX,
                   tmn) ||
         read_vec3(c, get(o, "texture_max"), path_key(f, sizeof f, where, "texture_max"), -COORD_MAX, COORD_MAX,
