@@ -133,6 +133,34 @@ static void stage_a(const np_aacount_cfg *c, np_aacount_sig *s)
     }
 }
 
+/* Sample i's dot with nbar (s21) and |n|^2 (u16): stage V's lane, the serial unit's pass-2 beat. */
+static void cone_lane(np_aacount_sig *s, unsigned i)
+{
+    int32_t dot = 0;
+    uint32_t nn = 0;
+    for (unsigned k = 0; k < 3; k++) {
+        int32_t e = s->w.nrm[i][k];
+        dot += s->nbar[k] * e;
+        nn += (uint32_t)(e * e);
+    }
+    s->dot[i] = dot;
+    s->nn2[i] = nn;
+}
+
+/* Sample i's p, q and the running least p/q (stage P's comparison, by u80 cross products; ties keep the earlier). */
+static void cone_min(np_aacount_sig *s, unsigned i)
+{
+    s->p[i] = (uint64_t)((int64_t)s->dot[i] * s->dot[i]);
+    s->q[i] = (uint64_t)s->nb2 * s->nn2[i];
+    if (s->nn2[i] == 0)
+        return; /* no surface: not in the cone */
+    if (!s->have_min || (np_u128)s->p[i] * s->qmin < (np_u128)s->pmin * s->q[i]) {
+        s->pmin = s->p[i];
+        s->qmin = s->q[i];
+        s->have_min = 1;
+    }
+}
+
 /* V: the exact variance numerator; dots and norms; luma range and gate. */
 static void stage_v(const np_aacount_cfg *c, const np_aacount_regs *rg, np_aacount_sig *s)
 {
@@ -144,17 +172,8 @@ static void stage_v(const np_aacount_cfg *c, const np_aacount_regs *rg, np_aacou
     if (c->normal) {
         for (unsigned k = 0; k < 3; k++)
             s->nb2 += (uint32_t)(s->nbar[k] * s->nbar[k]);
-        for (unsigned i = 0; i < n; i++) {
-            int32_t dot = 0;
-            uint32_t nn = 0;
-            for (unsigned k = 0; k < 3; k++) {
-                int32_t e = s->w.nrm[i][k];
-                dot += s->nbar[k] * e;
-                nn += (uint32_t)(e * e);
-            }
-            s->dot[i] = dot;
-            s->nn2[i] = nn;
-        }
+        for (unsigned i = 0; i < n; i++)
+            cone_lane(s, i);
     }
     s->r = 0;
     s->gate = 0;
@@ -172,18 +191,8 @@ static void stage_p(const np_aacount_cfg *c, const np_aacount_regs *rg, np_aacou
     s->have_min = 0;
     s->pmin = s->qmin = 0;
     if (c->normal)
-        for (unsigned i = 0; i < n; i++) {
-            s->p[i] = (uint64_t)((int64_t)s->dot[i] * s->dot[i]);
-            s->q[i] = (uint64_t)s->nb2 * s->nn2[i];
-            if (s->nn2[i] == 0)
-                continue; /* no surface: not in the cone */
-            /* p / q < pmin / qmin by cross products (u80) */
-            if (!s->have_min || (np_u128)s->p[i] * s->qmin < (np_u128)s->pmin * s->q[i]) {
-                s->pmin = s->p[i];
-                s->qmin = s->q[i];
-                s->have_min = 1;
-            }
-        }
+        for (unsigned i = 0; i < n; i++)
+            cone_min(s, i);
     s->sd = 0;
     if (c->depth) {
         s->sd = 1;
@@ -391,27 +400,13 @@ void np_aacount_serial_init(np_aacount_serial *u, const np_aacount_cfg *cfg)
 
 unsigned np_aacount_serial_latency(const np_aacount_cfg *cfg) { return 2u * n_of(cfg); }
 
-/* Pass 2, one beat: that beat's p, q and the running least ratio (stage_p's loop body). */
+/* Pass 2, one beat: that beat's dot, norm, p, q and the running least ratio (stage V's lane, stage P's compare). */
 static void serial_cmp_beat(const np_aacount_cfg *c, np_aacount_sig *s, unsigned i)
 {
     if (!c->normal)
         return;
-    int32_t dot = 0;
-    uint32_t nn = 0;
-    for (unsigned k = 0; k < 3; k++) {
-        int32_t e = s->w.nrm[i][k];
-        dot += s->nbar[k] * e;
-        nn += (uint32_t)(e * e);
-    }
-    s->dot[i] = dot;
-    s->nn2[i] = nn;
-    s->p[i] = (uint64_t)((int64_t)dot * dot);
-    s->q[i] = (uint64_t)s->nb2 * nn;
-    if (nn != 0 && (!s->have_min || (np_u128)s->p[i] * s->qmin < (np_u128)s->pmin * s->q[i])) {
-        s->pmin = s->p[i];
-        s->qmin = s->q[i];
-        s->have_min = 1;
-    }
+    cone_lane(s, i);
+    cone_min(s, i);
 }
 
 int np_aacount_serial_clock(np_aacount_serial *u, int in_valid, const np_aacount_win *w)

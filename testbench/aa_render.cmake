@@ -5,4 +5,4 @@ np_test_program(test_aa_render test_aa_render.c)
 target_link_libraries(test_aa_render PRIVATE np_render)
 target_compile_definitions(test_aa_render PRIVATE NP_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 np_add_cases(test_aa_render aa_render
-  thresholds_zero_full c_zero_one_sample cycle_model mse_budget beats_full_3x3 host_conversion)
+  matches_gbuf thresholds_zero_full c_zero_one_sample cycle_model mse_budget beats_full_3x3 host_conversion)
