@@ -20,7 +20,10 @@
  *   sum_d    u28        sum d[i]            (16 (2^24 - 1) < 2^28)
  *   sum_d2   u52        sum d[i]^2          (16 (2^24 - 1)^2 < 2^52)
  *   v        u56        n sum_d2 - sum_d^2 = n^2 Var(d) exactly, >= 0
- *                       (Cauchy-Schwarz); n sum_d2 < 2^56, sum_d^2 < 2^56
+ *                       (Cauchy-Schwarz); n sum_d2 < 2^56, sum_d^2 < 2^56;
+ *                       v itself <= floor(n^2 / 4) (2^24 - 1)^2 < 2^54 (half the
+ *                       samples at 0, half at 2^24 - 1), the width the datapath
+ *                       declares per m (m = 3: 53 bits)
  *   nbar[3]  s12        sum nrm[i]          (16 x [-128, 127] = [-2048, 2032])
  *   dot[i]   s21        nbar . nrm[i]       (|.| <= 3 * 2048 * 128 < 2^20)
  *   nb2      u24        |nbar|^2            (<= 3 * 2048^2 < 2^24)
@@ -53,7 +56,8 @@
  *           products. |cos| is taken by squaring: the sign of dot is
  *           irrelevant, as the paper's abs() says.
  *           nbar = 0 with some nrm[i] != 0 (normals that cancel) gives
- *           sn = n (PIN); no nrm[i] != 0 at all gives sn = 1. Identical
+ *           sn = n (PIN) when c_n > 0 (c_n = 0: sn = 1, so that c = 0 gives
+ *           S alone); no nrm[i] != 0 at all gives sn = 1. Identical
  *           normals give p = q exactly whatever |nrm| is, so min p/q = 1
  *           and sn = 1: never a NaN, never a spurious sample.
  *   luma    the gate r < t_min or 256 r < t_edge lmax (t_min u8 on the luma
