@@ -841,6 +841,64 @@ static int scene_keys(void)
     return 0;
 }
 
+/*
+ * Depth under perspective: on boxes.json every sample of a horizontal face
+ * (the slab's top y = 0, the boxes' tops y = 1, 1.6, 0.5) lifted back along
+ * its ray by its decoded depth lands on that plane (within the u24 step),
+ * and those faces' UV axes are s and r (t is constant on them).
+ */
+static int perspective_depth(void)
+{
+    np_scene s;
+    if (load("boxes", &s))
+        return 1;
+    np_gbuf g;
+    if (build(&s, 2, &g))
+        return 1;
+    /* The camera frame, as the renderer builds it: f forward, r = f x up, u = r x f. */
+    double f[3], r[3], u[3], l = 0;
+    for (int a = 0; a < 3; a++) {
+        f[a] = s.cam.target[a] - s.cam.eye[a];
+        l += f[a] * f[a];
+    }
+    for (int a = 0; a < 3; a++)
+        f[a] /= sqrt(l);
+    r[0] = f[1] * s.cam.up[2] - f[2] * s.cam.up[1];
+    r[1] = f[2] * s.cam.up[0] - f[0] * s.cam.up[2];
+    r[2] = f[0] * s.cam.up[1] - f[1] * s.cam.up[0];
+    l = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+    for (int a = 0; a < 3; a++)
+        r[a] /= l;
+    u[0] = r[1] * f[2] - r[2] * f[1];
+    u[1] = r[2] * f[0] - r[0] * f[2];
+    u[2] = r[0] * f[1] - r[1] * f[0];
+    const double tops[4] = { 0, 1, 1.6, 0.5 }; /* face 3 (y = max) of each cube */
+    const double step = (g.z_far - g.z_near) / (double)NP_GBUF_DEPTH_FAR;
+    uint64_t n = 0;
+    double worst = 0;
+    for (size_t i = 0; i < (size_t)g.w * g.h * g.n; i++) {
+        if (g.poly[i] == NP_GBUF_NONE || g.poly[i] % 6 != 3)
+            continue;
+        double sx, sy;
+        np_gbuf_position(&g, i, &sx, &sy);
+        const double k = s.cam.focal * g.h / 2.0, xd = (sx - g.w / 2.0) / k, yd = (g.h / 2.0 - sy) / k;
+        const double z = np_gbuf_depth_f(&g, g.depth[i]);
+        const double y = s.cam.eye[1] + z * (xd * r[1] + yd * u[1] + f[1]);
+        /* The depth is within half a step of the true one; y moves by at most |dir_y| per unit of z. */
+        const double dir = fabs(xd * r[1] + yd * u[1] + f[1]);
+        worst = fmax(worst, fabs(y - tops[g.poly[i] / 6]) / (dir * step));
+        const np_gbuf_span *sp = &g.spans[g.span[i]];
+        NP_CHECK(sp->uv[0] == 0 && sp->uv[1] == 2, "a top face's UV axes are %u %u", sp->uv[0], sp->uv[1]);
+        n++;
+    }
+    printf("boxes m=2: %llu samples on horizontal faces, lifted back within %.3f depth steps of their planes "
+           "(depth range %.4f .. %.4f)\n", (unsigned long long)n, worst, g.z_near, g.z_far);
+    NP_CHECK(n > 1000 && worst <= 0.5 + 1e-6, "perspective depth off its plane by %.3f steps", worst);
+    np_gbuf_free(&g);
+    np_scene_free(&s);
+    return 0;
+}
+
 static const np_test_case cases[] = {
     { "index_matrices", index_matrices },
     { "resolve_exhaustive", resolve_exhaustive },
@@ -853,6 +911,7 @@ static const np_test_case cases[] = {
     { "ground_truth", ground_truth },
     { "light", light },
     { "mesh_sphere", mesh_sphere },
+    { "perspective_depth", perspective_depth },
     { "scene_keys", scene_keys },
     { NULL, NULL },
 };
