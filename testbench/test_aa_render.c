@@ -356,7 +356,58 @@ static int matches_gbuf(void)
     return 0;
 }
 
+/*
+ * Image borders: a neighbour outside the image is the pixel itself (the
+ * host's clamp), so a corner has two lumas equal to its own; inside, the
+ * four neighbours are the adjacent pixels of S. The window's samples are the
+ * G-buffer's.
+ */
+static int borders(void)
+{
+    np_scene sc;
+    if (load("boxes", &sc))
+        return 1;
+    np_render_unit_cfg us[NP_RENDER_MAX_UNITS];
+    int t = texel_of(&sc, us);
+    np_aa_frame f;
+    if (t < 0 || frame(&sc, 2, &us[t], NULL, &f)) {
+        np_scene_free(&sc);
+        return 1;
+    }
+    const unsigned W = f.g.w, H = f.g.h;
+    unsigned checked = 0;
+    for (unsigned y = 0; y < H; y++)
+        for (unsigned x = 0; x < W; x++) {
+            if (!(x == 0 || y == 0 || x == W - 1 || y == H - 1 || (x % 37 == 5 && y % 41 == 7)))
+                continue;
+            np_aacount_win w;
+            np_aa_window(&f, x, y, &w);
+            const uint8_t *L = f.luma;
+            unsigned xl = x ? x - 1 : x, xr = x + 1 < W ? x + 1 : x, yu = y ? y - 1 : y, yd = y + 1 < H ? y + 1 : y;
+            NP_CHECK(w.luma[0] == L[y * W + x] && w.luma[1] == L[y * W + xl] && w.luma[2] == L[y * W + xr] &&
+                         w.luma[3] == L[yu * W + x] && w.luma[4] == L[yd * W + x],
+                     "(%u,%u): lumas", x, y);
+            for (unsigned j = 0; j < f.g.n; j++) {
+                size_t i = ((size_t)y * W + x) * f.g.n + j;
+                NP_CHECK(w.d[j] == f.g.depth[i] && memcmp(w.nrm[j], f.g.normal[i], 3) == 0, "(%u,%u) sample %u", x,
+                         y, j);
+            }
+            checked++;
+        }
+    np_aacount_win c;
+    np_aa_window(&f, 0, 0, &c);
+    NP_CHECK(c.luma[1] == c.luma[0] && c.luma[3] == c.luma[0], "corner (0,0): left and up are not the pixel");
+    np_aa_window(&f, W - 1, H - 1, &c);
+    NP_CHECK(c.luma[2] == c.luma[0] && c.luma[4] == c.luma[0], "corner (W-1,H-1): right and down are not the pixel");
+    printf("boxes m=2: %u border and inner windows: lumas clamped at the image's edges, samples the G-buffer's\n",
+           checked);
+    np_aa_frame_free(&f);
+    np_scene_free(&sc);
+    return 0;
+}
+
 static const np_test_case cases[] = {
+    { "borders", borders },
     { "matches_gbuf", matches_gbuf },
     { "thresholds_zero_full", thresholds_zero_full },
     { "c_zero_one_sample", c_zero_one_sample },

@@ -77,6 +77,13 @@ int np_aa_frame_build(const np_scene *sc, unsigned m, const np_render_unit_cfg *
 void np_aa_frame_free(np_aa_frame *f);
 
 /*
+ * The unit's window of pixel (x, y): its n G-buffer samples (depth u24,
+ * normal 3 x s8; uncovered: 2^24 - 1 and (0,0,0)) and the lumas of S at the
+ * pixel, left, right, up, down, each neighbour clamped to the image.
+ */
+void np_aa_window(const np_aa_frame *f, unsigned x, unsigned y, np_aacount_win *w);
+
+/*
  * Run the unit with configuration c (regs: its registers, NULL: from c) on
  * every pixel. shade != 0: shade the chosen samples on the span unit (their
  * cycles); 0: take their colours from rgb_full (the same bits: a sample's

@@ -124,7 +124,7 @@ void np_aa_result_free(np_aa_result *r)
 }
 
 /* The window of pixel (x, y): its n G-buffer samples and the five lumas, border-clamped. */
-static void window_of(const np_aa_frame *f, unsigned x, unsigned y, np_aacount_win *w)
+void np_aa_window(const np_aa_frame *f, unsigned x, unsigned y, np_aacount_win *w)
 {
     const np_gbuf *g = &f->g;
     const size_t p = (size_t)y * g->w + x;
@@ -174,7 +174,7 @@ int np_aa_run(const np_aa_frame *f, const np_aacount_cfg *c, const np_aacount_re
         for (unsigned x = 0; x < g->w; x++) {
             np_aacount_win w;
             np_aacount_out o;
-            window_of(f, x, y, &w);
+            np_aa_window(f, x, y, &w);
             np_aacount_eval_regs(&r->cfg, &rg, &w, &o);
             size_t p = (size_t)y * g->w + x;
             r->s[p] = o.s;
@@ -193,7 +193,7 @@ int np_aa_run(const np_aa_frame *f, const np_aacount_cfg *c, const np_aacount_re
                 memset(&port, 0, sizeof port);
                 if (in < npx) {
                     np_aacount_win w;
-                    window_of(f, (unsigned)(in % g->w), (unsigned)(in / g->w), &w);
+                    np_aa_window(f, (unsigned)(in % g->w), (unsigned)(in / g->w), &w);
                     np_aacount_sig_in(sig, &w);
                     port.in_valid = 1;
                     port.in_sig = sig;
