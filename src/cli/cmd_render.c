@@ -49,6 +49,8 @@ static void usage(FILE *f)
           "                       exit 1 on any change\n"
           "  --write-hashes FILE  write the images' hashes to FILE\n"
           "  --ppm                also write PPM files (their sha256sum is the hash)\n"
+          "  --aa m=2|3|4,...     the adaptive supersampling report of seed 001 instead\n"
+          "                       (noisepipe render --aa m=3 --help; docs/aacount.md)\n"
           "  --report DIR         the same as noisepipe report runtime -o DIR (error against\n"
           "                       run time over each unit's sweeps, plots and images)\n"
           "  --bench              time the float reference and every unit's models side by side\n"
@@ -438,6 +440,9 @@ out:
 
 int np_cmd_render(int argc, char **argv)
 {
+    for (int i = 1; i < argc; i++) /* the adaptive supersampling report has options of its own */
+        if (strcmp(argv[i], "--aa") == 0)
+            return np_render_aa_main(argc, argv);
     opts o;
     int r = parse_opts(argc, argv, &o);
     if (r != 0)

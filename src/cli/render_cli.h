@@ -49,4 +49,7 @@ int np_report_runtime(const char *dir, const char *const *scenes, unsigned n_sce
 /* mkdir -p. 0, or -1. */
 int np_mkdir_p(const char *dir);
 
+/* noisepipe render --aa: the adaptive supersampling report (render_aa.c). */
+int np_render_aa_main(int argc, char **argv);
+
 #endif /* RENDER_CLI_H */

@@ -114,6 +114,21 @@ double np_ref_colour_index(const np_ref_colormap *c, double f);
 /* c(f) in 8-bit units (0..255, not rounded). */
 void np_ref_colour(const np_ref_colormap *c, double f, double rgb[3]);
 
+/*
+ * The sample count of the aacount unit (rtl_model/np_aacount.h) as an exact
+ * rational computation from the paper's definitions: k_d, k_n and k_s as
+ * exact fractions, ceil and clamp to 1..n, the paper's index matrices for the
+ * mask. No threshold register, no running minimum: the depth variance from the
+ * pairwise differences, the normal test as "for every sample" in __int128
+ * (src/ref/ref_aacount.c). Metrics the configuration leaves out count 0.
+ */
+struct np_aacount_cfg;
+struct np_aacount_win;
+typedef struct np_ref_aacount_counts {
+    unsigned s, mask, sd, sn, ss;
+} np_ref_aacount_counts;
+void np_ref_aacount(const struct np_aacount_cfg *cfg, const struct np_aacount_win *w, np_ref_aacount_counts *out);
+
 #ifdef __cplusplus
 } /* extern "C" */
 #endif

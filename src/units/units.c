@@ -6,12 +6,14 @@
 #include <string.h>
 
 extern const np_unit np_unit_classic3;
+extern const np_unit np_unit_aacount;
 extern const np_unit np_unit_simplex3;
 extern const np_unit np_unit_wave;
 
 extern const np_unit np_unit_fdiff, np_unit_texel;
 
-const np_unit *const np_units[] = { &np_unit_classic3, &np_unit_simplex3, &np_unit_fdiff, &np_unit_texel, &np_unit_wave, NULL };
+const np_unit *const np_units[] = { &np_unit_classic3, &np_unit_simplex3, &np_unit_fdiff, &np_unit_texel,
+                                    &np_unit_aacount,  &np_unit_wave,     NULL };
 
 /* Units added by np_unit_register (see np_unit.h: filled before threads start, read-only after). */
 static const np_unit *registered[NP_UNIT_MAX_REGISTERED];

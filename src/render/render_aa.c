@@ -1,0 +1,271 @@
+/* SPDX-License-Identifier: MIT */
+/* The adaptive supersampling pipeline of seed 001 on the G-buffer (np_render_aa.h). */
+#include "np_render_aa.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Y = (77 R + 150 G + 29 B + 128) >> 8 (u8; the weights sum to 256, so Y <= 255). */
+static uint8_t luma_of(const uint8_t *rgb)
+{
+    return (uint8_t)((77u * rgb[0] + 150u * rgb[1] + 29u * rgb[2] + 128u) >> 8);
+}
+
+static uint32_t sat_key(double v, double hi)
+{
+    if (!(v > 0.0))
+        return 0;
+    double r = floor(v + 0.5);
+    return (uint32_t)(r > hi ? hi : r);
+}
+
+void np_aa_cfg_from_scene(const np_scene *sc, unsigned m, double z_near, double z_far, np_aacount_cfg *c)
+{
+    const np_scene_aa *a = &sc->aa;
+    *c = np_aacount_cfg_default();
+    c->m = (uint8_t)m;
+    c->depth = (uint8_t)(a->have_cd != 0);
+    c->normal = (uint8_t)(a->have_cn != 0);
+    c->luma = (uint8_t)(a->have_cs != 0);
+    c->luma_taps = (uint8_t)(a->luma_taps ? a->luma_taps : 4u);
+    c->tile = (uint8_t)a->tile;
+    double range = z_far - z_near, code = 16777215.0;
+    /* k_d = c_d Var(z) = c_d Var(d) (range / (2^24 - 1))^2 = key Var(d / 2^24) */
+    c->c_d = a->have_cd ? sat_key(a->c_d * range * range * (16777216.0 / code) * (16777216.0 / code), 4294967295.0)
+                        : 0u;
+    c->c_n = (uint8_t)(a->have_cn ? sat_key(4.0 * a->c_n, 255.0) : 0u);
+    c->c_s = (uint16_t)(a->have_cs ? sat_key(16.0 * a->c_s, 65535.0) : 0u);
+    /* r / 255 < t_min iff r < ceil(255 t_min) for integer r (the 1e-9 absorbs 16/255 * 255 = 16.000...04) */
+    double tm = ceil(255.0 * a->t_min - 1e-9);
+    c->t_min = (uint8_t)(tm < 0.0 ? 0.0 : tm > 255.0 ? 255.0 : tm);
+    c->t_edge = (uint8_t)sat_key(256.0 * a->t_edge, 255.0);
+}
+
+void np_aa_frame_free(np_aa_frame *f)
+{
+    np_gbuf_free(&f->g);
+    free(f->rgb_full);
+    free(f->img_full);
+    free(f->img_full_d);
+    free(f->img_s);
+    free(f->luma);
+    free(f->covered);
+    memset(f, 0, sizeof *f);
+}
+
+/* Resolve every pixel by the unit's resolve over the samples of masks[p] (all n when masks is NULL). */
+static void resolve(const np_gbuf *g, const uint16_t *masks, const uint8_t *rgb, uint8_t *out)
+{
+    const size_t npx = (size_t)g->w * g->h;
+    for (size_t p = 0; p < npx; p++) {
+        unsigned mk = masks ? (unsigned)masks[p] : (1u << g->n) - 1u;
+        unsigned s = 0;
+        uint32_t sum[3] = { 0, 0, 0 };
+        for (unsigned j = 0; j < g->n; j++)
+            if (mk >> j & 1u) {
+                s++;
+                for (unsigned ch = 0; ch < 3; ch++)
+                    sum[ch] += rgb[3 * (p * g->n + j) + ch];
+            }
+        for (unsigned ch = 0; ch < 3; ch++)
+            out[3 * p + ch] = s ? np_aacount_resolve(sum[ch], s) : 0u;
+    }
+}
+
+int np_aa_frame_build(const np_scene *sc, unsigned m, const np_render_unit_cfg *tex, const double *gt,
+                      np_aa_frame *f, char *err, size_t errlen)
+{
+    memset(f, 0, sizeof *f);
+    f->sc = sc;
+    f->tex = tex;
+    f->gt = gt;
+    if (np_gbuf_build(sc, m, &f->g, err, errlen))
+        return -1;
+    const np_gbuf *g = &f->g;
+    const size_t npx = (size_t)g->w * g->h;
+    f->rgb_full = malloc(npx * g->n * 3);
+    f->img_full = malloc(npx * 3);
+    f->img_full_d = malloc(npx * 3 * sizeof *f->img_full_d);
+    f->img_s = malloc(npx * 3);
+    f->luma = malloc(npx);
+    f->covered = malloc(npx);
+    if (!f->rgb_full || !f->img_full || !f->img_full_d || !f->img_s || !f->luma || !f->covered) {
+        snprintf(err, errlen, "out of memory");
+        np_aa_frame_free(f);
+        return -1;
+    }
+    if (np_gbuf_shade(g, tex->u, tex->cfg.bytes, NULL, f->rgb_full, &f->cost_full) ||
+        np_gbuf_shade_first(g, tex->u, tex->cfg.bytes, f->img_s, &f->cost_s)) {
+        snprintf(err, errlen, "shading on %s failed", tex->u->name);
+        np_aa_frame_free(f);
+        return -1;
+    }
+    resolve(g, NULL, f->rgb_full, f->img_full);
+    f->resolve_full_cycles = (uint64_t)npx * g->n + 2u; /* a sample a clock; the product and the add */
+    for (size_t i = 0; i < npx * 3; i++)
+        f->img_full_d[i] = f->img_full[i];
+    for (size_t p = 0; p < npx; p++) {
+        f->luma[p] = luma_of(&f->img_s[3 * p]);
+        f->covered[p] = g->cover[p] > 0;
+    }
+    return 0;
+}
+
+void np_aa_result_free(np_aa_result *r)
+{
+    free(r->s);
+    free(r->sd);
+    free(r->sn);
+    free(r->ss);
+    free(r->img);
+    memset(r, 0, sizeof *r);
+}
+
+/* The window of pixel (x, y): its n G-buffer samples and the five lumas, border-clamped. */
+void np_aa_window(const np_aa_frame *f, unsigned x, unsigned y, np_aacount_win *w)
+{
+    const np_gbuf *g = &f->g;
+    const size_t p = (size_t)y * g->w + x;
+    memset(w, 0, sizeof *w);
+    for (unsigned j = 0; j < g->n; j++) {
+        w->d[j] = f->g.depth[p * g->n + j];
+        memcpy(w->nrm[j], f->g.normal[p * g->n + j], 3);
+    }
+    unsigned xl = x ? x - 1u : x, xr = x + 1u < g->w ? x + 1u : x;
+    unsigned yu = y ? y - 1u : y, yd = y + 1u < g->h ? y + 1u : y;
+    w->luma[0] = f->luma[p];
+    w->luma[1] = f->luma[(size_t)y * g->w + xl];
+    w->luma[2] = f->luma[(size_t)y * g->w + xr];
+    w->luma[3] = f->luma[(size_t)yu * g->w + x];
+    w->luma[4] = f->luma[(size_t)yd * g->w + x];
+}
+
+int np_aa_run(const np_aa_frame *f, const np_aacount_cfg *c, const np_aacount_regs *regs, int shade,
+              np_aa_result *r)
+{
+    const np_gbuf *g = &f->g;
+    const size_t npx = (size_t)g->w * g->h;
+    memset(r, 0, sizeof *r);
+    r->cfg = *c;
+    r->cfg.m = (uint8_t)g->m;
+    np_aacount_regs rg;
+    if (regs)
+        rg = *regs;
+    else
+        np_aacount_regs_compute(&r->cfg, &rg);
+    r->s = malloc(npx);
+    r->sd = malloc(npx);
+    r->sn = malloc(npx);
+    r->ss = malloc(npx);
+    r->img = malloc(npx * 3);
+    uint16_t *masks = malloc(npx * sizeof *masks);
+    uint8_t *rgb = shade ? malloc(npx * g->n * 3) : NULL;
+    np_aacount_sig *sig = NULL;
+    if (!r->s || !r->sd || !r->sn || !r->ss || !r->img || !masks || (shade && !rgb)) {
+        free(masks);
+        free(rgb);
+        np_aa_result_free(r);
+        return -1;
+    }
+    /* 3. the unit, pixel by pixel in raster order */
+    for (unsigned y = 0; y < g->h; y++)
+        for (unsigned x = 0; x < g->w; x++) {
+            np_aacount_win w;
+            np_aacount_out o;
+            np_aa_window(f, x, y, &w);
+            np_aacount_eval_regs(&r->cfg, &rg, &w, &o);
+            size_t p = (size_t)y * g->w + x;
+            r->s[p] = o.s;
+            r->sd[p] = o.sd;
+            r->sn[p] = o.sn;
+            r->ss[p] = o.ss;
+        }
+    /* The parallel cycle model over the same windows (when the registers are the keys'): its cycles, its s checked. */
+    if (!regs) {
+        np_pipe pipe;
+        sig = malloc(sizeof *sig);
+        if (sig && np_aacount_pipe_init(&pipe, &r->cfg) == 0) {
+            size_t in = 0, out = 0;
+            while (out < npx) {
+                np_pipe_port port;
+                memset(&port, 0, sizeof port);
+                if (in < npx) {
+                    np_aacount_win w;
+                    np_aa_window(f, (unsigned)(in % g->w), (unsigned)(in / g->w), &w);
+                    np_aacount_sig_in(sig, &w);
+                    port.in_valid = 1;
+                    port.in_sig = sig;
+                }
+                port.out_ready = 1;
+                np_pipe_eval(&pipe, &port);
+                if (port.out_valid) {
+                    const np_aacount_sig *o = port.out_sig;
+                    r->pipe_mismatch |= o->s != r->s[out];
+                    out++;
+                }
+                if (port.in_valid && port.in_ready)
+                    in++;
+                np_pipe_clock(&pipe, &port);
+            }
+            r->unit_cycles = pipe.stats.cycles;
+            np_pipe_free(&pipe);
+        }
+        free(sig);
+    }
+    r->unit_cycles_serial = (uint64_t)npx * g->n + np_aacount_serial_latency(&r->cfg);
+    if (r->cfg.tile) {
+        np_aacount_tile_max(r->s, g->w, g->h);
+        np_aacount_tile_max(r->sd, g->w, g->h);
+        np_aacount_tile_max(r->sn, g->w, g->h);
+        np_aacount_tile_max(r->ss, g->w, g->h);
+    }
+    const uint16_t first = np_aacount_mask(g->m, 1);
+    for (size_t p = 0; p < npx; p++) {
+        masks[p] = np_aacount_mask(g->m, r->s[p]);
+        if (f->covered[p]) {
+            r->covered_pixels++;
+            r->samples += r->s[p];
+            r->samples_d += r->sd[p];
+            r->samples_n += r->sn[p];
+            r->samples_s += r->ss[p];
+        }
+    }
+    r->pct = r->covered_pixels ? 100.0 * (double)r->samples / ((double)g->n * (double)r->covered_pixels) : 0.0;
+    /* 4. the chosen samples besides S's (S is shaded already), 5. the resolve */
+    if (shade) {
+        uint16_t *extra = malloc(npx * sizeof *extra);
+        if (!extra) {
+            free(masks);
+            free(rgb);
+            np_aa_result_free(r);
+            return -1;
+        }
+        const unsigned j0 = (unsigned)__builtin_ctz(first);
+        for (size_t p = 0; p < npx; p++) {
+            extra[p] = (uint16_t)(masks[p] & ~first);
+            memcpy(&rgb[3 * (p * g->n + j0)], &f->img_s[3 * p], 3);
+        }
+        int rc = np_gbuf_shade(g, f->tex->u, f->tex->cfg.bytes, extra, rgb, &r->shade_extra);
+        free(extra);
+        if (rc) {
+            free(masks);
+            free(rgb);
+            np_aa_result_free(r);
+            return -1;
+        }
+        r->shade_cycles = f->cost_s.cycles + r->shade_extra.cycles;
+        resolve(g, masks, rgb, r->img);
+    } else {
+        resolve(g, masks, f->rgb_full, r->img);
+    }
+    r->resolve_cycles = 2u;
+    for (size_t p = 0; p < npx; p++)
+        r->resolve_cycles += r->s[p];
+    r->mse_full = np_gbuf_mse(r->img, f->img_full_d, f->covered, npx);
+    r->mse_gt = f->gt ? np_gbuf_mse(r->img, f->gt, f->covered, npx) : (double)NAN;
+    free(masks);
+    free(rgb);
+    return 0;
+}
