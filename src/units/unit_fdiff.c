@@ -34,7 +34,12 @@ static const np_unit_key keys[] = {
     NP_UNIT_KEY_END,
 };
 
-static const char *cfg_check(const void *cfg) { return np_fdiff_cfg_check(&((const fd_cfg *)cfg)->c); }
+static np_su fd_su;
+static const char *cfg_check(const void *cfg)
+{
+    const char *why = np_fdiff_cfg_check(&((const fd_cfg *)cfg)->c);
+    return why ? why : np_su_scene_index_check(&fd_su.span, cfg, 11);
+}
 
 static double error_bound(const void *cfg)
 {
@@ -173,6 +178,7 @@ static np_su fd_su = {
               sizeof fd_sweeps / sizeof fd_sweeps[0], "g4", "guard=4",
               fd_trace },
     .engine_cfg_size = sizeof(np_fdiff_cfg),
+    .idx_int_max = 11,
     .front_name = "R",
 };
 NP_SU_DEFINE(fd_su, np_unit_fdiff);

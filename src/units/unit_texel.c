@@ -33,7 +33,12 @@ static const np_unit_key keys[] = {
     NP_UNIT_KEY_END,
 };
 
-static const char *cfg_check(const void *cfg) { return np_texel_cfg_check(&((const tx_cfg *)cfg)->c); }
+static np_su tx_su;
+static const char *cfg_check(const void *cfg)
+{
+    const char *why = np_texel_cfg_check(&((const tx_cfg *)cfg)->c);
+    return why ? why : np_su_scene_index_check(&tx_su.span, cfg, 11);
+}
 
 static double error_bound(const void *cfg)
 {
@@ -121,6 +126,7 @@ _Static_assert(sizeof(np_texel_front) <= NP_SU_CORE_MAX && sizeof(np_texel_sig) 
 static np_su tx_su = {
     .span = { &np_texel_engine, offsetof(tx_cfg, c), offsetof(tx_cfg, tex), tx_sweeps, 1, NULL, NULL, tx_trace },
     .engine_cfg_size = sizeof(np_texel_cfg),
+    .idx_int_max = 11,
     .front_name = "F",
 };
 NP_SU_DEFINE(tx_su, np_unit_texel);
