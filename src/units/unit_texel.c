@@ -106,6 +106,11 @@ static const char *tx_trace(const void *ecfg, const np_tex_regs *r, np_rng *g, n
         for (int a = 0; a < 3; a++)
             s.s[a] = i % 16u == 1 ? (i & 32u ? -((int64_t)1 << 47) : ((int64_t)1 << 47) - 1)
                                   : np_sext(np_rng_next(g), NP_TEX_S_BITS);
+        /* The front end's quadric at s (what its forward differences reach there). */
+        const int64_t zero[3] = { 0, 0, 0 };
+        np_s128 q[3];
+        np_tex_quadric_exact(r, s.s, zero, q);
+        s.qin = q[0];
         for (unsigned k = 0; k < NP_TEXEL_STAGES; k++) {
             np_texel_stages[k].fn(np_span_ctx_of(&front), &s);
             np_texel_trace(cfg, r, k, &s, t, n);
