@@ -16,10 +16,11 @@ np_fdiff_cfg np_fdiff_cfg_default(void)
      * 44 guard bits (F = 56), no re-set-up interval. The drift bound
      * (np_fdiff.h) then keeps up to four octaves at the steepest colour map
      * (255 LSB per index unit) within 1 LSB over any run of up to 65,535
-     * steps: 0.5 + 255 (4 * 2^-57 B3(65535) + 2^-13) = 0.86 LSB. Measured
-     * (test fdiff.guard_search): 41 bits are the fewest that keep every stiff
-     * case within 1 LSB, 42 the fewest the bound guarantees for one octave;
-     * docs/fdiff.md shows what fewer bits do.
+     * steps: 0.5 + 255 (4 * 2^-57 B3(65535) + 2^-13) = 0.86 LSB. 42 bits are
+     * the fewest the bound guarantees for one octave, and the fewest that
+     * hold: test fdiff.guard_min_both_ways finds a 65,536-pixel span over
+     * 1 LSB at 41 (the fixed stiff cases of fdiff.guard_search happen to hold
+     * at 41); docs/fdiff.md shows what fewer bits do.
      */
     c.guard = 44;
     c.resetup = 0;

@@ -8,7 +8,7 @@
 np_test_program(test_fdiff test_fdiff.c span_test.c)
 np_add_cases(test_fdiff fdiff
   stiff_span65536 stiff_deriv_tiny stiff_deriv_huge stiff_cell_edge_on_pixel stiff_span_one_zero
-  stiff_wrap stiff_quadric_long guard_search setup_exact appendix_coefficients drift_identity
+  stiff_wrap stiff_quadric_long guard_search guard_min_both_ways setup_exact appendix_coefficients drift_identity
   cycle_vs_model cycle_count setup_overlap)
 np_test_program(test_texel test_texel.c span_test.c)
 np_add_cases(test_texel fdiff texel_exact_weights texel_cycle_vs_model)
