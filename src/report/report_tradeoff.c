@@ -9,6 +9,9 @@
 #include <string.h>
 
 #include "np_cli.h"
+#include "np_fdiff.h"
+#include "np_texreg.h"
+#include "unit_span.h"
 #include "np_outfile.h"
 #include "np_plot.h"
 #include "np_render.h"
@@ -37,8 +40,8 @@ typedef struct best {
 } best;
 
 /* Unit u configured by the scene with setup_mults = P: gates, bound, cycles on frame fr. 0 or -1 with err. */
-static int measure(const np_unit *u, const np_scene *sc, const np_render_frame *fr, unsigned P, point *pt,
-                   char *err, size_t errlen)
+static int measure(const np_unit *u, const np_scene *sc, const np_render_frame *fr, unsigned P, const char *more,
+                   point *pt, char *err, size_t errlen)
 {
     np_unit_cfg cfg;
     memset(&cfg, 0, sizeof cfg);
@@ -49,7 +52,7 @@ static int measure(const np_unit *u, const np_scene *sc, const np_render_frame *
         return -1;
     }
     char spec[200];
-    snprintf(spec, sizeof spec, "texture=scene:%s,setup_mults=%u", sc->name, P);
+    snprintf(spec, sizeof spec, "texture=scene:%s,setup_mults=%u%s%s", sc->name, P, more ? "," : "", more ? more : "");
     if (np_unit_configure(u, &cfg, spec, err, errlen) != 0)
         return -1;
     np_unit_cost c;
@@ -78,7 +81,7 @@ static int sweep(const np_unit *u, const unsigned *ps, size_t nps, const np_scen
 {
     b->gc = INFINITY;
     for (size_t i = 0; i < nps; i++) {
-        if (measure(u, sc, fr, ps[i], &all[i], err, errlen) != 0)
+        if (measure(u, sc, fr, ps[i], NULL, &all[i], err, errlen) != 0)
             return -1;
         double gc = all[i].gates * (double)all[i].cycles;
         if (all[i].bound <= 1.0 && gc < b->gc) {
@@ -91,6 +94,38 @@ static int sweep(const np_unit *u, const unsigned *ps, size_t nps, const np_scen
         return -1;
     }
     return 0;
+}
+
+/*
+ * Scene-sized guard bits for fdiff (issue 14 step 3, as far as it goes
+ * here): the fewest G whose bound over the frame's longest span (not the
+ * 65,536 pixels the default is sized for) plus the registers' rounding is
+ * <= 1 LSB: 0.5 + slope (n_oct 2^-(F+1) B3(m) + 2^-(F+1) B2(m) + 2^-(Fw+1))
+ * + reg <= 1 with m = longest - 1 (np_fdiff.h). Its bound in *bound.
+ */
+static unsigned scene_guard(const np_render_frame *fr, const np_unit *fd, const np_scene *sc, double *bound)
+{
+    np_unit_cfg cfg;
+    char err[512];
+    np_fdiff_cfg d = np_fdiff_cfg_default();
+    double reg = 0;
+    if (fd->cfg_scene(&cfg, sc, err, sizeof err) > 0) {
+        const np_texreg_scene_bound *b = np_ut_texture_bound(np_su_texture(fd->span, &cfg));
+        reg = b ? b->reg_lsb : 0;
+    }
+    const double slope = (double)np_tex_colour_slope(&fr->regs);
+    const uint64_t m = fr->longest > 0 ? fr->longest - 1u : 0;
+    for (unsigned g = 0; g <= d.guard; g++) {
+        unsigned F = d.w_frac + g;
+        double b = 0.5 + slope * ((double)fr->regs.n_oct * np_fdiff_drift_bound_noise(F, m) +
+                                  np_fdiff_drift_bound_quad(F, m) + ldexp(1.0, -(int)d.w_frac - 1)) + reg;
+        if (b <= 1.0) {
+            *bound = b;
+            return g;
+        }
+    }
+    *bound = NAN;
+    return d.guard;
 }
 
 /* The scene's texture with n octaves: its own first ones, then each further one at twice the last's scale. */
@@ -173,6 +208,10 @@ int np_report_tradeoff(const char *dir, const char *scene_path)
     point fdp[N_SIZE][5], txp[N_SIZE][3];
     best fb[N_SIZE + N_OCT], tb[N_SIZE + N_OCT];
     int skipped[N_SIZE + N_OCT] = { 0 };
+    point sg = { 0 };
+    unsigned sg_guard = 0;
+    uint32_t sg_longest = 0;
+    double sg_bound = 0;
     double xs[N_SIZE], xo[N_OCT], yf[N_SIZE + N_OCT], yt[N_SIZE + N_OCT];
     uint64_t npx[N_SIZE];
     int rc = NP_EXIT_OK;
@@ -222,6 +261,17 @@ int np_report_tradeoff(const char *dir, const char *scene_path)
             np_err("report", "%s: %s", scene_path, err);
             rc = NP_EXIT_USAGE;
         }
+        if (rc == NP_EXIT_OK && i == 0) {
+            /* fdiff with scene-sized guard bits, at its best P of the default widths. */
+            char more[32];
+            sg_guard = scene_guard(&fr, fd, &sc, &sg_bound);
+            snprintf(more, sizeof more, "guard=%u", sg_guard);
+            sg_longest = fr.longest;
+            if (measure(fd, &sc, &fr, fb[0].p.P, more, &sg, err, sizeof err) != 0) {
+                np_err("report", "%s: %s", scene_path, err);
+                rc = NP_EXIT_USAGE;
+            }
+        }
         if (by_size) {
             memcpy(fdp[i], fa, sizeof fa);
             memcpy(txp[i], ta, sizeof ta);
@@ -238,6 +288,7 @@ int np_report_tradeoff(const char *dir, const char *scene_path)
         np_render_frame_free(&fr);
     }
     if (rc == NP_EXIT_OK) {
+        const np_fdiff_cfg dflt = np_fdiff_cfg_default();
         fprintf(f, "## Image size (%u octave%s, the scene's texture)\n\n%s", tex0.n_oct, tex0.n_oct == 1 ? "" : "s",
                 head);
         for (size_t i = 0; i < N_SIZE; i++) {
@@ -248,6 +299,17 @@ int np_report_tradeoff(const char *dir, const char *scene_path)
             fake.pixels = npx[i];
             row(f, what, &fake, &fb[i], &tb[i]);
         }
+        fprintf(f,
+                "\n## Scene-sized guard bits (256², fdiff)\n\nThe frame's longest span is %u pixels, not 65,536: the "
+                "fewest guard bits whose bound over it (with the registers' rounding) is <= 1 LSB are G = %u "
+                "(bound %.3f LSB; measured %.3f), against the default %u. The index accumulators shrink from %u to "
+                "%u bits; the set-up engine does not (its multiplier takes the 117 + I bits the single exact "
+                "rounding of the set-up values reads, whatever G): P = %u, %.0f gates (default %.0f), %llu "
+                "cycles, gates x cycles %.3g (texel %.3g: texel / fdiff **%.2f**).\n",
+                sg_longest, sg_guard, sg_bound, sg.measured, dflt.guard, np_fdiff_width(&dflt), np_fdiff_width(&dflt) - dflt.guard + sg_guard,
+                sg.P,
+                sg.gates, fb[0].p.gates, (unsigned long long)sg.cycles, sg.gates * (double)sg.cycles, tb[0].gc,
+                tb[0].gc / (sg.gates * (double)sg.cycles));
         fprintf(f, "\n## Octave count (%ux%u; octaves beyond the scene's at twice the previous scale)\n\n%s", w0, h0,
                 head);
         for (size_t i = 0; i < N_OCT; i++) {
