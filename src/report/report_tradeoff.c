@@ -79,7 +79,7 @@ static int measure(const np_unit *u, const np_scene *sc, const np_render_frame *
 static int sweep(const np_unit *u, const unsigned *ps, size_t nps, const np_scene *sc, const np_render_frame *fr,
                  point *all, best *b, char *err, size_t errlen)
 {
-    b->gc = INFINITY;
+    b->gc = (double)INFINITY;
     for (size_t i = 0; i < nps; i++) {
         if (measure(u, sc, fr, ps[i], NULL, &all[i], err, errlen) != 0)
             return -1;
@@ -124,7 +124,7 @@ static unsigned scene_guard(const np_render_frame *fr, const np_unit *fd, const 
             return g;
         }
     }
-    *bound = NAN;
+    *bound = (double)NAN;
     return d.guard;
 }
 

@@ -144,7 +144,8 @@ int np_su_cfg_scene(const np_su *su, const np_unit *u, void *cfg, const np_scene
      * width), the unit's own bound plus the registers' must be <= 1 LSB, and
      * a clamped map's index must fit; else the scene is refused.
      */
-    double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
+    double lo[3] = { (double)INFINITY, (double)INFINITY, (double)INFINITY },
+           hi[3] = { -(double)INFINITY, -(double)INFINITY, -(double)INFINITY };
     for (unsigned p = 0; p < sc->n_poly; p++)
         for (unsigned v = 0; v < sc->poly[p].n; v++)
             for (int a = 0; a < 3; a++) {
