@@ -50,7 +50,9 @@ int np_texreg_compile(const np_ref_texture *t, np_tex_regs *r, char *err, size_t
  *                                    + 2^-33 (1 + max_span) ) )
  * (the lattice noise is in [0, 63/64] and its slope per axis at most 63/64;
  * the front end rounds u0 and du to 2^-33 each and du's error grows with
- * the pixel), and the colour error by slope times that (np_tex_colour_slope).
+ * the pixel), plus the descriptor's rounding (s and ds to Q.32 by the host,
+ * 2^-33 (1 + max_span) per axis) through |M| and the quadric's gradient
+ * over the box, and the colour error by slope times that (np_tex_colour_slope).
  * The index reaches at most |x| <= sum_j |K'_j| m_j + sum_i |a'_i| 63/64;
  * a clamped map needs it below 2^I.
  */

@@ -156,8 +156,19 @@ void np_texreg_scene_bound_compute(const np_ref_texture *t, const np_tex_regs *r
                       NP_TEX_O_BITS);
             /* The front end: u0 and du each rounded to 2^-33; du's error times the pixel. */
             b->reg_index += g * ldexp(1.0 + (double)max_span, -(NP_TEX_FC + 1));
+            /* The descriptor's s and ds, rounded to Q.32 by the host, through the transform. */
+            for (int bx = 0; bx < 3; bx++)
+                b->reg_index += g * fabs(ldexp((double)ro->m[ax][bx], -NP_TEX_M_FRAC)) *
+                                ldexp(1.0 + (double)max_span, -(NP_TEX_FC + 1));
         }
     }
+    /* The descriptor's rounding through the quadric: |grad q'|_1 over the box times 2^-33 (1 + n_max). */
+    double k[10];
+    for (int j = 0; j < 10; j++)
+        k[j] = fabs(ldexp((double)r->k[j], -NP_TEX_K_FRAC));
+    const double grad = 2 * k[0] * m[0] + 2 * k[1] * (m[0] + m[1]) + 2 * k[2] * (m[0] + m[2]) + 2 * k[3] +
+                        2 * k[4] * m[1] + 2 * k[5] * (m[1] + m[2]) + 2 * k[6] + 2 * k[7] * m[2] + 2 * k[8];
+    b->reg_index += grad * ldexp(1.0 + (double)max_span, -(NP_TEX_FC + 1));
     b->reg_lsb = a.slope * b->reg_index;
     b->idx_int_need = 1;
     if (!r->cmap_repeat)
