@@ -16,10 +16,11 @@ np_fdiff_cfg np_fdiff_cfg_default(void)
      * 44 guard bits (F = 56), no re-set-up interval. The drift bound
      * (np_fdiff.h) then keeps up to four octaves at the steepest colour map
      * (255 LSB per index unit) within 1 LSB over any run of up to 65,535
-     * steps: 0.5 + 255 (4 * 2^-57 B3(65535) + 2^-13) = 0.86 LSB. Measured
-     * (test fdiff.guard_search): 41 bits are the fewest that keep every stiff
-     * case within 1 LSB, 42 the fewest the bound guarantees for one octave;
-     * docs/fdiff.md shows what fewer bits do.
+     * steps: 0.5 + 255 (4 * 2^-57 B3(65535) + 2^-13) = 0.86 LSB. 42 bits are
+     * the fewest the bound guarantees for one octave, and the fewest that
+     * hold: test fdiff.guard_min_both_ways finds a 65,536-pixel span over
+     * 1 LSB at 41 (the fixed stiff cases of fdiff.guard_search happen to hold
+     * at 41); docs/fdiff.md shows what fewer bits do.
      */
     c.guard = 44;
     c.resetup = 0;
@@ -201,6 +202,199 @@ unsigned np_fdiff_span_setup_cycles(const np_fdiff_cfg *c, const np_tex_regs *r)
 static unsigned cell_cycles(const np_fdiff_cfg *c) { return np_fdiff_cell_cycles(c); }
 static unsigned quad_cycles(const np_fdiff_cfg *c) { return np_fdiff_quad_cycles(c); }
 
+/* --- The set-up engine's timeline (np_fdiff.h: set-up overlapped with stepping) --- */
+
+enum { LIST_CELL, LIST_QUAD, LIST_SPAN };
+enum { B = NP_FDIFF_SHADOWS };
+
+/* Append schedule sc's phases (levels, then its fixed clocks) to a list. */
+static void tl_append(int16_t *ph, unsigned *n, const np_tex_sched *sc)
+{
+    for (unsigned l = 0; l < sc->levels; l++)
+        if (sc->mults[l] && *n < NP_FDIFF_PHASES_MAX)
+            ph[(*n)++] = (int16_t)sc->mults[l];
+    if (sc->fixed && *n < NP_FDIFF_PHASES_MAX)
+        ph[(*n)++] = (int16_t)-(int)sc->fixed;
+}
+
+static void tl_init(np_fdiff_core *c)
+{
+    np_fdiff_timeline *t = &c->tl;
+    const np_tex_sched *front = np_tex_regs_diagonal(c->r) ? &np_tex_sched_octave_diag : &np_tex_sched_octave;
+    tl_append(t->ph[LIST_CELL], &t->nph[LIST_CELL], &np_fdiff_sched_cell);
+    tl_append(t->ph[LIST_QUAD], &t->nph[LIST_QUAD], &np_fdiff_sched_quad);
+    tl_append(t->ph[LIST_SPAN], &t->nph[LIST_SPAN], front);
+    tl_append(t->ph[LIST_SPAN], &t->nph[LIST_SPAN], &np_fdiff_sched_cell);
+}
+
+/*
+ * Enter phase j->cur at clock at: fixed phases pass by themselves; past the
+ * last, the job is finished.
+ */
+static void tl_enter(const np_fdiff_core *c, np_fdiff_job *j, uint64_t at)
+{
+    const np_fdiff_timeline *t = &c->tl;
+    const int16_t *ph = t->ph[j->list];
+    j->ready = at;
+    while (j->cur < t->nph[j->list] && ph[j->cur] < 0)
+        j->ready += (uint64_t)-ph[j->cur++];
+    if (j->cur >= t->nph[j->list]) {
+        j->state = 2;
+        j->done = j->ready;
+    } else {
+        j->left = (unsigned)ph[j->cur];
+    }
+}
+
+static void tl_start(np_fdiff_core *c, unsigned slot, unsigned list, uint32_t need, uint64_t key, uint64_t release)
+{
+    np_fdiff_timeline *t = &c->tl;
+    np_fdiff_job *j = &t->job[slot];
+    memset(j, 0, sizeof *j);
+    j->state = 1;
+    j->list = (uint8_t)list;
+    j->need = need;
+    j->key = key;
+    tl_enter(c, j, release);
+}
+
+/* One clock x of the engine: the P multiplier slots to the ready jobs, most urgent first. */
+static void tl_clock(np_fdiff_core *c, uint64_t x)
+{
+    np_fdiff_timeline *t = &c->tl;
+    unsigned order[NP_FDIFF_JOBS], n = 0, slots = c->cfg->setup_mults;
+    for (unsigned i = 0; i < NP_FDIFF_JOBS; i++) {
+        if (t->job[i].state != 1 || t->job[i].ready > x)
+            continue;
+        unsigned p = n++;
+        while (p > 0 && t->job[order[p - 1]].key > t->job[i].key) {
+            order[p] = order[p - 1];
+            p--;
+        }
+        order[p] = i;
+    }
+    for (unsigned q = 0; q < n && slots > 0; q++) {
+        np_fdiff_job *j = &t->job[order[q]];
+        unsigned take = j->left < slots ? j->left : slots;
+        j->left -= take;
+        slots -= take;
+        if (j->left == 0) {
+            j->cur++;
+            tl_enter(c, j, x + c->cfg->mult_lat);
+        }
+    }
+}
+
+/* The earliest clock a job in flight can proceed (UINT64_MAX: none in flight). */
+static uint64_t tl_next_ready(const np_fdiff_timeline *t)
+{
+    uint64_t m = UINT64_MAX;
+    for (unsigned i = 0; i < NP_FDIFF_JOBS; i++)
+        if (t->job[i].state == 1 && t->job[i].ready < m)
+            m = t->job[i].ready;
+    return m;
+}
+
+/* Allot every clock before T. */
+static void tl_run_until(np_fdiff_core *c, uint64_t T)
+{
+    np_fdiff_timeline *t = &c->tl;
+    while (t->clock < T) {
+        uint64_t r = tl_next_ready(t);
+        if (r > t->clock) {
+            t->clock = r < T ? r : T;
+            continue;
+        }
+        tl_clock(c, t->clock++);
+    }
+}
+
+/* Run the engine until the job in slot finishes; its done clock. */
+static uint64_t tl_finish(np_fdiff_core *c, unsigned slot)
+{
+    np_fdiff_timeline *t = &c->tl;
+    while (t->job[slot].state == 1) {
+        uint64_t r = tl_next_ready(t);
+        if (r > t->clock)
+            t->clock = r;
+        tl_clock(c, t->clock++);
+    }
+    return t->job[slot].done;
+}
+
+/* The crossing finder: the next pixel after the last one found where octave o needs a set-up (0: none). */
+static uint32_t tl_find(np_fdiff_core *c, unsigned o)
+{
+    np_fdiff_timeline *t = &c->tl;
+    const uint32_t K = c->cfg->resetup, n = c->sp.n, k0 = t->la[o].k;
+    while (t->la[o].k + 1u < n) {
+        int crossed = 0;
+        t->la[o].k++;
+        for (unsigned a = 0; a < 3; a++) {
+            t->la[o].u[a] = np_tex_dda(t->la[o].u[a], c->oct[o].du[a]);
+            crossed |= np_tex_cell(t->la[o].u[a]) != t->la[o].cell[a];
+        }
+        if (crossed || (K && t->la[o].k - k0 >= K)) {
+            for (unsigned a = 0; a < 3; a++)
+                t->la[o].cell[a] = np_tex_cell(t->la[o].u[a]);
+            return t->la[o].k;
+        }
+    }
+    t->la[o].end = 1;
+    return 0;
+}
+
+/* Queue octave o's next cell set-up, released at clock at, if a shadow set is free and one remains. */
+static void tl_queue(np_fdiff_core *c, unsigned o, uint64_t at)
+{
+    np_fdiff_timeline *t = &c->tl;
+    if (t->la[o].end || t->la[o].cnt >= B)
+        return;
+    const uint32_t k0 = t->la[o].k, k = tl_find(c, o);
+    if (!k)
+        return;
+    const uint64_t found = t->la[o].t + (k - k0 + NP_FDIFF_FINDER_RATE - 1u) / NP_FDIFF_FINDER_RATE;
+    if (found > at)
+        at = found;
+    t->la[o].t = at; /* it held there until a shadow set took the start */
+    unsigned slot = o * B + (t->la[o].head + t->la[o].cnt) % B;
+    t->la[o].cnt++;
+    tl_start(c, slot, LIST_CELL, k, k, at);
+}
+
+/* Release a span's set-up jobs at clock at (the next span's: last in priority). */
+static void tl_span_start(np_fdiff_core *c, uint64_t at)
+{
+    tl_start(c, NP_FDIFF_JOB_SPAN, LIST_QUAD, 0, UINT64_MAX, at);
+    for (unsigned o = 0; o < c->r->n_oct; o++)
+        tl_start(c, NP_FDIFF_JOB_SPAN + 1u + o, LIST_SPAN, 0, UINT64_MAX, at);
+}
+
+/* Run a span's set-up jobs to the end; the clock the last finishes; their slots freed. */
+static uint64_t tl_span_finish(np_fdiff_core *c)
+{
+    uint64_t done = 0;
+    for (unsigned i = NP_FDIFF_JOB_SPAN; i <= NP_FDIFF_JOB_SPAN + c->r->n_oct; i++) {
+        uint64_t d = tl_finish(c, i);
+        if (d > done)
+            done = d;
+    }
+    for (unsigned i = NP_FDIFF_JOB_SPAN; i < NP_FDIFF_JOBS; i++)
+        c->tl.job[i].state = 0;
+    return done;
+}
+
+static void tl_next_quad(np_fdiff_core *c, uint64_t at)
+{
+    np_fdiff_timeline *t = &c->tl;
+    const uint32_t K = c->cfg->resetup;
+    t->job[NP_FDIFF_JOB_QUAD].state = 0;
+    if (K && (uint64_t)t->qk + K < c->sp.n) {
+        t->qk += K;
+        tl_start(c, NP_FDIFF_JOB_QUAD, LIST_QUAD, t->qk, t->qk, at);
+    }
+}
+
 static void core_setup_octave(np_fdiff_core *c, unsigned o)
 {
     np_fdiff_cell_setup(c->cfg, c->r, o, c->oct[o].u, c->oct[o].du, c->oct[o].d, NULL);
@@ -227,16 +421,26 @@ void np_fdiff_core_init(np_fdiff_core *c, const np_fdiff_cfg *cfg, const np_tex_
     c->ctx.F = c->F;
     c->ctx.W = c->W;
     c->ctx.fw = cfg->w_frac;
+    tl_init(c);
 }
 
 unsigned np_fdiff_core_begin(np_fdiff_core *c, const np_span *sp, np_span_counts *cnt)
 {
+    np_fdiff_timeline *t = &c->tl;
+    const uint64_t now = c->ctx.now;
     c->sp = *sp;
     c->k = 0;
     c->last_setup = 0;
     cnt->spans++;
-    if (sp->n == 0)
+    /* The previous span's jobs are all used (a job is only for a pixel of its span). */
+    for (unsigned i = 0; i < NP_FDIFF_JOB_SPAN; i++)
+        t->job[i].state = 0;
+    const int fetched = t->job[NP_FDIFF_JOB_SPAN].state != 0;
+    if (sp->n == 0) {
+        for (unsigned i = NP_FDIFF_JOB_SPAN; i < NP_FDIFF_JOBS; i++)
+            t->job[i].state = 0;
         return 0;
+    }
     const unsigned cycles = np_fdiff_span_setup_cycles(c->cfg, c->r);
     memcpy(c->s, sp->s, sizeof c->s);
     core_setup_quad(c);
@@ -251,7 +455,37 @@ unsigned np_fdiff_core_begin(np_fdiff_core *c, const np_span *sp, np_span_counts
     c->last_setup |= 1u << SETUP_QUAD_BIT;
     cnt->span_setups++;
     cnt->setup_cycles += cycles;
-    return cycles;
+    if (!c->ctx.timed) /* the bit-exact model: the set-up alone */
+        return np_fdiff_span_setup_latency(c->cfg, c->r);
+    /* Timing: the span's set-up job (started by prefetch, or now), then the second cells' jobs. */
+    if (!fetched) {
+        /* Nothing in flight: the engine's clock is the span's (np_span_run restarts it at 0 per span). */
+        t->clock = now + 1u;
+        tl_span_start(c, now + 1u);
+    }
+    uint64_t done = tl_span_finish(c);
+    const uint64_t first = now + 1u, act = done > first ? done : first;
+    for (unsigned o = 0; o < c->r->n_oct; o++) {
+        memcpy(t->la[o].u, c->oct[o].u, sizeof t->la[o].u);
+        memcpy(t->la[o].cell, c->oct[o].cell, sizeof t->la[o].cell);
+        t->la[o].k = 0;
+        t->la[o].end = 0;
+        t->la[o].head = t->la[o].cnt = 0;
+        t->la[o].t = act;
+        for (unsigned i = 0; i < B; i++)
+            tl_queue(c, o, act);
+    }
+    t->qk = 0;
+    tl_next_quad(c, act);
+    return (unsigned)(act - first);
+}
+
+unsigned np_fdiff_span_setup_latency(const np_fdiff_cfg *cfg, const np_tex_regs *r)
+{
+    static _Thread_local np_fdiff_core c; /* about 4 KB: not on the stack */
+    np_fdiff_core_init(&c, cfg, r);
+    tl_span_start(&c, 0);
+    return (unsigned)tl_span_finish(&c);
 }
 
 np_s128 np_fdiff_core_x(const np_fdiff_core *c)
@@ -269,6 +503,7 @@ unsigned np_fdiff_core_advance(np_fdiff_core *c, np_span_counts *cnt)
     c->last_setup = 0;
     if (c->k >= c->sp.n)
         return 0;
+    tl_run_until(c, c->ctx.now + 1u);
     /* Texture coordinate DDA (exact; np_span_check keeps it within s48). */
     for (unsigned a = 0; a < 3; a++)
         c->s[a] += c->sp.ds[a];
@@ -276,7 +511,7 @@ unsigned np_fdiff_core_advance(np_fdiff_core *c, np_span_counts *cnt)
     c->q[0] = np_wrap_s128(np_add128(c->q[0], c->q[1]), W);
     c->q[1] = np_wrap_s128(np_add128(c->q[1], c->q[2]), W);
     c->qsteps++;
-    unsigned cycles = 0;
+    unsigned work = 0;
     for (unsigned o = 0; o < c->r->n_oct; o++) {
         np_s128 *d = c->oct[o].d;
         /* Equation 22: three additions (in hardware in parallel, on the old values). */
@@ -291,7 +526,7 @@ unsigned np_fdiff_core_advance(np_fdiff_core *c, np_span_counts *cnt)
         }
         if (crossed || (K && c->oct[o].steps >= K)) {
             core_setup_octave(c, o);
-            cycles += cell_cycles(c->cfg);
+            work += cell_cycles(c->cfg);
             if (crossed)
                 cnt->cell_setups++;
             else
@@ -301,12 +536,58 @@ unsigned np_fdiff_core_advance(np_fdiff_core *c, np_span_counts *cnt)
     }
     if (K && c->qsteps >= K) {
         core_setup_quad(c);
-        cycles += quad_cycles(c->cfg);
+        work += quad_cycles(c->cfg);
         cnt->interval_setups++;
         c->last_setup |= 1u << SETUP_QUAD_BIT;
     }
-    cnt->setup_cycles += cycles;
-    return cycles;
+    cnt->setup_cycles += work;
+    if (!c->last_setup || !c->ctx.timed)
+        return 0;
+    /*
+     * Timing: pixel k issued at clock now; pixel k + 1 waits for the set-ups
+     * it swaps in (each released when its shadow freed), then their shadows
+     * take the next ones.
+     */
+    np_fdiff_timeline *t = &c->tl;
+    const uint64_t first = c->ctx.now + 1u;
+    uint64_t act = first;
+    for (unsigned o = 0; o < c->r->n_oct; o++)
+        if (c->last_setup & (1u << o)) {
+            unsigned slot = o * B + t->la[o].head;
+            uint64_t d = t->la[o].cnt && t->job[slot].state ? tl_finish(c, slot) : first;
+            if (d > act)
+                act = d;
+        }
+    if (c->last_setup & (1u << SETUP_QUAD_BIT)) {
+        uint64_t d = t->job[NP_FDIFF_JOB_QUAD].state ? tl_finish(c, NP_FDIFF_JOB_QUAD) : first;
+        if (d > act)
+            act = d;
+    }
+    /* The swap frees a shadow set: the next cell the finder found (or finds) takes it. */
+    for (unsigned o = 0; o < c->r->n_oct; o++)
+        if (c->last_setup & (1u << o) && t->la[o].cnt) {
+            unsigned slot = o * B + t->la[o].head;
+            t->job[slot].state = 0;
+            t->la[o].head = (t->la[o].head + 1u) % B;
+            t->la[o].cnt--;
+            tl_queue(c, o, act);
+        }
+    if (c->last_setup & (1u << SETUP_QUAD_BIT))
+        tl_next_quad(c, act);
+    return (unsigned)(act - first);
+}
+
+static void core_prefetch(np_fdiff_core *c, const np_span *sp)
+{
+    /* The next span's set-up: from the next clock, and not inside a stall already allotted. */
+    np_fdiff_timeline *t = &c->tl;
+    uint64_t rel = c->ctx.now + 1u;
+    if (t->clock > rel)
+        rel = t->clock;
+    else
+        tl_run_until(c, rel);
+    if (sp->n)
+        tl_span_start(c, rel);
 }
 
 /* --- The engine (np_span.h) --- */
@@ -314,6 +595,7 @@ unsigned np_fdiff_core_advance(np_fdiff_core *c, np_span_counts *cnt)
 static void e_init(void *core, const void *cfg, const np_tex_regs *r) { np_fdiff_core_init(core, cfg, r); }
 static unsigned e_begin(void *core, const np_span *sp, np_span_counts *cnt) { return np_fdiff_core_begin(core, sp, cnt); }
 static unsigned e_advance(void *core, np_span_counts *cnt) { return np_fdiff_core_advance(core, cnt); }
+static void e_prefetch(void *core, const np_span *sp) { core_prefetch(core, sp); }
 static void e_issue(const void *core, void *sig) { ((np_span_sig *)sig)->x = np_fdiff_core_x(core); }
 static size_t e_datapath(const void *cfg, const np_tex_regs *r, np_op *ops, size_t max)
 {
@@ -332,6 +614,7 @@ const np_span_engine np_fdiff_engine = {
     .issue = e_issue,
     .seek = NULL, /* the forward differences are sequential */
     .datapath = e_datapath,
+    .prefetch = e_prefetch,
 };
 
 static void probe_pixel(const void *pctx, const void *core, const void *sig, uint32_t k)
@@ -422,6 +705,24 @@ size_t np_fdiff_datapath(const np_fdiff_cfg *cfg, const np_tex_regs *r, np_op *o
     np_dp_op(&d, "X", NULL, NP_OP_REG, 1,
              no * (3u * (NP_TEX_U_BITS + NP_TEX_DU_BITS + NP_TEX_CELL_BITS) + 4u * W + kbits) + 3u * W +
                  (K ? 3u * (NP_TEX_S_BITS + NP_TEX_DS_BITS) + kbits : 0u) + 2u * NP_TEX_N_BITS + SIDE_BITS + 1u,
+             0, 0, 0, 0);
+    /*
+     * The overlap (np_fdiff.h): per octave the crossing finder (R DDA adders
+     * per axis running ahead, 3R cell compares, its u and the cell it holds),
+     * B shadow sets of the four differences with their first pixel (u17), and
+     * the compare of the stepping's pixel with the FIFO head's; with K the
+     * quadric's one shadow; the descriptor buffer and the next span's set-up
+     * (the quadric's three and each octave's four differences, its first
+     * cell's finder state). The engine's arbiter: a priority compare per job.
+     */
+    const unsigned R = NP_FDIFF_FINDER_RATE, NB = NP_TEX_N_BITS;
+    np_dp_op(&d, "X", NULL, NP_OP_ADD, 3u * R * no, NP_TEX_U_BITS, 0, 0, 0, 0);
+    np_dp_op(&d, "X", NULL, NP_OP_CMP, 3u * R * no, NP_TEX_CELL_BITS, 0, 0, 0, 1);
+    np_dp_op(&d, "X", NULL, NP_OP_CMP, no, NB, 0, 0, 0, 0);
+    np_dp_op(&d, "SU", NULL, NP_OP_CMP, NP_FDIFF_SHADOWS * no + 2u + no, NB, 0, 0, 0, 0);
+    np_dp_op(&d, "X", NULL, NP_OP_REG, 1,
+             no * (3u * (NP_TEX_U_BITS + NP_TEX_CELL_BITS) + NB + NP_FDIFF_SHADOWS * (4u * W + NB)) + (K ? 3u * W : 0u) +
+                 3u * (NP_TEX_S_BITS + NP_TEX_DS_BITS) + NP_TEX_N_BITS + SIDE_BITS + 3u * W + no * 4u * W,
              0, 0, 0, 0);
     /* C1: x = Q + sum n_i (an adder tree, mod 2^W) ahead of the split, in the same clock. */
     lv = np_dp_add_tree(&d, "C1", "x", no + 1u, W, 1, 0);

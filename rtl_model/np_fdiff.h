@@ -52,6 +52,9 @@
  * the quadric), when a pixel's cell differs from the cell set up (on any
  * axis, in any octave), and, when the re-set-up interval K is not 0, after
  * K steps without a set-up (per octave; the quadric after K steps too).
+ * The set-up of a cell runs while the cell before it is stepped (double-
+ * buffered differences, below the core's state): the bits are those of a
+ * set-up at the cell's first pixel; only the timing differs.
  *
  * --- Error (argument; test_fdiff measures every term) ---
  * Additions are exact, so after k steps from a set-up the accumulated error
@@ -173,6 +176,70 @@ void np_fdiff_span(const np_fdiff_cfg *cfg, const np_tex_regs *r, const np_span 
  */
 extern const np_span_engine np_fdiff_engine;
 
+/*
+ * --- Set-up overlapped with stepping (the timing of the cycle model) ---
+ * The coefficient registers are buffered: every octave has its active
+ * differences and B = NP_FDIFF_SHADOWS shadow sets (a FIFO; the quadric,
+ * with K, one). While the core steps through a cell, the set-up engine
+ * computes the next cells' differences into the shadows. Their first pixels
+ * are known in advance from a per-octave crossing finder: a DDA that runs
+ * ahead of the stepping R = NP_FDIFF_FINDER_RATE pixels per clock (u + du
+ * .. u + R du: R u40 adders per axis, strides by shifts) from the span's
+ * first pixel and holds at a cell start it found until a shadow set takes
+ * it. At a cell's first pixel k_c the FIFO's head becomes active, in the
+ * clock the pixel issues. Likewise a one-deep descriptor buffer: the next
+ * span's set-up
+ * (quadric, front end, first cells) runs while the current span steps.
+ *
+ * The engine: P multipliers (latency Lm) shared by the jobs in flight. A
+ * job is a schedule's levels in order (np_tex_sched; a span's set-up is a
+ * job for the quadric and one per octave for its front end then its first
+ * cell, all released together); every clock the P multiplier slots go to the ready jobs in order
+ * of need (the pixel a job is for; the next span's job last), so a job
+ * alone takes exactly np_tex_sched_cycles. A cell's job is released when
+ * the finder has found its first pixel and a shadow set is free. A pixel whose
+ * set-up is not finished waits (the stall the model counts): a cell change
+ * costs nothing when the cell before it is at least as long as the set-up
+ * latency plus what higher-priority jobs take of the engine. The next
+ * span's job starts no earlier than the clock it is read, nor during a
+ * stall of the current span (the engine then serves the stalled set-up).
+ */
+enum {
+    NP_FDIFF_SHADOWS = 4, /* shadow difference sets per octave (B): the engine may run B cells ahead */
+    NP_FDIFF_FINDER_RATE = 4, /* pixels per clock of the crossing finder (R) */
+    NP_FDIFF_JOB_QUAD = NP_TEX_MAX_OCTAVES * NP_FDIFF_SHADOWS,
+    NP_FDIFF_JOB_SPAN,                                  /* the next span: its quadric, */
+    NP_FDIFF_JOBS = NP_FDIFF_JOB_SPAN + 1 + NP_TEX_MAX_OCTAVES, /* then per octave front end and first cell */
+    NP_FDIFF_PHASES_MAX = 16
+};
+
+typedef struct np_fdiff_job {
+    uint8_t state;    /* 0 none, 1 in flight, 2 finished */
+    uint8_t list;     /* its schedule: 0 cell, 1 quadric, 2 front end and cell */
+    uint16_t cur;     /* current phase */
+    uint32_t left;    /* products of the current level still to issue */
+    uint32_t need;    /* the pixel it is for (priority) */
+    uint64_t key;     /* priority: need; the next span's job last */
+    uint64_t ready;   /* clock from which the current phase proceeds */
+    uint64_t done;    /* finished: the first clock its values can be used */
+} np_fdiff_job;
+
+typedef struct np_fdiff_timeline {
+    int16_t ph[3][NP_FDIFF_PHASES_MAX]; /* phases: > 0 a level of that many products, < 0 fixed clocks */
+    unsigned nph[3];
+    uint64_t clock;                     /* the engine has allotted every clock before this one */
+    np_fdiff_job job[NP_FDIFF_JOBS];    /* per octave its next B cells (a ring), the quadric's next, the next span */
+    struct {
+        uint64_t u[3];                  /* the crossing finder: the coordinate at pixel k */
+        uint8_t cell[3];
+        uint32_t k;
+        int end;                        /* no further set-up in this span */
+        uint64_t t;                     /* the clock it is at pixel k */
+        unsigned head, cnt;             /* the ring of queued cells (slots o B + i) */
+    } la[NP_TEX_MAX_OCTAVES];
+    uint32_t qk;                        /* the quadric's last set-up pixel */
+} np_fdiff_timeline;
+
 /* The core's state (the engine state of np_fdiff_engine). */
 typedef struct np_fdiff_core {
     np_span_ctx ctx;     /* first (np_span.h) */
@@ -192,6 +259,7 @@ typedef struct np_fdiff_core {
         uint32_t steps;
     } oct[NP_TEX_MAX_OCTAVES];
     unsigned last_setup; /* what was set up for pixel k: bit i = octave i, bit 8 = quadric */
+    np_fdiff_timeline tl; /* the set-up engine's timing (not the bits) */
 } np_fdiff_core;
 
 /*
@@ -214,6 +282,8 @@ unsigned np_fdiff_cell_cycles(const np_fdiff_cfg *cfg);
 unsigned np_fdiff_quad_cycles(const np_fdiff_cfg *cfg);
 unsigned np_fdiff_front_cycles(const np_fdiff_cfg *cfg, const np_tex_regs *r); /* per octave */
 unsigned np_fdiff_span_setup_cycles(const np_fdiff_cfg *cfg, const np_tex_regs *r);
+/* The span set-up's latency on an idle engine (its jobs in parallel on the P multipliers): <= the cycles above. */
+unsigned np_fdiff_span_setup_latency(const np_fdiff_cfg *cfg, const np_tex_regs *r);
 
 /* Bits of the exact set-up values the datapath keeps: what np_tex_to_index reads of Y_j (117 + I). */
 static inline unsigned np_fdiff_y_window(const np_fdiff_cfg *c)

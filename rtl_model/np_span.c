@@ -54,7 +54,10 @@ void np_span_run(const np_span_engine *e, void *core, void *sig, const np_span *
         memset(&dummy, 0, sizeof dummy);
         cnt = &dummy;
     }
-    e->begin(core, sp, cnt);
+    /* The span run alone: accepted at clock 0, pixel k issued at clock t. */
+    np_span_ctx *clk = (np_span_ctx *)core;
+    clk->now = 0;
+    uint64_t t = 1u + e->begin(core, sp, cnt);
     for (uint32_t k = 0; k < sp->n; k++) {
         issue(e, core, sig, sp, k);
         for (unsigned st = 0; st < e->n_stages; st++)
@@ -63,7 +66,8 @@ void np_span_run(const np_span_engine *e, void *core, void *sig, const np_span *
         if (probe)
             probe(pctx, core, sig, k);
         cnt->pixels++;
-        e->advance(core, cnt);
+        clk->now = t;
+        t += 1u + e->advance(core, cnt);
     }
 }
 
@@ -80,6 +84,7 @@ int np_span_sim_init(np_span_sim *m, const np_span_engine *e, const void *cfg, c
         return -1;
     }
     e->init(m->core, cfg, r);
+    ((np_span_ctx *)m->core)->timed = 1;
     if (np_pipe_init(&m->pipe, e->stages, e->n_stages, e->sig_size, np_span_ctx_of(m->core)) != 0) {
         np_span_sim_free(m);
         return -1;
@@ -100,7 +105,9 @@ void np_span_sim_reset(np_span_sim *m)
     const np_span_ctx c = *np_span_ctx_of(m->core);
     np_pipe_reset(&m->pipe);
     m->eng->init(m->core, c.cfg, c.r);
+    ((np_span_ctx *)m->core)->timed = 1;
     m->busy = 0;
+    m->has_next = 0;
     m->stall = 0;
     m->k = 0;
     memset(&m->stats, 0, sizeof m->stats);
@@ -108,7 +115,7 @@ void np_span_sim_reset(np_span_sim *m)
 
 void np_span_sim_eval(np_span_sim *m, np_span_port *p)
 {
-    p->in_ready = !m->busy;
+    p->in_ready = m->eng->prefetch ? !m->has_next : !m->busy;
     m->pport.in_valid = m->busy && m->stall == 0;
     if (m->pport.in_valid)
         issue(m->eng, m->core, m->pending, &m->sp, m->k);
@@ -120,32 +127,55 @@ void np_span_sim_eval(np_span_sim *m, np_span_port *p)
         p->out = ((const np_span_sig *)m->pport.out_sig)->pix;
 }
 
+/* Load span sp into the engine (clock: the current one). */
+static void sim_begin(np_span_sim *m, const np_span *sp)
+{
+    m->sp = *sp;
+    m->k = 0;
+    m->stall = m->eng->begin(m->core, &m->sp, &m->stats.counts);
+    m->busy = m->sp.n > 0;
+}
+
 void np_span_sim_clock(np_span_sim *m, const np_span_port *p)
 {
     np_span_stats *st = &m->stats;
+    ((np_span_ctx *)m->core)->now = st->cycles;
     st->cycles++;
     int issued = m->pport.in_valid && m->pport.in_ready;
+    int accept = p->in_valid && p->in_ready;
     np_pipe_clock(&m->pipe, &m->pport); /* reads the pending bundle */
     if (m->busy) {
+        if (accept) { /* only with prefetch: into the buffer, its set-up may start */
+            m->next = *p->in;
+            m->has_next = 1;
+            m->eng->prefetch(m->core, &m->next);
+            accept = 0;
+        }
         if (m->stall > 0) {
             m->stall--;
             st->setup_stalls++;
         } else if (issued) {
             st->counts.pixels++;
             m->stall = m->eng->advance(m->core, &st->counts);
-            if (++m->k >= m->sp.n)
+            if (++m->k >= m->sp.n) {
                 m->busy = 0;
+                /* The buffered span begins in this clock (and an empty one leaves the unit idle). */
+                if (m->has_next) {
+                    m->has_next = 0;
+                    sim_begin(m, &m->next);
+                }
+            }
         } else {
             st->out_stalls++;
         }
-    } else if (p->in_valid) {
-        m->sp = *p->in;
-        m->k = 0;
-        m->stall = m->eng->begin(m->core, &m->sp, &st->counts);
-        m->busy = m->sp.n > 0;
+    } else if (accept) {
+        sim_begin(m, p->in);
+    } else if (m->has_next) {
+        m->has_next = 0;
+        sim_begin(m, &m->next);
     } else {
         st->idle++;
     }
 }
 
-int np_span_sim_idle(const np_span_sim *m) { return !m->busy && np_pipe_occupancy(&m->pipe) == 0; }
+int np_span_sim_idle(const np_span_sim *m) { return !m->busy && !m->has_next && np_pipe_occupancy(&m->pipe) == 0; }

@@ -33,6 +33,11 @@
  * backpressure a run of spans therefore takes
  *   spans + set-up cycles + pixels + n_stages   clocks
  * (tests fdiff.cycle_count and fdiff.texel_cycle_vs_model check it).
+ * An engine with prefetch (np_fdiff) reads the next descriptor into its
+ * buffer while a span steps and begins it in the clock the last pixel of
+ * the previous span issues: spans read while the unit was busy cost no
+ * accepting clock, and the set-up clocks are only those the engine could
+ * not hide behind stepping (the engine's stall, not its set-up work).
  *
  * --- Engine state and signal bundle (conventions) ---
  * An engine's state begins with an np_span_ctx: the context its pipeline
@@ -90,6 +95,14 @@ typedef struct np_span_ctx {
     const void *cfg;        /* the unit's configuration (np_fdiff_cfg, np_texel_cfg) */
     const np_tex_regs *r;
     unsigned F, W, fw;      /* index x: s(W) QI.F; colour weight bits Fw */
+    /*
+     * The clock of the current begin / advance / prefetch call (set by the
+     * sequencer: the cycle model's clock, or the bit-exact model's own count
+     * of a span run alone). An engine that overlaps its set-ups with stepping
+     * times them against it; the others ignore it.
+     */
+    uint64_t now;
+    int timed;              /* the cycle model runs the engine: time its set-ups (the bit-exact model does not) */
 } np_span_ctx;
 
 /* The head of every span unit's signal bundle (formats as np_texture.h). */
@@ -134,6 +147,15 @@ typedef struct np_span_engine {
     void (*seek)(void *core, const np_span *sp, uint32_t k);
     /* The unit's datapath declaration for cfg and registers r (np_datapath.h): up to max ops, returns the count. */
     size_t (*datapath)(const void *cfg, const np_tex_regs *r, np_op *ops, size_t max);
+    /*
+     * Optional (NULL: a descriptor is read only when the engine is idle):
+     * the engine has a one-deep descriptor buffer. The sequencer accepts the
+     * next descriptor while a span is stepping and calls prefetch with it, so
+     * the engine can start that span's set-up in the background; begin is
+     * then called for it in the clock the previous span's last pixel issues
+     * (no accepting clock) and returns only the set-up clocks that remain.
+     */
+    void (*prefetch)(void *core, const np_span *sp);
 } np_span_engine;
 
 static inline const np_span_ctx *np_span_ctx_of(const void *core) { return (const np_span_ctx *)core; }
@@ -161,6 +183,8 @@ typedef struct np_span_sim {
     np_span sp;          /* the span in the engine */
     uint32_t k;          /* its current pixel */
     int busy;            /* a span is in the engine */
+    np_span next;        /* the descriptor buffer (engines with prefetch) */
+    int has_next;
     unsigned stall;      /* set-up clocks left before pixel k can issue */
     np_span_stats stats;
 } np_span_sim;

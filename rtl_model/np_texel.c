@@ -61,10 +61,7 @@ static void stage_l(const void *cv, void *sv)
         for (unsigned a = 0; a < 3; a++)
             s->w[o][a] = (uint32_t)np_shr_round_half_up_u(np_tex_frac(s->u[o][a]), sh);
     }
-    const int64_t zero[3] = { 0, 0, 0 };
-    np_s128 q[3];
-    np_tex_quadric_exact(t->r, s->s, zero, q);
-    s->qx = q[0];
+    s->qx = s->qin;
 }
 
 /* lerp: a 2^WT + w (b - a), exact. */
@@ -136,8 +133,12 @@ const np_stage_desc np_texel_stages[NP_TEXEL_STAGES] = {
 unsigned np_texel_span_setup_cycles(const np_texel_cfg *cfg, const np_tex_regs *r)
 {
     const np_tex_sched *front = np_tex_regs_diagonal(r) ? &np_tex_sched_octave_diag : &np_tex_sched_octave;
-    return r->n_oct * np_tex_sched_cycles(front, cfg->setup_mults, cfg->mult_lat);
+    return np_tex_sched_cycles(&np_texel_sched_quad, cfg->setup_mults, cfg->mult_lat) +
+           r->n_oct * np_tex_sched_cycles(front, cfg->setup_mults, cfg->mult_lat);
 }
+
+/* The quadric's set-up: M_q s, M_q ds (18 products); s.M_q s, s.M_q ds, ds.M_q ds, b.s, b.ds (15); sum, round. */
+const np_tex_sched np_texel_sched_quad = { "quadric", 2, 2, { 18, 15 } };
 
 static void front_init(void *core, const void *cfg, const np_tex_regs *r)
 {
@@ -168,9 +169,34 @@ static unsigned front_begin(void *core, const np_span *sp, np_span_counts *cnt)
         memcpy(f->du[o], os.du, sizeof os.du);
     }
     memcpy(f->s, sp->s, sizeof f->s);
+    np_s128 q[3];
+    np_tex_quadric_exact(r, sp->s, sp->ds, q);
+    f->q = q[0];
+    f->dq = q[1];
+    f->d2q = q[2];
     cnt->span_setups++;
     cnt->setup_cycles += cycles;
-    return cycles;
+    if (!f->ctx.timed)
+        return cycles;
+    /* Timing: what remains of a prefetched span's set-up, or all of it from the next clock. */
+    const uint64_t first = f->ctx.now + 1u;
+    uint64_t done = f->fetched ? f->fe_done : (first > f->fe_free ? first : f->fe_free) + cycles;
+    f->fetched = 0;
+    f->fe_free = done;
+    return done > first ? (unsigned)(done - first) : 0u;
+}
+
+static void front_prefetch(void *core, const np_span *sp)
+{
+    np_texel_front *f = core;
+    if (sp->n == 0)
+        return;
+    uint64_t start = f->ctx.now + 1u;
+    if (f->fe_free > start)
+        start = f->fe_free;
+    f->fe_done = start + np_texel_span_setup_cycles(f->ctx.cfg, f->ctx.r);
+    f->fe_free = f->fe_done;
+    f->fetched = 1;
 }
 
 /* One DDA step of every coordinate; no set-up ever follows. */
@@ -185,6 +211,9 @@ static unsigned front_advance(void *core, np_span_counts *cnt)
             f->u[o][a] = np_tex_dda(f->u[o][a], f->du[o][a]);
     for (unsigned a = 0; a < 3; a++)
         f->s[a] += f->sp.ds[a];
+    /* The quadric's forward differences (in hardware in parallel, on the old values). */
+    f->q = np_add128(f->q, f->dq);
+    f->dq = np_add128(f->dq, f->d2q);
     return 0;
 }
 
@@ -195,6 +224,7 @@ static void front_issue(const void *core, void *sig)
     for (unsigned o = 0; o < f->ctx.r->n_oct; o++)
         memcpy(s->u[o], f->u[o], sizeof s->u[o]);
     memcpy(s->s, f->s, sizeof s->s);
+    s->qin = f->q;
 }
 
 /* Pixel k placed directly: u0 + k du (mod 256) and s + k ds, the values the DDAs reach. */
@@ -214,6 +244,11 @@ static void front_seek(void *core, const np_span *sp, uint32_t k)
     }
     for (unsigned a = 0; a < 3; a++)
         f->s[a] = sp->s[a] + (int64_t)k * sp->ds[a];
+    np_s128 q[3];
+    np_tex_quadric_exact(r, f->s, sp->ds, q);
+    f->q = q[0];
+    f->dq = q[1];
+    f->d2q = q[2];
 }
 
 static size_t front_datapath(const void *cfg, const np_tex_regs *r, np_op *ops, size_t max)
@@ -233,6 +268,7 @@ const np_span_engine np_texel_engine = {
     .issue = front_issue,
     .seek = front_seek,
     .datapath = front_datapath,
+    .prefetch = front_prefetch,
 };
 
 static void probe_pixel(const void *pctx, const void *core, const void *sig, uint32_t k)
@@ -272,43 +308,43 @@ size_t np_texel_datapath(const np_texel_cfg *cfg, const np_tex_regs *r, np_op *o
     /* Texture registers (written by the host between frames). */
     np_dp_op(&d, "T", NULL, NP_OP_REG, 1, np_tex_reg_bits(r), 0, 0, 0, 0);
     /*
-     * FE: the span set-up on an engine of P multipliers (np_tex_sched_octave):
-     * M s + o and M ds (s24 x s48 products, exact sums of three < 2^72: s73),
-     * rounded once to u40 / s40 (an adder over the 16 + 40 bits it keeps).
+     * FE: the span set-up on an engine of P multipliers: per octave
+     * (np_tex_sched_octave) M s + o and M ds (s24 x s48 products, exact sums
+     * of three < 2^72: s73), rounded once to u40 / s40 (an adder over the 16
+     * + 40 bits it keeps); the quadric (np_texel_sched_quad): M_q s and M_q ds
+     * (s48 x s48, rows s97), then s.(M_q s) etc. (s48 x the s97 rows, kept
+     * modulo 2^qw: only the window is read), so one multiplier of 48 x
+     * min(97, qw) covers every product; its accumulator, the rows' register
+     * file (6 x s97) and q, dq, d2q (qw each).
      */
-    const unsigned fe_prod = NP_TEX_M_BITS + NP_TEX_S_BITS, fe_sum = fe_prod + 1u;
-    np_dp_op(&d, "FE", NULL, NP_OP_MUL, P, NP_TEX_M_BITS, NP_TEX_S_BITS, 0, 0, 0);
+    const unsigned ms = 2u * NP_TEX_S_BITS + 1u, qm = ms < qw ? ms : qw;
+    const unsigned fe_prod = NP_TEX_S_BITS + qm, fe_sum = fe_prod + 1u;
+    np_dp_op(&d, "FE", NULL, NP_OP_MUL, P, NP_TEX_S_BITS, qm, 0, 0, 0);
     np_dp_op(&d, "FE", NULL, NP_OP_ADD, P, fe_sum, 0, 0, 0, 1);
     np_dp_op(&d, "FE", NULL, NP_OP_ADD, 1, NP_TEX_M_FRAC + NP_TEX_U_BITS, 0, 0, 0, 2);
-    np_dp_op(&d, "FE", NULL, NP_OP_REG, 1, P * Lm * fe_prod + P * fe_sum + 16u, 0, 0, 0, 0); /* + stall counter */
-    /* D: one DDA step per pixel: u += du (u40, mod 256) per octave and axis, s += ds; the pixel counter. */
+    np_dp_op(&d, "FE", NULL, NP_OP_REG, 1, P * Lm * fe_prod + P * fe_sum + 6u * ms + 3u * qw + 16u, 0, 0, 0, 0);
+    /*
+     * D: one DDA step per pixel: u += du (u40, mod 256) per octave and axis, s += ds; the quadric's two
+     * forward-difference adders q += dq, dq += d2q (qw bits: exact modulo 2^qw); the pixel counter; the
+     * descriptor buffer and the next span's set-up results (u, du per octave, q, dq, d2q).
+     */
     np_dp_op(&d, "D", "u", NP_OP_ADD, 3u * no, NP_TEX_U_BITS, 0, NP_TEX_U_BITS, 0, 0);
     np_dp_op(&d, "D", "s", NP_OP_ADD, 3, NP_TEX_S_BITS, 0, NP_TEX_S_BITS, 1, 0);
+    np_dp_op(&d, "D", NULL, NP_OP_ADD, 2, qw, 0, 0, 0, 0);
     np_dp_op(&d, "D", NULL, NP_OP_ADD, 1, NP_TEX_N_BITS, 0, 0, 0, 0);
     np_dp_op(&d, "D", NULL, NP_OP_CMP, 1, NP_TEX_N_BITS, 0, 0, 0, 1);
+    const unsigned desc = 3u * (NP_TEX_S_BITS + NP_TEX_DS_BITS) + NP_TEX_N_BITS + SIDE_BITS;
     np_dp_op(&d, "D", NULL, NP_OP_REG, 1,
-             3u * no * (NP_TEX_U_BITS + NP_TEX_DU_BITS) + 3u * (NP_TEX_S_BITS + NP_TEX_DS_BITS) +
-                 2u * NP_TEX_N_BITS + side,
+             3u * no * (NP_TEX_U_BITS + NP_TEX_DU_BITS) + 3u * (NP_TEX_S_BITS + NP_TEX_DS_BITS) + 3u * qw +
+                 2u * NP_TEX_N_BITS + side + desc + 3u * no * (NP_TEX_U_BITS + NP_TEX_DU_BITS) + 3u * qw,
              0, 0, 0, 0);
-    /* L: 8 corner hashes per octave; the weights rounded to WT bits; the exact quadric (window of qw bits). */
+    /* L: 8 corner hashes per octave; the weights rounded to WT bits; the quadric's window registered. */
     np_tex_dp_lattice(&d, "L", no, 0);
     if (wt < NP_TEX_FC)
         np_dp_op(&d, "L", "w", NP_OP_ADD, 3u * no, wb, 0, wb, 0, 0);
     else
         np_dp_op(&d, "L", "w", NP_OP_REG, 0, 0, 0, wb, 0, 0);
-    /*
-     * The quadric q'(s) at Q.88 (np_tex_quadric_exact with ds = 0): M_q s (9
-     * products s48 x s48, rows summed: |.| < 3 2^94, s97), b.s (3 products),
-     * s.(M_q s) (3 products, kept modulo 2^qw: only the window is read), sums.
-     */
-    const unsigned ms = 2u * NP_TEX_S_BITS + 1u;
-    np_dp_op(&d, "L", NULL, NP_OP_MUL, 12, NP_TEX_K_BITS, NP_TEX_S_BITS, 0, 0, 0);
-    np_dp_op(&d, "L", NULL, NP_OP_ADD, 6, ms, 0, 0, 0, 1);
-    np_dp_op(&d, "L", NULL, NP_OP_ADD, 2, ms, 0, 0, 0, 2);
-    np_dp_op(&d, "L", NULL, NP_OP_MUL, 3, NP_TEX_S_BITS, ms < qw ? ms : qw, 0, 0, 3);
-    np_dp_op(&d, "L", NULL, NP_OP_ADD, 2, qw, 0, 0, 0, 4);
-    np_dp_op(&d, "L", NULL, NP_OP_ADD, 1, qw, 0, 0, 0, 5);
-    np_dp_op(&d, "L", "qx", NP_OP_ADD, 1, qw, 0, qw, 1, 6);
+    np_dp_op(&d, "L", "qx", NP_OP_REG, 0, 0, 0, qw, 1, 0);
     np_dp_op(&d, "L", NULL, NP_OP_REG, 1, no * (8u * NP_TEX_LAT_FRAC + 3u * wb) + qw + side, 0, 0, 0, 0);
     /* I1 I2 I3: l = a 2^WT + w (b - a), exact: 4, 2, 1 lerps per octave. */
     np_dp_op(&d, "I1", "d1", NP_OP_ADD, 4u * no, NP_TEX_LAT_FRAC + 1u, 0, NP_TEX_LAT_FRAC + 1u, 1, 0);

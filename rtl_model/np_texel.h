@@ -18,8 +18,15 @@
  *   l2[2]    Q.(6+2WT)      along y, exact
  *   l3       Q.(6+3WT)      along z, exact; 0 <= l3 <= 63/64 (convex)
  *   N        s(W) QI.F      amp * l3 (Q.(20+3WT)) rounded once to F bits
- * and the quadric per pixel, exact at 88 fraction bits (np_tex_quadric_exact)
- * and rounded once to F bits; x = Q + sum N (mod 2^W); colour as np_fdiff.
+ * and the quadric per pixel, exact at 88 fraction bits and rounded once to F
+ * bits; x = Q + sum N (mod 2^W); colour as np_fdiff. The quadric is a
+ * quadratic in k along the span, so the front end forward-differences it
+ * exactly: its span set-up computes q'(s), its first and (constant) second
+ * difference (np_tex_quadric_exact, Q.88 modulo 2^128) and every pixel adds
+ * q += dq, dq += d2q (two adders of the window the rounding reads): exact
+ * additions modulo 2^128 give q'(s + k ds) exactly, the same bits as
+ * evaluating it per pixel, for two adders instead of 15 multipliers.
+ * Only the noise is evaluated per pixel.
  *
  * Error against the exact texture at the unit's coordinates (argument):
  * the weights move each lerp by at most |n1 - n0| 2^-(WT+1) <= (63/64)
@@ -29,7 +36,7 @@
  * Nothing accumulates from pixel to pixel.
  *
  * Pipeline (np_pipe, one pixel per clock, latency NP_TEXEL_STAGES):
- *   L  lattice hashes, weights, quadric products   I1 x-lerps
+ *   L  lattice hashes, weights (the quadric is an input)   I1 x-lerps
  *   I2 y-lerps   I3 z-lerp   A amplitude, rounding to F   S sum
  *   C1 C2 C3 colour map (np_texture.h)
  */
@@ -78,7 +85,8 @@ typedef struct np_texel_sig {
     int64_t s[3];                       /* input: texture coordinate */
     uint8_t n[NP_TEX_MAX_OCTAVES][8];   /* L */
     uint32_t w[NP_TEX_MAX_OCTAVES][3];  /* L */
-    np_s128 qx;                         /* L: exact quadric, Q.88 */
+    np_s128 qin;                        /* input: the exact quadric from the front end, Q.88 */
+    np_s128 qx;                         /* L: the same, registered */
     np_s128 l1[NP_TEX_MAX_OCTAVES][4];  /* I1 */
     np_s128 l2[NP_TEX_MAX_OCTAVES][2];  /* I2 */
     np_s128 l3[NP_TEX_MAX_OCTAVES];     /* I3 */
@@ -100,13 +108,19 @@ typedef struct np_texel_front {
     uint64_t u[NP_TEX_MAX_OCTAVES][3];
     int64_t du[NP_TEX_MAX_OCTAVES][3];
     int64_t s[3];
+    np_s128 q, dq, d2q;  /* the quadric and its differences along the span, Q.88 mod 2^128 */
+    uint64_t fe_free;    /* timing: the front end's engine is free from this clock */
+    uint64_t fe_done;    /* a prefetched span's set-up finishes at this clock */
+    int fetched;
 } np_texel_front;
 
 /*
  * The engine (np_span.h): the sequencer runs it as the bit-exact model
  * (np_span_run, np_texel_span) and as the cycle-accurate model (np_span_sim):
  * 1 clock to accept a descriptor, the front end's set-up stall, then one
- * pixel per clock into the nine stages. Its seek places pixel k directly
+ * pixel per clock into the nine stages. Like np_fdiff it has a one-deep
+ * descriptor buffer: the next span's set-up runs on the front end's engine
+ * (idle while a span steps) and begin waits only for what remains of it. Its seek places pixel k directly
  * (u0 + k du mod 256, s + k ds: the DDA's values, by a multiply).
  */
 extern const np_span_engine np_texel_engine;
@@ -120,8 +134,9 @@ typedef struct np_texel_probe {
 void np_texel_span(const np_texel_cfg *cfg, const np_tex_regs *r, const np_span *sp,
                    np_tex_pixel *out, np_span_counts *counts, const np_texel_probe *probe);
 
-/* The span set-up stall: the front end's schedule per octave on the engine (np_tex_sched). */
+/* The span set-up: the quadric's schedule and the front end's per octave on the engine (np_tex_sched). */
 unsigned np_texel_span_setup_cycles(const np_texel_cfg *cfg, const np_tex_regs *r);
+extern const np_tex_sched np_texel_sched_quad;
 
 /* --- Datapath declaration (np_datapath.h) --- */
 

@@ -8,12 +8,13 @@
 np_test_program(test_fdiff test_fdiff.c span_test.c)
 np_add_cases(test_fdiff fdiff
   stiff_span65536 stiff_deriv_tiny stiff_deriv_huge stiff_cell_edge_on_pixel stiff_span_one_zero
-  stiff_wrap stiff_quadric_long guard_search setup_exact appendix_coefficients drift_identity
-  cycle_vs_model cycle_count)
+  stiff_wrap stiff_quadric_long guard_search guard_min_both_ways setup_exact appendix_coefficients drift_identity
+  cycle_vs_model cycle_count setup_overlap)
 np_test_program(test_texel test_texel.c span_test.c)
 np_add_cases(test_texel fdiff texel_exact_weights texel_cycle_vs_model)
 np_test_program(test_texture test_texture.c span_test.c)
-np_add_cases(test_texture fdiff colour_stage front_end_rounding lattice_distribution cfg_validation)
+np_add_cases(test_texture fdiff colour_stage front_end_rounding lattice_distribution cfg_validation
+  register_bound)
 
 np_test_program(test_render test_render.c)
 target_link_libraries(test_render PRIVATE np_render)
@@ -98,4 +99,25 @@ foreach(bad "unknown_unit|nosuch:x=1|unknown unit 'nosuch'"
   add_test(NAME render.cli_unit_config_${name} COMMAND ${CMAKE_COMMAND}
     -DCMD=$<TARGET_FILE:noisepipe> -DARGS=render\;--unit-config\;${arg} -DWANT_RC=2 "-DWANT=${want}"
     -P ${CMAKE_CURRENT_SOURCE_DIR}/render_expect.cmake)
+endforeach()
+# Register quantisation inside the bound (issue 10, docs/fdiff.md "Registers over a scene"): each scene
+# below either fits the units' bound or is refused at load, exit 2, the message naming scene and field.
+foreach(c
+    "reg_scale01_near1000|field texture.octaves[0] transform entry [0][0] = 0.1 rounds in its register (24 bits, 16 fraction)"
+    "reg_scale1e6|field texture.octaves[0] transform entry [0][0] = 1e-06 rounds in its register (24 bits, 16 fraction)"
+    "reg_quadric_a1e6|field texture.quadric.A = 2e-06 rounds in its register (48 bits, 24 fraction)"
+    "reg_clamp_j1023|field texture.quadric.J: the colour index reaches 1024.48 on a clamped colour map")
+  string(REPLACE "|" ";" c "${c}")
+  list(GET c 0 name)
+  list(GET c 1 want)
+  foreach(cmd render report)
+    if(cmd STREQUAL render)
+      set(args "render\;-o\;${CMAKE_CURRENT_BINARY_DIR}/render-reg\;${CMAKE_CURRENT_SOURCE_DIR}/scenes/${name}.json")
+    else()
+      set(args "report\;gates\;--scene\;${CMAKE_CURRENT_SOURCE_DIR}/scenes/${name}.json")
+    endif()
+    add_test(NAME render.${cmd}_refuses_${name} COMMAND ${CMAKE_COMMAND}
+      -DCMD=$<TARGET_FILE:noisepipe> -DARGS=${args} -DWANT_RC=2 "-DWANT=scene ${name}: ${want}"
+      -P ${CMAKE_CURRENT_SOURCE_DIR}/render_expect.cmake)
+  endforeach()
 endforeach()

@@ -2,7 +2,7 @@
 # Gate and latency reports (src/report/report_gates.c, src/report/report_pareto.c).
 np_test_program(test_report test_report.c)
 np_add_cases(test_report report cost_model_calibration latency_matches_model unknown_stage_rejected
-  dse_axes_from_keys)
+  dse_axes_from_keys levels_retime)
 set_tests_properties(report.cost_model_calibration PROPERTIES
   ENVIRONMENT "NP_COST_CALIB=${CMAKE_CURRENT_SOURCE_DIR}/cost_calib.v" SKIP_RETURN_CODE 77)
 # The copies in docs/ are what `noisepipe report all` writes today, byte for byte.
@@ -13,3 +13,22 @@ add_test(NAME report.docs_fresh COMMAND ${CMAKE_COMMAND}
 add_test(NAME report.scene_wood_vs_marble COMMAND ${CMAKE_COMMAND}
   -DNOISEPIPE=$<TARGET_FILE:noisepipe> -DSCENES=${PROJECT_SOURCE_DIR}/vectors/scenes
   -P ${CMAKE_CURRENT_SOURCE_DIR}/report_scene.cmake)
+# --levels (issue 14): every stage pipelined to the target clock; the one-clock recurrences that cannot
+# be cut are named with the reason; a target out of range is refused.
+add_test(NAME report.levels_default COMMAND noisepipe report gates)
+set_tests_properties(report.levels_default PROPERTIES PASS_REGULAR_EXPRESSION
+  "Pipelined to 40 gate levels.*\\| classic3 \\| \\*\\*all\\*\\* \\|.*yes \\|.*fdiff X cannot meet 40 levels:\\*\\* a one-clock recurrence: its 67-bit adder")
+add_test(NAME report.levels_wide COMMAND noisepipe report gates --unit fdiff --levels 200)
+set_tests_properties(report.levels_wide PROPERTIES PASS_REGULAR_EXPRESSION
+  "\\| fdiff \\| X \\| 154 \\| 1 \\| 0 \\| 0 \\| 0 \\| 137 \\| yes \\|")
+add_test(NAME report.levels_bad COMMAND ${CMAKE_COMMAND}
+  -DCMD=$<TARGET_FILE:noisepipe> -DARGS=report\;gates\;--levels\;2 -DWANT_RC=2
+  "-DWANT=--levels 2: expected gate levels per clock, 4..100000" -P ${CMAKE_CURRENT_SOURCE_DIR}/render_expect.cmake)
+# report tradeoff (docs/tradeoff.md): fdiff against texel at <= 1 LSB on a scene; a scene the units refuse: exit 2.
+add_test(NAME report.tradeoff_wood COMMAND noisepipe report tradeoff --scene ${PROJECT_SOURCE_DIR}/vectors/scenes/wood.json
+  -o ${CMAKE_CURRENT_BINARY_DIR}/tradeoff)
+set_tests_properties(report.tradeoff_wood PROPERTIES PASS_REGULAR_EXPRESSION "wrote .*tradeoff-wood.md")
+add_test(NAME report.tradeoff_refused COMMAND ${CMAKE_COMMAND}
+  -DCMD=$<TARGET_FILE:noisepipe> -DARGS=report\;tradeoff\;--scene\;${CMAKE_CURRENT_SOURCE_DIR}/scenes/reg_scale1e6.json
+  -DWANT_RC=2 "-DWANT=scene reg_scale1e6: field texture.octaves[0] transform entry [0][0]"
+  -P ${CMAKE_CURRENT_SOURCE_DIR}/render_expect.cmake)

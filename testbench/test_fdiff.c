@@ -343,9 +343,16 @@ static int stiff_span_one_zero(void)
             next++;
         np_span_sim_clock(&sim, &p);
     }
-    unsigned setup = np_tex_sched_cycles(&np_fdiff_sched_quad, cfg.setup_mults, cfg.mult_lat) +
-                     np_tex_sched_cycles(&np_tex_sched_octave_diag, cfg.setup_mults, cfg.mult_lat) +
-                     np_tex_sched_cycles(&np_fdiff_sched_cell, cfg.setup_mults, cfg.mult_lat);
+    /*
+     * The span set-up's work is the quadric's, the front end's and the cell's
+     * schedules; its latency runs the quadric's job beside the octave's on the
+     * engine (np_fdiff_span_setup_latency, checked here against that sum).
+     */
+    unsigned work = np_tex_sched_cycles(&np_fdiff_sched_quad, cfg.setup_mults, cfg.mult_lat) +
+                    np_tex_sched_cycles(&np_tex_sched_octave_diag, cfg.setup_mults, cfg.mult_lat) +
+                    np_tex_sched_cycles(&np_fdiff_sched_cell, cfg.setup_mults, cfg.mult_lat);
+    unsigned setup = np_fdiff_span_setup_latency(&cfg, &r);
+    NP_CHECK(setup <= work && work == np_fdiff_span_setup_cycles(&cfg, &r), "latency %u, work %u", setup, work);
     /*
      * 2 clocks to accept the first two descriptors, the set-up, 1 pixel, and the colour
      * pipeline's latency; the trailing empty span is accepted while the pixel drains.
@@ -522,6 +529,68 @@ static int guard_search(void)
     return 0;
 }
 
+/*
+ * The fewest guard bits, proved both ways (issue 10): one octave at the
+ * steepest map over 65,536-pixel spans in one cell. The bound guarantees
+ * <= 1 LSB from G = 42 (0.5 + 255 (2^-(F+1) B3(65535) + 2^-13) <= 1); the
+ * search below finds a span that exceeds 1 LSB at G = 41, and the same
+ * spans stay within at 42. Spans: random starts inside cell (10, 20, 30)
+ * and steps that keep pixel 65,535 in the cell, so the third difference's
+ * rounding residual, times C(65535, 3) = 4.7e13, meets the colour's
+ * rounding; colour only (no drift probes) for speed.
+ */
+static int guard_min_both_ways(void)
+{
+    np_tex_regs r = span_ramp_regs();
+    np_ref_texture t = ramp_ref();
+    np_fdiff_cfg c41 = np_fdiff_cfg_default(), c42 = c41;
+    c41.guard = 41;
+    c42.guard = 42;
+    unsigned gb = 0;
+    while (0.5 + 255.0 * (np_fdiff_drift_bound_noise(c41.w_frac + gb, NP_TEX_SPAN_MAX - 1) +
+                          ldexp(1.0, -(int)c41.w_frac - 1)) > 1.0)
+        gb++;
+    np_rng g;
+    np_rng_seed(&g, 4142);
+    enum { TRIES = 6 }; /* 6 x 65,536 pixels at each G; the seed finds a failing span at G = 41 among them */
+    double worst41 = 0, worst42 = 0;
+    np_span found;
+    int have = 0;
+    unsigned tried = 0;
+    for (unsigned it = 0; it < TRIES; it++) {
+        double s0[3], ds[3];
+        for (int a = 0; a < 3; a++) {
+            double frac = ldexp((double)np_rng_below(&g, 1u << 20), -21); /* [0, 0.5) */
+            s0[a] = 10.0 * (a + 1) + frac;
+            double room = (1.0 - frac) / 65536.0;
+            ds[a] = ldexp(floor(ldexp(room * (0.5 + 0.5 * ldexp((double)np_rng_below(&g, 1u << 20), -20)), 40)), -40);
+        }
+        np_span sp = span_mk(0, 0, NP_TEX_SPAN_MAX, s0, ds);
+        measure m41, m42;
+        run_span_opt(&c41, &r, &t, &sp, &m41, 1);
+        tried++;
+        if (m41.max_lsb > worst41)
+            worst41 = m41.max_lsb;
+        if (m41.max_lsb > 1.0 && !have) {
+            found = sp;
+            have = 1;
+        }
+        run_span_opt(&c42, &r, &t, &sp, &m42, 1);
+        if (m42.max_lsb > worst42)
+            worst42 = m42.max_lsb;
+    }
+    printf("bound-based minimum: G = %u; searched %u spans of 65,536 pixels: worst %.4f LSB at G = 41, %.4f at G = 42\n",
+           gb, tried, worst41, worst42);
+    if (have)
+        printf("G = 41 fails on the span s = (%.17g, %.17g, %.17g), ds = (%a, %a, %a), 65,536 pixels\n",
+               ldexp((double)found.s[0], -32), ldexp((double)found.s[1], -32), ldexp((double)found.s[2], -32),
+               ldexp((double)found.ds[0], -32), ldexp((double)found.ds[1], -32), ldexp((double)found.ds[2], -32));
+    NP_CHECK(gb == 42, "the bound's minimum is %u, not 42", gb);
+    NP_CHECK(have, "no span over 1 LSB at G = 41 in %u tries (worst %.4f)", tried, worst41);
+    NP_CHECK(worst42 <= 1.0, "G = 42 exceeds 1 LSB (%.4f) on the spans searched", worst42);
+    return 0;
+}
+
 /* --- Set-up and identities --- */
 
 static void rand_cell(np_rng *g, uint64_t u[3], int64_t du[3])
@@ -688,7 +757,8 @@ static int cycle_vs_model(void)
         NP_CHECK(d.stats.counts.cell_setups == cnt.cell_setups && d.stats.counts.interval_setups == cnt.interval_setups &&
                      d.stats.counts.setup_cycles == cnt.setup_cycles,
                  "set-up counts differ");
-        NP_CHECK(d.stats.setup_stalls == cnt.setup_cycles, "stall cycles %llu != set-up cycles %llu",
+        /* The set-ups overlap with stepping: the stall is what the engine could not hide of its work. */
+        NP_CHECK(d.stats.setup_stalls <= cnt.setup_cycles, "stall cycles %llu > set-up cycles %llu",
                  (unsigned long long)d.stats.setup_stalls, (unsigned long long)cnt.setup_cycles);
         free(sp);
         free(want);
@@ -698,7 +768,12 @@ static int cycle_vs_model(void)
 
 static int cycle_count(void)
 {
-    /* With no stalls and no gaps: cycles = spans + set-up cycles + pixels + pipeline latency. */
+    /*
+     * With no stalls and no gaps, spans back to back: the first descriptor's
+     * accepting clock, then every later one read into the buffer while the
+     * span before it steps: cycles = 1 + empty spans + set-up stalls + pixels
+     * + pipeline latency; the stalls are at most the set-up work.
+     */
     np_rng g;
     np_rng_seed(&g, 22);
     np_tex_regs r = span_multi_regs(&g, 3);
@@ -707,16 +782,24 @@ static int cycle_count(void)
     np_span sp[NS];
     np_span_counts cnt;
     span_rand_run(&np_fdiff_engine, &cfg, &r, &g, sp, NS, NULL, &cnt);
+    uint64_t empty = 0;
+    for (unsigned i = 0; i < NS; i++)
+        empty += sp[i].n == 0;
     span_drive_result d;
     NP_CHECK(span_drive(&np_fdiff_engine, &cfg, &r, sp, NS, NULL, 0, NULL, NULL, UINT64_MAX, &d) == 0, "init");
-    uint64_t want = NS + cnt.setup_cycles + cnt.pixels + NP_FDIFF_TAIL_STAGES;
-    printf("%u spans, %llu pixels, %llu set-up cycles (%llu span, %llu cell set-ups): %llu cycles, predicted %llu\n", NS,
-           (unsigned long long)cnt.pixels, (unsigned long long)cnt.setup_cycles, (unsigned long long)cnt.span_setups,
-           (unsigned long long)cnt.cell_setups, (unsigned long long)d.stats.cycles, (unsigned long long)want);
+    /* An empty span read into the buffer ends when it begins: the descriptor after it takes a clock to read. */
+    uint64_t want = 1u + empty + d.stats.setup_stalls + cnt.pixels + NP_FDIFF_TAIL_STAGES;
+    printf("%u spans (%llu empty), %llu pixels, set-up work %llu cycles (%llu span, %llu cell set-ups), stalls %llu: "
+           "%llu cycles, predicted %llu\n",
+           NS, (unsigned long long)empty, (unsigned long long)cnt.pixels, (unsigned long long)cnt.setup_cycles,
+           (unsigned long long)cnt.span_setups, (unsigned long long)cnt.cell_setups,
+           (unsigned long long)d.stats.setup_stalls, (unsigned long long)d.stats.cycles, (unsigned long long)want);
     NP_CHECK(d.stats.cycles == want, "cycles %llu, predicted %llu", (unsigned long long)d.stats.cycles,
              (unsigned long long)want);
+    NP_CHECK(d.stats.setup_stalls <= cnt.setup_cycles && d.stats.counts.setup_cycles == cnt.setup_cycles,
+             "stalls %llu, work %llu", (unsigned long long)d.stats.setup_stalls, (unsigned long long)cnt.setup_cycles);
     printf("set-up costs (P = %u multipliers, latency %u): cell %u cycles (%u products), quadric %u (%u), octave "
-           "front end %u (%u), diagonal %u (%u)\n",
+           "front end %u (%u), diagonal %u (%u); span set-up latency %u (work %u)\n",
            cfg.setup_mults, cfg.mult_lat, np_tex_sched_cycles(&np_fdiff_sched_cell, cfg.setup_mults, cfg.mult_lat),
            np_tex_sched_products(&np_fdiff_sched_cell),
            np_tex_sched_cycles(&np_fdiff_sched_quad, cfg.setup_mults, cfg.mult_lat),
@@ -724,7 +807,46 @@ static int cycle_count(void)
            np_tex_sched_cycles(&np_tex_sched_octave, cfg.setup_mults, cfg.mult_lat),
            np_tex_sched_products(&np_tex_sched_octave),
            np_tex_sched_cycles(&np_tex_sched_octave_diag, cfg.setup_mults, cfg.mult_lat),
-           np_tex_sched_products(&np_tex_sched_octave_diag));
+           np_tex_sched_products(&np_tex_sched_octave_diag), np_fdiff_span_setup_latency(&cfg, &r),
+           np_fdiff_span_setup_cycles(&cfg, &r));
+    return 0;
+}
+
+/*
+ * Set-up overlapped with stepping, exactly: one octave (ramp), one cell
+ * crossing at pixel p (u = k / p on one axis), span 2p. The span set-up
+ * stalls its latency; the second cell's set-up is released when the finder
+ * (R pixels per clock from the first pixel) has found pixel p and takes the
+ * cell's cycles C, so pixel p waits max(0, ceil(p / R) + C - p) clocks.
+ * Then two spans back to back: the second one's set-up hides behind a long
+ * first span entirely.
+ */
+static int setup_overlap(void)
+{
+    np_tex_regs r = span_ramp_regs();
+    np_fdiff_cfg cfg = np_fdiff_cfg_default();
+    const unsigned C = np_fdiff_cell_cycles(&cfg), L = np_fdiff_span_setup_latency(&cfg, &r), R = NP_FDIFF_FINDER_RATE;
+    NP_CHECK(L <= np_fdiff_span_setup_cycles(&cfg, &r), "latency %u > work", L);
+    for (unsigned p = 1; p <= 128; p *= 2) {
+        np_span sp = span_mk(0, 0, 2u * p, (double[3]){ 0.0, 0.5, 0.5 }, (double[3]){ 1.0 / p, 0, 0 });
+        span_drive_result d;
+        NP_CHECK(span_drive(&np_fdiff_engine, &cfg, &r, &sp, 1, NULL, 0, NULL, NULL, UINT64_MAX, &d) == 0, "init");
+        long wait = (long)((p + R - 1u) / R + C) - (long)p;
+        uint64_t want = L + (uint64_t)(wait > 0 ? wait : 0);
+        printf("p = %3u: %llu cell set-up(s), stall %llu, predicted %llu (span %u + cell %ld)\n", p,
+               (unsigned long long)d.stats.counts.cell_setups, (unsigned long long)d.stats.setup_stalls,
+               (unsigned long long)want, L, wait > 0 ? wait : 0);
+        NP_CHECK(d.stats.counts.cell_setups == 1 && d.stats.setup_stalls == want, "p = %u: stall %llu, predicted %llu",
+                 p, (unsigned long long)d.stats.setup_stalls, (unsigned long long)want);
+    }
+    np_span two[2] = { span_mk(0, 0, 1000, (double[3]){ 0.25, 0.5, 0.5 }, (double[3]){ 0x1p-12, 0, 0 }),
+                       span_mk(1, 0, 10, (double[3]){ 3.25, 0.5, 0.5 }, (double[3]){ 0x1p-12, 0, 0 }) };
+    span_drive_result d;
+    NP_CHECK(span_drive(&np_fdiff_engine, &cfg, &r, two, 2, NULL, 0, NULL, NULL, UINT64_MAX, &d) == 0, "init");
+    printf("two spans (1000 + 10 pixels, one cell each): stall %llu (the first span's set-up %u), %llu cycles\n",
+           (unsigned long long)d.stats.setup_stalls, L, (unsigned long long)d.stats.cycles);
+    NP_CHECK(d.stats.setup_stalls == L && d.stats.cycles == 1u + L + 1010u + NP_FDIFF_TAIL_STAGES,
+             "stall %llu, cycles %llu", (unsigned long long)d.stats.setup_stalls, (unsigned long long)d.stats.cycles);
     return 0;
 }
 
@@ -737,11 +859,13 @@ static const np_test_case cases[] = {
     { "stiff_wrap", stiff_wrap },
     { "stiff_quadric_long", stiff_quadric_long },
     { "guard_search", guard_search },
+    { "guard_min_both_ways", guard_min_both_ways },
     { "setup_exact", setup_exact },
     { "appendix_coefficients", appendix_coefficients },
     { "drift_identity", drift_identity },
     { "cycle_vs_model", cycle_vs_model },
     { "cycle_count", cycle_count },
+    { "setup_overlap", setup_overlap },
     { NULL, NULL },
 };
 

@@ -225,6 +225,52 @@ static int unknown_stage_rejected(void)
     return 0;
 }
 
+/*
+ * --levels (np_report_retime): for every unit and a range of targets, a
+ * stage that meets the target has every clock's path within it after its
+ * cuts; a tighter target never needs fewer cuts; a stage named as not
+ * meeting it says why; a target above every path needs no cut.
+ */
+static int levels_retime(void)
+{
+    static const unsigned targets[] = { 10, 20, 40, 80, 160, 100000 };
+    const np_unit *u;
+    unsigned checked = 0;
+    for (size_t i = 0; (u = np_unit_at(i)) != NULL; i++) {
+        if (!u->datapath)
+            continue;
+        np_unit_cfg cfg;
+        np_unit_cost c;
+        char err[256];
+        np_unit_cfg_default(u, &cfg);
+        if (np_unit_cost_compute(u, &cfg, &np_cost_default, &c, err, sizeof err) != 0)
+            continue;
+        unsigned prev[NP_REPORT_MAX_STAGES];
+        for (size_t t = 0; t < sizeof targets / sizeof targets[0]; t++) {
+            np_stage_retime r[NP_REPORT_MAX_STAGES];
+            np_report_retime(&c, targets[t], r);
+            for (unsigned k = 0; k < c.n_stages; k++) {
+                if (r[k].meets)
+                    NP_CHECK(r[k].per_clock <= (double)targets[t] + 1e-9, "%s %s at %u: %.1f per clock", u->name,
+                             c.st[k].name, targets[t], r[k].per_clock);
+                else
+                    NP_CHECK(r[k].why[0] != '\0', "%s %s: no reason", u->name, c.st[k].name);
+                if (t > 0)
+                    NP_CHECK(r[k].cuts <= prev[k], "%s %s: %u cuts at %u, %u at a tighter target", u->name,
+                             c.st[k].name, r[k].cuts, targets[t], prev[k]);
+                if (targets[t] == 100000)
+                    NP_CHECK(r[k].cuts == 0 && r[k].meets, "%s %s: cut at a target above every path", u->name,
+                             c.st[k].name);
+                prev[k] = r[k].cuts;
+                checked++;
+            }
+        }
+    }
+    printf("%u stage x target checks\n", checked);
+    NP_CHECK(checked > 0, "no unit checked");
+    return 0;
+}
+
 /* The DSE sweeps take their keys and ranges from the unit's key table (np_dse_axis). */
 static int dse_axes_from_keys(void)
 {
@@ -271,6 +317,7 @@ static const np_test_case cases[] = {
     { "cost_model_calibration", cost_model_calibration },
     { "latency_matches_model", latency_matches_model },
     { "unknown_stage_rejected", unknown_stage_rejected },
+    { "levels_retime", levels_retime },
     { NULL, NULL },
 };
 

@@ -17,6 +17,7 @@
 #include "np_rng.h"
 #include "np_test.h"
 #include "np_texel.h"
+#include "np_texreg.h"
 #include "span_test.h"
 
 static int colour_stage(void)
@@ -167,11 +168,102 @@ static int cfg_validation(void)
     return 0;
 }
 
+/*
+ * Register rounding inside the bound (np_texreg.h): a texture whose
+ * registers do round (scale 0.1 in s24 Q7.16, amplitude 0.3, quadric
+ * A = 1e-5 in Q23.24, offset 1/3) on the steepest clamped map, over the box
+ * [90, 100]^3: the predicted bound (the unit's own plus the registers') must
+ * cover every pixel of random spans through both units' bit-exact models
+ * against the float texture, and the registers' part must matter (> 0.05
+ * LSB here). The scenes that go over are refused (render.*_refuses_*).
+ */
+static int register_bound(void)
+{
+    np_ref_texture t;
+    memset(&t, 0, sizeof t);
+    t.quad[0] = 1e-5;
+    t.n_oct = 1;
+    for (int a = 0; a < 3; a++) {
+        t.oct[0].m[a][a] = 0.1;
+        t.oct[0].o[a] = 1.0 / 3.0;
+    }
+    t.oct[0].amp = 0.3;
+    t.cmap.n = 2;
+    t.cmap.repeat = 0;
+    t.cmap.f0 = 0;
+    t.cmap.f1 = 1.2;
+    for (int ch = 0; ch < 3; ch++)
+        t.cmap.c[1][ch] = 255;
+    np_tex_regs r;
+    char err[256];
+    NP_CHECK(np_texreg_compile(&t, &r, err, sizeof err) == 0, "%s", err);
+    const double lo[3] = { 90, 90, 90 }, hi[3] = { 100, 100, 100 };
+    np_texreg_scene_bound b;
+    np_texreg_scene_bound_compute(&t, &r, lo, hi, 512, &b);
+    np_fdiff_cfg fc = np_fdiff_cfg_default();
+    np_texel_cfg tc = np_texel_cfg_default();
+    const double slope = (double)np_tex_colour_slope(&r);
+    /* The units' own bounds over spans of at most 512 pixels (np_fdiff.h, np_texel.h). */
+    const double own_fd = 0.5 + slope * (np_fdiff_drift_bound_noise(np_fdiff_frac(&fc), 511) +
+                                          np_fdiff_drift_bound_quad(np_fdiff_frac(&fc), 511) +
+                                          ldexp(1.0, -(int)fc.w_frac - 1));
+    const double own_tx = 0.5 + slope * (np_texel_error_bound_index(&tc, &r) + ldexp(1.0, -(int)tc.w_frac - 1));
+    np_rng g;
+    np_rng_seed(&g, 77);
+    double worst_fd = 0, worst_tx = 0;
+    uint64_t px = 0;
+    np_tex_pixel *out = calloc(512, sizeof *out);
+    for (unsigned it = 0; it < 400; it++) {
+        double s0[3], ds[3];
+        uint32_t n = 1u + (uint32_t)np_rng_below(&g, 512);
+        for (int a = 0; a < 3; a++) {
+            ds[a] = ldexp((double)np_rng_below(&g, 1u << 20) - (double)(1u << 19), -32);
+            double end = ds[a] * (double)(n - 1u);
+            double a0 = lo[a] + fmax(0, -end), a1 = hi[a] - fmax(0, end);
+            s0[a] = a0 + (a1 - a0) * ldexp((double)np_rng_below(&g, 1u << 30), -30);
+            s0[a] = ldexp(floor(ldexp(s0[a], 32)), -32);
+        }
+        np_span sp = span_mk(0, 0, n, s0, ds);
+        for (int unit = 0; unit < 2; unit++) {
+            if (unit == 0)
+                np_fdiff_span(&fc, &r, &sp, out, NULL, NULL);
+            else
+                np_texel_span(&tc, &r, &sp, out, NULL, NULL);
+            for (uint32_t k = 0; k < n; k++) {
+                double st[3], rgb[3];
+                for (int a = 0; a < 3; a++)
+                    st[a] = ldexp((double)sp.s[a], -32) + (double)k * ldexp((double)sp.ds[a], -32);
+                np_ref_colour(&t.cmap, np_ref_texture_f(&t, st, NULL), rgb);
+                for (int ch = 0; ch < 3; ch++) {
+                    double e = fabs((double)out[k].rgb[ch] - rgb[ch]);
+                    double *w = unit == 0 ? &worst_fd : &worst_tx;
+                    if (e > *w)
+                        *w = e;
+                }
+            }
+            px += n;
+        }
+    }
+    free(out);
+    printf("registers: %.4f LSB (worst field %s, %.4f LSB; the formats guarantee %.4f); index up to %.4g\n",
+           b.reg_lsb, b.worst, b.worst_lsb, b.reg_lsb_bound, b.index_max);
+    printf("fdiff: measured %.4f LSB <= predicted %.4f (own %.4f); texel: measured %.4f <= %.4f (own %.4f); %llu "
+           "pixels\n",
+           worst_fd, own_fd + b.reg_lsb, own_fd, worst_tx, own_tx + b.reg_lsb, own_tx, (unsigned long long)px);
+    NP_CHECK(b.reg_lsb > 0.05, "the registers' rounding should matter here (%.4f)", b.reg_lsb);
+    NP_CHECK(b.reg_lsb <= b.reg_lsb_bound, "actual %.4g above what the formats guarantee %.4g", b.reg_lsb,
+             b.reg_lsb_bound);
+    NP_CHECK(worst_fd <= own_fd + b.reg_lsb && worst_tx <= own_tx + b.reg_lsb, "measured over the predicted bound");
+    NP_CHECK(np_texreg_scene_check("t", &b, own_fd, fc.idx_int, 11, err, sizeof err) == 0, "%s", err);
+    return 0;
+}
+
 static const np_test_case cases[] = {
     { "colour_stage", colour_stage },
     { "front_end_rounding", front_end_rounding },
     { "lattice_distribution", lattice_distribution },
     { "cfg_validation", cfg_validation },
+    { "register_bound", register_bound },
     { NULL, NULL },
 };
 

@@ -13,15 +13,21 @@
 #include "np_render.h"
 #include "render_cli.h"
 #include "np_report.h"
+#include "np_tradeoff.h"
 #include "np_scene.h"
 #include "np_stream.h"
 
+/* --levels: the target clock in gate levels the gate reports pipeline every stage to (np_report_levels_md). */
+static unsigned g_levels = NP_REPORT_LEVELS_DEFAULT;
+
 static const char usage_text[] =
-    "usage: noisepipe report gates  [--unit U] [--config K=V,...] [-o DIR]\n"
-    "       noisepipe report gates  --scene SCENE.json [-o DIR]\n"
+    "usage: noisepipe report gates  [--unit U] [--config K=V,...] [--levels N] [-o DIR]\n"
+    "       noisepipe report gates  --scene SCENE.json [--levels N] [-o DIR]\n"
     "       noisepipe report pareto [--unit U] [--samples N] [--seed S] [-o DIR]\n"
     "       noisepipe report runtime [--scene SCENE.json] [--repeat N] -o DIR\n"
     "       noisepipe report all    -o DIR        (what docs/ holds: gates + every pareto sweep + runtime in DIR/plots)\n"
+    "       noisepipe report tradeoff --scene SCENE.json [-o DIR]   (fdiff against texel at <= 1 LSB: gates x cycles\n"
+    "                                     against image size and octave count; DIR/tradeoff-NAME.{md,svg})\n"
     "\n"
     "gates: per unit and per stage, the operators, register bits, gate estimate (NAND2\n"
     "  equivalents, docs/cost-model.md), latency in clocks (from the cycle-accurate model),\n"
@@ -99,6 +105,7 @@ static int write_gates(const char *dir, const np_unit *only, const char *spec)
     int rc = NP_EXIT_OK;
     if (!dir) {
         np_report_gates_md(stdout, costs, n, "Gate and latency estimates");
+        np_report_levels_md(stdout, costs, n, g_levels);
     } else {
         char tmp[1024], fin[1024];
         FILE *f = open_tmp(dir, "gates.md", tmp, fin, sizeof tmp);
@@ -106,6 +113,7 @@ static int write_gates(const char *dir, const np_unit *only, const char *spec)
             rc = NP_EXIT_USAGE;
         else {
             np_report_gates_md(f, costs, n, "Gate and latency estimates");
+            np_report_levels_md(f, costs, n, g_levels);
             rc = commit(f, tmp, fin) ? NP_EXIT_USAGE : rc;
         }
         f = rc ? NULL : open_tmp(dir, "gates.json", tmp, fin, sizeof tmp);
@@ -251,6 +259,7 @@ static void scene_md(FILE *f, const np_scene *sc, const np_render_frame *fr, con
     FILE *m = open_memstream(&buf, &len);
     if (m) {
         np_report_gates_md(m, c, n, title);
+        np_report_levels_md(m, c, n, g_levels);
         fclose(m);
         const char *body = strstr(buf, "\n| unit |");
         fputs(body ? body + 1 : buf, f);
@@ -447,6 +456,13 @@ int np_cmd_report(int argc, char **argv)
                 np_err("report", "--samples %s: expected 4096..1000000000", v);
                 return NP_EXIT_USAGE;
             }
+        } else if (strcmp(a, "--levels") == 0) {
+            uint64_t lv;
+            if (np_parse_u64(v, 4, 100000, &lv) != 0) {
+                np_err("report", "--levels %s: expected gate levels per clock, 4..100000", v);
+                return NP_EXIT_USAGE;
+            }
+            g_levels = (unsigned)lv;
         } else if (strcmp(a, "--repeat") == 0) {
             if (np_parse_u64(v, 1, 1000, &repeat) != 0) {
                 np_err("report", "--repeat %s: expected an integer in 1..1000", v);
@@ -468,7 +484,7 @@ int np_cmd_report(int argc, char **argv)
         return NP_EXIT_USAGE;
     }
     int known = strcmp(what, "gates") == 0 || strcmp(what, "pareto") == 0 || strcmp(what, "runtime") == 0 ||
-                strcmp(what, "all") == 0;
+                strcmp(what, "all") == 0 || strcmp(what, "tradeoff") == 0;
     if (dir && known) { /* created as render creates its folder */
         struct stat st;
         if (stat(dir, &st) == 0 && !S_ISDIR(st.st_mode)) {
@@ -487,6 +503,9 @@ int np_cmd_report(int argc, char **argv)
         }
         return np_report_runtime(dir, &scene, scene ? 1u : 0u, (unsigned)repeat, NULL, NULL);
     }
+    if (strcmp(what, "tradeoff") == 0) /* fdiff against texel on a scene (np_tradeoff.h) */
+        return unit || spec ? (np_err("report", "tradeoff takes --scene and no --unit/--config"), NP_EXIT_USAGE)
+                            : np_report_tradeoff(dir, scene);
     if (scene && (strcmp(what, "gates") != 0 || unit || spec)) {
         np_err("report", "--scene goes with gates or runtime, without --unit/--config (the scene configures the units)");
         return NP_EXIT_USAGE;

@@ -75,6 +75,27 @@ int np_unit_cost_compute(const np_unit *u, const void *cfg, const np_cost_model 
                          char *err, size_t errlen);
 
 void np_report_gates_md(FILE *f, const np_unit_cost *c, size_t n, const char *title);
+
+/*
+ * Pipelining to a target clock of `levels` gate levels (issue 14; a
+ * report-level retiming estimate, not a synthesis): per stage, the cut
+ * points that bring every clock's path within levels, the register bits the
+ * cuts add and the clocks they add to the latency; a stage that cannot meet
+ * it is named with the reason (an operator alone deeper than the target
+ * inside a one-clock recurrence, which retiming cannot cut).
+ */
+typedef struct np_stage_retime {
+    double path;        /* the stage's whole path (levels), all its clocks */
+    unsigned clocks;    /* clocks it takes now */
+    unsigned cuts;      /* pipeline registers to add */
+    unsigned bits;      /* register bits they add */
+    double per_clock;   /* the longest path between registers after the cuts */
+    int meets;
+    char why[200];      /* when it does not */
+} np_stage_retime;
+void np_report_retime(const np_unit_cost *c, unsigned levels, np_stage_retime *r);
+void np_report_levels_md(FILE *f, const np_unit_cost *c, size_t n, unsigned levels);
+enum { NP_REPORT_LEVELS_DEFAULT = 40 };
 void np_report_gates_json(FILE *f, const np_unit_cost *c, size_t n);
 
 #ifdef __cplusplus

@@ -171,6 +171,160 @@ int np_unit_cost_compute(const np_unit *u, const void *cfg, const np_cost_model 
     return 0;
 }
 
+/* --- Pipelining to a target clock (--levels) --- */
+
+/*
+ * Stages whose every adder updates its own register in one clock (DDAs,
+ * forward differences, accumulators): cut points cannot go inside such a
+ * loop, so each of its operators must fit the clock by itself.
+ */
+static int recurrence_stage(const char *unit, const char *stage)
+{
+    static const char *const rec[][2] = { { "fdiff", "X" }, { "texel", "D" } };
+    for (size_t i = 0; i < sizeof rec / sizeof rec[0]; i++)
+        if (strcmp(rec[i][0], unit) == 0 && strcmp(rec[i][1], stage) == 0)
+            return 1;
+    return 0;
+}
+
+/* Bits an operator's result carries across a cut: its declared output, else its operand widths. */
+static unsigned op_bits(const np_op *op)
+{
+    unsigned w = op->out ? op->out : (op->kind == NP_OP_MUL ? op->a + op->b : op->a);
+    return w * op->count;
+}
+
+/* Bits one cut inside an operator holds: a ripple adder its operands' upper parts and the low sum; a
+ * multiplier's array its carry-save rows. */
+static unsigned inner_bits(const np_op *op)
+{
+    switch (op->kind) {
+    case NP_OP_ADD: return (2u * op->a + 1u) * op->count;
+    case NP_OP_MUL: return 2u * (op->a + op->b) * op->count;
+    default: return op->a * op->count;
+    }
+}
+
+void np_report_retime(const np_unit_cost *c, unsigned levels, np_stage_retime *r)
+{
+    const double N = (double)levels;
+    for (unsigned k = 0; k < c->n_stages; k++) {
+        np_stage_retime *t = &r[k];
+        memset(t, 0, sizeof *t);
+        t->clocks = c->st[k].clocks;
+        t->path = c->st[k].delay * (double)t->clocks;
+        double dl[LEVELS] = { 0 };
+        unsigned bl[LEVELS] = { 0 };
+        const np_op *deep[LEVELS] = { NULL };
+        for (size_t i = 0; i < c->n_ops; i++) {
+            const np_op *op = &c->ops[i];
+            if (strcmp(op->stage, c->st[k].name) != 0 || op->kind == NP_OP_REG || op->count == 0)
+                continue;
+            unsigned lv = op->level < LEVELS ? op->level : LEVELS - 1u;
+            double d = np_cost_op_delay(&np_cost_default, op);
+            if (d > dl[lv]) {
+                dl[lv] = d;
+                deep[lv] = op;
+            }
+            bl[lv] += op_bits(op);
+        }
+        t->meets = 1;
+        if (recurrence_stage(c->unit->name, c->st[k].name)) {
+            /* Feed-forward retiming cannot enter the loops: each level must fit the clock on its own. */
+            for (unsigned lv = 0; lv < LEVELS; lv++)
+                if (dl[lv] > t->per_clock)
+                    t->per_clock = dl[lv];
+            for (unsigned lv = 0; lv < LEVELS && t->meets; lv++)
+                if (dl[lv] > N) {
+                    t->meets = 0;
+                    snprintf(t->why, sizeof t->why,
+                             "a one-clock recurrence: its %u-bit adder (%s) is %.0f levels as a ripple adder; "
+                             "needs a carry-lookahead (about %.0f levels) or carry-save accumulator",
+                             deep[lv]->a, deep[lv]->signal ? deep[lv]->signal : "the loop", dl[lv],
+                             2.0 * ceil(log2((double)deep[lv]->a)) + 4.0);
+                }
+            /* The levels between the loops may still be cut. */
+            double acc = 0;
+            for (unsigned lv = 0; lv < LEVELS; lv++) {
+                if (acc > 0 && acc + dl[lv] > N) {
+                    t->cuts++;
+                    t->bits += bl[lv > 0 ? lv - 1u : 0];
+                    acc = 0;
+                }
+                acc += dl[lv];
+            }
+            continue;
+        }
+        /* Budget: N per clock over the clocks the stage already takes. */
+        const double budget = N;
+        double acc = 0, worst = 0;
+        for (unsigned lv = 0; lv < LEVELS; lv++) {
+            double d = dl[lv] / (double)t->clocks; /* a multi-clock stage is already pipelined that deep */
+            if (d <= 0)
+                continue;
+            if (acc > 0 && acc + d > budget) {
+                t->cuts++;
+                t->bits += bl[lv > 0 ? lv - 1u : 0];
+                worst = acc > worst ? acc : worst;
+                acc = 0;
+            }
+            if (d > budget) {
+                unsigned inner = (unsigned)ceil(d / budget) - 1u;
+                t->cuts += inner;
+                t->bits += inner * inner_bits(deep[lv]);
+                d -= (double)inner * budget;
+                worst = budget > worst ? budget : worst;
+            }
+            acc += d;
+        }
+        t->per_clock = acc > worst ? acc : worst;
+    }
+}
+
+void np_report_levels_md(FILE *f, const np_unit_cost *c, size_t n, unsigned levels)
+{
+    fprintf(f, "\n# Pipelined to %u gate levels per clock\n\n", levels);
+    fprintf(f, "A retiming estimate from the declarations (`--levels %u`; not a synthesis): per stage the cut points "
+               "that bring every clock's path within %u levels, the register bits they add (a cut between operators "
+               "holds the results crossing it; a cut inside a ripple adder its operands' upper parts and the low sum, "
+               "inside a multiplier its carry-save rows) and the clocks they add to the latency. A stage whose every "
+               "adder updates its own register (a DDA, a forward difference) is a one-clock loop: retiming cannot cut "
+               "inside it.\n\n",
+            levels, levels);
+    fprintf(f, "| unit | stage | path now (levels) | clocks now | cuts | added register bits | added gates | per "
+               "clock after | meets %u |\n| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | --- |\n",
+            levels);
+    for (size_t i = 0; i < n; i++) {
+        np_stage_retime r[NP_REPORT_MAX_STAGES];
+        np_report_retime(&c[i], levels, r);
+        unsigned cuts = 0, bits = 0, fail = 0;
+        for (unsigned k = 0; k < c[i].n_stages; k++) {
+            if (r[k].path <= 0)
+                continue;
+            fprintf(f, "| %s | %s | %.0f | %u | %u | %u | %.0f | %.0f | %s |\n", c[i].unit->name, c[i].st[k].name,
+                    r[k].path, r[k].clocks, r[k].cuts, r[k].bits, np_cost_default.ff_bit * r[k].bits, r[k].per_clock,
+                    r[k].meets ? "yes" : "**no**");
+            cuts += r[k].cuts;
+            bits += r[k].bits;
+            fail += !r[k].meets;
+        }
+        fprintf(f, "| %s | **all** | | | **%u** | **%u** | **%.0f** (%.1f %% of %.0f) | | %s |\n", c[i].unit->name,
+                cuts, bits, np_cost_default.ff_bit * bits, 100.0 * np_cost_default.ff_bit * bits / c[i].total,
+                c[i].total, fail ? "**no**" : "yes");
+    }
+    for (size_t i = 0; i < n; i++) {
+        np_stage_retime r[NP_REPORT_MAX_STAGES];
+        np_report_retime(&c[i], levels, r);
+        for (unsigned k = 0; k < c[i].n_stages; k++)
+            if (!r[k].meets)
+                fprintf(f, "\n- **%s %s cannot meet %u levels:** %s.\n", c[i].unit->name, c[i].st[k].name, levels,
+                        r[k].why);
+    }
+    fprintf(f, "\nThe added latency is the cuts on the path from input to output (a pipeline's stages in series); "
+               "a set-up engine's cuts (fdiff SU, texel FE) lengthen its multipliers' pipeline instead (`mult_lat`), "
+               "which the set-up schedules then pay per level.\n");
+}
+
 static const char *kind_name(np_op_kind k)
 {
     static const char *const n[NP_OP_KINDS] = { "add", "cmp", "mul", "mux", "neg", "lut", "rom", "reg" };

@@ -85,6 +85,134 @@ int np_texreg_compile(const np_ref_texture *t, np_tex_regs *r, char *err, size_t
     return 0;
 }
 
+/* --- Register rounding over a scene (np_texreg.h) --- */
+
+typedef struct bound_acc {
+    np_texreg_scene_bound *b;
+    double slope;
+} bound_acc;
+
+/* One field's contribution: its rounding residual times mult (index units per unit); keep the worst. */
+static void bound_add(bound_acc *a, double resid, double mult, const char *field, double value, unsigned frac,
+                      unsigned bits)
+{
+    double c = resid * mult;
+    a->b->reg_index += c;
+    a->b->reg_lsb_bound += a->slope * mult * ldexp(1.0, -(int)frac - 1);
+    if (c * a->slope > a->b->worst_lsb) {
+        a->b->worst_lsb = c * a->slope;
+        a->b->worst_mult = mult * a->slope;
+        snprintf(a->b->worst, sizeof a->b->worst, "%s", field);
+        a->b->worst_value = value;
+        a->b->worst_frac = frac;
+        a->b->worst_bits = bits;
+    }
+}
+
+void np_texreg_scene_bound_compute(const np_ref_texture *t, const np_tex_regs *r, const double lo[3],
+                                   const double hi[3], unsigned max_span, np_texreg_scene_bound *b)
+{
+    static const char qn[] = "ABCDEFGHIJ";
+    memset(b, 0, sizeof *b);
+    bound_acc a = { b, (double)np_tex_colour_slope(r) };
+    const double S = np_texreg_index_scale(&t->cmap), nmax = 63.0 / 64.0;
+    double m[3];
+    for (int k = 0; k < 3; k++)
+        m[k] = fmax(fabs(lo[k]), fabs(hi[k]));
+    /* The quadric's monomials' largest magnitudes over the box (A s^2, 2B st, 2C sr, 2D s, E t^2, ...). */
+    const double mono[10] = { m[0] * m[0], 2 * m[0] * m[1], 2 * m[0] * m[2], 2 * m[0], m[1] * m[1],
+                              2 * m[1] * m[2], 2 * m[1], m[2] * m[2], 2 * m[2], 1 };
+    char f[96];
+    for (int j = 0; j < 10; j++) {
+        double want = S * (j == 9 ? t->quad[9] - t->cmap.f0 : t->quad[j]);
+        double got = ldexp((double)r->k[j], -NP_TEX_K_FRAC);
+        snprintf(f, sizeof f, "texture.quadric.%c", qn[j]);
+        bound_add(&a, fabs(got - want), mono[j], f, want, NP_TEX_K_FRAC, NP_TEX_K_BITS);
+        b->index_max += fabs(got) * mono[j];
+        if (fabs(got) * mono[j] > b->index_worst_value) {
+            b->index_worst_value = fabs(got) * mono[j];
+            snprintf(b->index_worst, sizeof b->index_worst, "texture.quadric.%c", qn[j]);
+        }
+    }
+    for (unsigned i = 0; i < t->n_oct && i < r->n_oct; i++) {
+        const np_ref_octave *o = &t->oct[i];
+        const np_tex_octave *ro = &r->oct[i];
+        const double amp = ldexp((double)ro->amp, -NP_TEX_AMP_FRAC), g = fabs(amp) * nmax;
+        snprintf(f, sizeof f, "texture.octaves[%u].amplitude", i);
+        bound_add(&a, fabs(amp - S * o->amp), nmax, f, S * o->amp, NP_TEX_AMP_FRAC, NP_TEX_AMP_BITS);
+        b->index_max += g;
+        if (g > b->index_worst_value) {
+            b->index_worst_value = g;
+            snprintf(b->index_worst, sizeof b->index_worst, "texture.octaves[%u].amplitude", i);
+        }
+        for (int ax = 0; ax < 3; ax++) {
+            for (int bx = 0; bx < 3; bx++) {
+                double got = ldexp((double)ro->m[ax][bx], -NP_TEX_M_FRAC);
+                snprintf(f, sizeof f, "texture.octaves[%u] transform entry [%d][%d]", i, ax, bx);
+                bound_add(&a, fabs(got - o->m[ax][bx]), g * m[bx], f, o->m[ax][bx], NP_TEX_M_FRAC, NP_TEX_M_BITS);
+            }
+            snprintf(f, sizeof f, "texture.octaves[%u].offset[%d]", i, ax);
+            bound_add(&a, fabs(ldexp((double)ro->o[ax], -NP_TEX_FC) - o->o[ax]), g, f, o->o[ax], NP_TEX_FC,
+                      NP_TEX_O_BITS);
+            /* The front end: u0 and du each rounded to 2^-33; du's error times the pixel. */
+            b->reg_index += g * ldexp(1.0 + (double)max_span, -(NP_TEX_FC + 1));
+            /* The descriptor's s and ds, rounded to Q.32 by the host, through the transform. */
+            for (int bx = 0; bx < 3; bx++)
+                b->reg_index += g * fabs(ldexp((double)ro->m[ax][bx], -NP_TEX_M_FRAC)) *
+                                ldexp(1.0 + (double)max_span, -(NP_TEX_FC + 1));
+        }
+    }
+    /* The descriptor's rounding through the quadric: |grad q'|_1 over the box times 2^-33 (1 + n_max). */
+    double k[10];
+    for (int j = 0; j < 10; j++)
+        k[j] = fabs(ldexp((double)r->k[j], -NP_TEX_K_FRAC));
+    const double grad = 2 * k[0] * m[0] + 2 * k[1] * (m[0] + m[1]) + 2 * k[2] * (m[0] + m[2]) + 2 * k[3] +
+                        2 * k[4] * m[1] + 2 * k[5] * (m[1] + m[2]) + 2 * k[6] + 2 * k[7] * m[2] + 2 * k[8];
+    b->reg_index += grad * ldexp(1.0 + (double)max_span, -(NP_TEX_FC + 1));
+    b->reg_lsb = a.slope * b->reg_index;
+    b->idx_int_need = 1;
+    if (!r->cmap_repeat)
+        while (b->idx_int_need < 64 && ldexp(1.0, (int)b->idx_int_need) <= b->index_max)
+            b->idx_int_need++;
+}
+
+int np_texreg_scene_check(const char *scene, const np_texreg_scene_bound *b, double unit_lsb, unsigned idx_int,
+                          unsigned idx_int_max, char *err, size_t errlen)
+{
+    if (b->idx_int_need > idx_int) {
+        if (b->idx_int_need > idx_int_max)
+            snprintf(err, errlen,
+                     "scene %s: field %s: the colour index reaches %.6g on a clamped colour map over the scene's "
+                     "coordinates: it needs %u index integer bits, the unit has at most %u; it would wrap",
+                     scene, b->index_worst, b->index_max, b->idx_int_need, idx_int_max);
+        else
+            snprintf(err, errlen,
+                     "scene %s: field %s: the colour index reaches %.6g on a clamped colour map over the scene's "
+                     "coordinates: it needs idx_int=%u index integer bits (the unit's configuration has %u); it would "
+                     "wrap",
+                     scene, b->index_worst, b->index_max, b->idx_int_need, idx_int);
+        return -1;
+    }
+    if (unit_lsb + b->reg_lsb > 1.0) {
+        /*
+         * How many more fraction bits every register would need: at e more,
+         * each residual is at most 2^-(frac+e+1), so the registers add at
+         * most reg_lsb_bound 2^-e.
+         */
+        unsigned e = 0;
+        while (e < 100 && unit_lsb + b->reg_lsb_bound * ldexp(1.0, -(int)e) > 1.0)
+            e++;
+        snprintf(err, errlen,
+                 "scene %s: field %s = %.6g rounds in its register (%u bits, %u fraction) and adds %.3g LSB over the "
+                 "scene's coordinates; with the other registers the predicted bound is %.3g LSB > 1: not rendered "
+                 "(the registers would need %u more fraction bits: %s with %u)",
+                 scene, b->worst, b->worst_value, b->worst_bits, b->worst_frac, b->worst_lsb, unit_lsb + b->reg_lsb, e,
+                 b->worst, b->worst_frac + e);
+        return -1;
+    }
+    return 0;
+}
+
 /* --- Built-in textures (keep wood and marble equal to vectors/scenes; render.builtin_textures checks) --- */
 
 #define DIAG(a, b, c) { { (a), 0, 0 }, { 0, (b), 0 }, { 0, 0, (c) } }

@@ -34,7 +34,12 @@ static const np_unit_key keys[] = {
     NP_UNIT_KEY_END,
 };
 
-static const char *cfg_check(const void *cfg) { return np_fdiff_cfg_check(&((const fd_cfg *)cfg)->c); }
+static np_su fd_su;
+static const char *cfg_check(const void *cfg)
+{
+    const char *why = np_fdiff_cfg_check(&((const fd_cfg *)cfg)->c);
+    return why ? why : np_su_scene_index_check(&fd_su.span, cfg, 11);
+}
 
 static double error_bound(const void *cfg)
 {
@@ -66,15 +71,16 @@ static int timing(const void *cfg, np_unit_timing *t, char *err, size_t errlen)
     const unsigned pc = np_tex_sched_products(&np_fdiff_sched_cell), pq = np_tex_sched_products(&np_fdiff_sched_quad),
                    pf = np_tex_sched_products(front);
     memset(t, 0, sizeof *t);
-    t->latency = 1u + np_fdiff_span_setup_cycles(&k->c, r) + NP_FDIFF_TAIL_STAGES;
+    t->latency = 1u + np_fdiff_span_setup_latency(&k->c, r) + NP_FDIFF_TAIL_STAGES;
     t->throughput = 1.0;
-    snprintf(t->throughput_note, sizeof t->throughput_note, "inside a cell; a set-up stalls it (below)");
+    snprintf(t->throughput_note, sizeof t->throughput_note,
+             "a set-up overlaps stepping; a cell shorter than its set-up stalls it (below)");
     t->n_multi = 1;
     t->multi[0].stage = "SU";
     t->multi[0].clocks = k->c.mult_lat;
-    np_su_add_setup(t, "span: quadric + per octave front end and cell", pq + r->n_oct * (pf + pc),
-              np_fdiff_span_setup_cycles(&k->c, r));
-    np_su_add_setup(t, "cell, per octave on a cell change", pc, np_fdiff_cell_cycles(&k->c));
+    np_su_add_setup(t, "span: quadric, per octave front end + cell",
+                    pq + r->n_oct * (pf + pc), np_fdiff_span_setup_latency(&k->c, r));
+    np_su_add_setup(t, "cell, per octave (overlaps the cells before)", pc, np_fdiff_cell_cycles(&k->c));
     np_su_add_setup(t, "quadric", pq, np_fdiff_quad_cycles(&k->c));
     np_su_add_setup(t, np_tex_regs_diagonal(r) ? "front end, per octave (diagonal M)" : "front end, per octave", pf,
               np_tex_sched_cycles(front, k->c.setup_mults, k->c.mult_lat));
@@ -172,6 +178,7 @@ static np_su fd_su = {
               sizeof fd_sweeps / sizeof fd_sweeps[0], "g4", "guard=4",
               fd_trace },
     .engine_cfg_size = sizeof(np_fdiff_cfg),
+    .idx_int_max = 11,
     .front_name = "R",
 };
 NP_SU_DEFINE(fd_su, np_unit_fdiff);

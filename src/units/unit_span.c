@@ -51,6 +51,8 @@ enum { N_TEX = 3, N_SCENE_TEX = 8 };
 static np_tex_regs ut_regs[N_TEX + N_SCENE_TEX];
 static np_ref_texture ut_scene_tex[N_SCENE_TEX];
 static char ut_scene_name[N_SCENE_TEX][80];
+static np_texreg_scene_bound ut_scene_bound[N_SCENE_TEX]; /* set by np_su_cfg_scene */
+static int ut_scene_has_bound[N_SCENE_TEX];
 static unsigned ut_n_scene;
 static pthread_once_t ut_once = PTHREAD_ONCE_INIT;
 static pthread_mutex_t ut_lock = PTHREAD_MUTEX_INITIALIZER;
@@ -109,12 +111,61 @@ int np_ut_texture_add(const char *name, const np_ref_texture *t, unsigned *tex, 
     return rc;
 }
 
-int np_su_cfg_scene(const np_su *su, void *cfg, const np_scene *sc, char *err, size_t errlen)
+const np_texreg_scene_bound *np_ut_texture_bound(unsigned tex)
+{
+    return tex >= N_TEX && tex < N_TEX + ut_n_scene && ut_scene_has_bound[tex - N_TEX] ? &ut_scene_bound[tex - N_TEX]
+                                                                                         : NULL;
+}
+
+const char *np_su_scene_index_check(const np_unit_span *s, const void *cfg, unsigned idx_int_max)
+{
+    static _Thread_local char msg[400];
+    unsigned tex = np_su_texture(s, cfg);
+    const np_texreg_scene_bound *b = np_ut_texture_bound(tex);
+    const unsigned I = *(const unsigned *)np_su_engine_cfg(s, cfg);
+    if (!b || b->idx_int_need <= I)
+        return NULL;
+    np_texreg_scene_check(np_ut_texture_name(tex), b, 0, I, idx_int_max, msg, sizeof msg);
+    return msg;
+}
+
+int np_su_cfg_scene(const np_su *su, const np_unit *u, void *cfg, const np_scene *sc, char *err, size_t errlen)
 {
     unsigned *tex = (unsigned *)(void *)((char *)cfg + su->span.texture_offset);
     char name[80];
     snprintf(name, sizeof name, "scene:%s", sc->name);
-    return np_ut_texture_add(name, &sc->tex, tex, err, errlen) == 0 ? 1 : -1;
+    if (np_ut_texture_add(name, &sc->tex, tex, err, errlen) != 0)
+        return -1;
+    if (!su->idx_int_max)
+        return 1;
+    /*
+     * Register rounding inside the bound (issue 10): over the box of the
+     * scene's texture coordinates and its longest possible span (the image
+     * width), the unit's own bound plus the registers' must be <= 1 LSB, and
+     * a clamped map's index must fit; else the scene is refused.
+     */
+    double lo[3] = { (double)INFINITY, (double)INFINITY, (double)INFINITY },
+           hi[3] = { -(double)INFINITY, -(double)INFINITY, -(double)INFINITY };
+    for (unsigned p = 0; p < sc->n_poly; p++)
+        for (unsigned v = 0; v < sc->poly[p].n; v++)
+            for (int a = 0; a < 3; a++) {
+                lo[a] = fmin(lo[a], sc->poly[p].t[v][a]);
+                hi[a] = fmax(hi[a], sc->poly[p].t[v][a]);
+            }
+    if (sc->n_poly == 0)
+        for (int a = 0; a < 3; a++)
+            lo[a] = hi[a] = 0;
+    np_texreg_scene_bound b;
+    np_texreg_scene_bound_compute(&sc->tex, np_ut_regs(*tex), lo, hi, sc->width, &b);
+    pthread_mutex_lock(&ut_lock);
+    ut_scene_bound[*tex - N_TEX] = b;
+    ut_scene_has_bound[*tex - N_TEX] = 1;
+    pthread_mutex_unlock(&ut_lock);
+    const double own = u->error_bound_lsb ? u->error_bound_lsb(cfg) : 0.5;
+    return np_texreg_scene_check(sc->name, &b, own, *(const unsigned *)np_su_engine_cfg(&su->span, cfg),
+                                 su->idx_int_max, err, errlen) == 0
+               ? 1
+               : -1;
 }
 
 void np_su_ref(const np_su *su, const void *cfg, const uint64_t *in, double *out)

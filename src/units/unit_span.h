@@ -96,6 +96,13 @@ typedef struct np_su {
      * testbench/test_toy_span.c).
      */
     void (*ref)(const void *cfg, const uint64_t *in, double *out);
+    /*
+     * The most index integer bits the unit has (0: no colour index register,
+     * no scene check). When set, the engine's configuration begins with its
+     * idx_int (unsigned), and np_su_cfg_scene checks a scene's register
+     * rounding and index range against the unit's bound (np_texreg.h).
+     */
+    unsigned idx_int_max;
     /* The pipe's stage table, built by the first pipe_init. */
     np_stage_desc stages[1 + NP_SU_STAGES_MAX];
     int built;
@@ -108,8 +115,21 @@ void np_su_ref(const np_su *su, const void *cfg, const uint64_t *in, double *out
 int np_su_pipe_init(np_su *su, np_stage_fn front, np_pipe *p, const void *cfg);
 int np_su_stream_init(const np_su *su, void *state, const void *cfg);
 size_t np_su_datapath(const np_su *su, const void *cfg, np_op *ops, size_t max);
-/* cfg_scene: register the scene's texture and select it (1: the scene uses the unit). cfg holds the defaults. */
-int np_su_cfg_scene(const np_su *su, void *cfg, const struct np_scene *sc, char *err, size_t errlen);
+/*
+ * cfg_scene: register the scene's texture and select it (1: the scene uses
+ * the unit). cfg holds the defaults. With su->idx_int_max: sizes idx_int to
+ * a clamped map's index range (up to the maximum), and refuses (-1, the
+ * message naming scene, field, value and the width it needs) a scene whose
+ * register rounding takes the unit's bound (u->error_bound_lsb) over 1 LSB.
+ */
+int np_su_cfg_scene(const np_su *su, const np_unit *u, void *cfg, const struct np_scene *sc, char *err, size_t errlen);
+/*
+ * For a unit's cfg_check: NULL, or a message when cfg's texture is a scene's
+ * whose clamped index does not fit cfg's idx_int (it would wrap).
+ */
+const char *np_su_scene_index_check(const np_unit_span *s, const void *cfg, unsigned idx_int_max);
+/* The register bound np_su_cfg_scene computed for texture tex (a scene's), or NULL. */
+const struct np_texreg_scene_bound *np_ut_texture_bound(unsigned tex);
 
 /* The callbacks that need no np_su. */
 void np_su_fields(const void *cfg, np_unit_fields *f);
@@ -155,7 +175,7 @@ void np_su_add_setup(np_unit_timing *t, const char *what, unsigned products, uns
     static int su_cfg_scene(void *cfg, const struct np_scene *sc, char *err, size_t errlen)                           \
     {                                                                                                                  \
         np_unit_cfg_default(&UNIT, cfg);                                                                               \
-        return np_su_cfg_scene(&SU, cfg, sc, err, errlen);                                                             \
+        return np_su_cfg_scene(&SU, &UNIT, cfg, sc, err, errlen);                                                             \
     }                                                                                                                  \
     static const np_unit_stream su_stream = {                                                                         \
         .n_desc = UT_NDESC,                                                                                            \

@@ -33,7 +33,12 @@ static const np_unit_key keys[] = {
     NP_UNIT_KEY_END,
 };
 
-static const char *cfg_check(const void *cfg) { return np_texel_cfg_check(&((const tx_cfg *)cfg)->c); }
+static np_su tx_su;
+static const char *cfg_check(const void *cfg)
+{
+    const char *why = np_texel_cfg_check(&((const tx_cfg *)cfg)->c);
+    return why ? why : np_su_scene_index_check(&tx_su.span, cfg, 11);
+}
 
 static double error_bound(const void *cfg)
 {
@@ -101,6 +106,11 @@ static const char *tx_trace(const void *ecfg, const np_tex_regs *r, np_rng *g, n
         for (int a = 0; a < 3; a++)
             s.s[a] = i % 16u == 1 ? (i & 32u ? -((int64_t)1 << 47) : ((int64_t)1 << 47) - 1)
                                   : np_sext(np_rng_next(g), NP_TEX_S_BITS);
+        /* The front end's quadric at s (what its forward differences reach there). */
+        const int64_t zero[3] = { 0, 0, 0 };
+        np_s128 q[3];
+        np_tex_quadric_exact(r, s.s, zero, q);
+        s.qin = q[0];
         for (unsigned k = 0; k < NP_TEXEL_STAGES; k++) {
             np_texel_stages[k].fn(np_span_ctx_of(&front), &s);
             np_texel_trace(cfg, r, k, &s, t, n);
@@ -121,6 +131,7 @@ _Static_assert(sizeof(np_texel_front) <= NP_SU_CORE_MAX && sizeof(np_texel_sig) 
 static np_su tx_su = {
     .span = { &np_texel_engine, offsetof(tx_cfg, c), offsetof(tx_cfg, tex), tx_sweeps, 1, NULL, NULL, tx_trace },
     .engine_cfg_size = sizeof(np_texel_cfg),
+    .idx_int_max = 11,
     .front_name = "F",
 };
 NP_SU_DEFINE(tx_su, np_unit_texel);
