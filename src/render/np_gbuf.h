@@ -74,21 +74,21 @@
  * the scene's light applied (np_scene.light_image), the colour is lit by
  * np_gbuf_light.
  * The shaded samples of one sub-span that are consecutive form a run; each
- * run is one descriptor transaction. Cost model (cycles):
- *     sum over runs (1 + setup + n_run) + n_stages      (+ seek)
- *   1 clock to accept a descriptor, setup = what the engine's begin()
- *   returns for the sub-span (the set-up stall), one pixel per clock, the
- *   pipeline drained once at the end - exactly the cycle-accurate model's
- *   count (np_span.h, "Timing") when every run starts at k = 0
- *   (gbuf.shade_cycles checks it against np_span_sim fed the same runs). A run that starts
- *   at k0 > 0:
+ * run is one descriptor transaction. Cycles: the engine's cycle-accurate
+ * sequencer (np_span_sim, np_span.h "Timing": its descriptor buffer and
+ * set-up overlap included) fed the runs back to back with no gaps and no
+ * backpressure, so for whole sub-spans the count is exactly the cycle
+ * model's (gbuf.shade_cycles checks it). A run that starts at k0 > 0:
  *   - an engine with a seek (texel) places pixel k0 directly: u0 + k0 du and
  *     s + k0 ds, one more dependency level of the set-up engine after du:
+ *     the run is timed as a span of its own k1 - k0 pixels, plus
  *     seek = (octaves + 1) (ceil(3 / P) + Lm - 1) clocks for texel (P, Lm
- *     its setup_mults, mult_lat); 0 for an engine the model does not know;
+ *     its setup_mults, mult_lat), added serially (not hidden behind the
+ *     previous run: an upper bound); 0 for an engine the model does not know;
  *   - an engine without (fdiff: forward differences cannot skip) steps
- *     from k = 0: the k0 skipped pixels cost a clock each (and any cell
- *     set-ups they need), counted in skipped.
+ *     from k = 0: the run is timed as the span's first k1 pixels, so the
+ *     k0 skipped pixels cost a clock each (and any cell set-ups they need),
+ *     counted in skipped.
  *
  * --- Resolve (np_gbuf_resolve) ---
  * A pixel's colour from its s shaded samples (1 <= s <= 16), per channel:

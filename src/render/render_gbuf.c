@@ -511,6 +511,9 @@ int np_gbuf_shade(const np_gbuf *g, const np_unit *u, const void *cfg, const uin
     np_gbuf_light_setup(g->sc, &lq);
     e->init(core, ecfg, &g->regs);
     const unsigned seek = e->seek ? seek_cycles(e, ecfg, &g->regs) : 0;
+    /* The runs as the sequencer sees them (timing only; cycles below). */
+    size_t n_tim = 0, cap_tim = 0;
+    np_span *tim = NULL;
     np_span_counts cnt;
     memset(&cnt, 0, sizeof cnt);
     /* Uncovered samples in the mask: the background, no unit work. */
@@ -534,23 +537,37 @@ int np_gbuf_shade(const np_gbuf *g, const np_unit *u, const void *cfg, const uin
             while (k1 < sp->n && selected(g, mask, si, np_gbuf_index(g, sp->x0 + k1, sp->y, gs->a, gs->b)))
                 k1++;
             /* One run: the descriptor, placed at pixel k, pixels k .. k1 - 1. */
-            unsigned setup = e->begin(core, sp, &cnt);
+            if (n_tim == cap_tim) {
+                cap_tim = cap_tim ? 2 * cap_tim : 256;
+                np_span *t = realloc(tim, cap_tim * sizeof *t);
+                if (!t) {
+                    free(tim);
+                    free(core);
+                    free(sig);
+                    return -1;
+                }
+                tim = t;
+            }
+            /*
+             * What the sequencer times: a seeking engine's run is a span of
+             * k1 - k pixels (its pixels cost the same wherever they start)
+             * plus the seek's clocks; a sequential engine steps from pixel 0,
+             * so its run is the span's first k1 pixels.
+             */
+            tim[n_tim] = *sp;
+            tim[n_tim++].n = e->seek ? k1 - k : k1;
+            (void)e->begin(core, sp, &cnt);
             if (k > 0) {
                 if (e->seek) {
                     e->seek(core, sp, k);
-                    setup += seek;
                     c.seek += seek;
                 } else {
-                    /* A clock per skipped pixel, and the set-ups stepping over them needs. */
                     for (uint32_t s = 0; s < k; s++)
-                        setup += e->advance(core, &cnt);
+                        (void)e->advance(core, &cnt);
                     c.skipped += k;
-                    c.cycles += k;
                 }
             }
             c.runs++;
-            c.setup += setup;
-            c.cycles += 1u + setup + (k1 - k);
             for (; k < k1; k++) {
                 memset(sig, 0, e->sig_size);
                 e->issue(core, sig);
@@ -563,18 +580,36 @@ int np_gbuf_shade(const np_gbuf *g, const np_unit *u, const void *cfg, const uin
                 memcpy(rgb + 3 * i, h->pix.rgb, 3);
                 np_gbuf_light(&lq, g->normal[i], rgb + 3 * i);
                 c.samples++;
-                unsigned adv = e->advance(core, &cnt);
-                if (k + 1 < k1) {
-                    c.setup += adv;
-                    c.cycles += adv;
-                }
+                (void)e->advance(core, &cnt);
             }
         }
     }
-    if (c.runs)
-        c.cycles += e->n_stages;
     free(core);
     free(sig);
+    /* The cycles: the engine's cycle-accurate sequencer fed the runs back to back, plus the seeks. */
+    if (n_tim) {
+        np_span_sim sim;
+        if (np_span_sim_init(&sim, e, ecfg, &g->regs)) {
+            free(tim);
+            return -1;
+        }
+        size_t next = 0;
+        while (next < n_tim || !np_span_sim_idle(&sim)) {
+            np_span_port p;
+            memset(&p, 0, sizeof p);
+            p.in_valid = next < n_tim;
+            p.in = p.in_valid ? &tim[next] : NULL;
+            p.out_ready = 1;
+            np_span_sim_eval(&sim, &p);
+            if (p.in_valid && p.in_ready)
+                next++;
+            np_span_sim_clock(&sim, &p);
+        }
+        c.setup = sim.stats.setup_stalls + c.seek;
+        c.cycles = sim.stats.cycles + c.seek;
+        np_span_sim_free(&sim);
+    }
+    free(tim);
     if (cost)
         *cost = c;
     return 0;
