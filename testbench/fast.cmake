@@ -1,0 +1,6 @@
+# SPDX-License-Identifier: MIT
+# The fast paths (issue 13) against the specification: table hash and gradient,
+# batch APIs, against the bit loop and the per-input models.
+np_test_program(test_fast test_fast.c)
+np_add_cases(test_fast fast hash_exhaustive grad_table classic_batch_random classic_batch_block
+  simplex_batch_random simplex_batch_block)
