@@ -134,3 +134,11 @@ add_test(NAME search.cli_proved COMMAND ${CMAKE_COMMAND} -DCHECK=exit
 add_test(NAME search.cli_resume COMMAND ${CMAKE_COMMAND} -DCHECK=search_resume
   -DJOURNAL=${CMAKE_CURRENT_BINARY_DIR}/search_cli.journal ${np_sweep_script})
 add_test(NAME search.cli_usage COMMAND ${CMAKE_COMMAND} -DCHECK=search_usage ${np_sweep_script})
+
+# The sweep under MPI (issue 13): label mpi; they skip (exit 77) when noisepipe is built
+# without MPI or mpirun is missing.
+foreach(c same kill_resume)
+  add_test(NAME sweep.mpi_${c} COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/sweep_mpi.sh $<TARGET_FILE:noisepipe>
+    "${NP_HAVE_MPI}" ${CMAKE_CURRENT_BINARY_DIR}/sweep_mpi_${c} ${c})
+  set_tests_properties(sweep.mpi_${c} PROPERTIES LABELS mpi SKIP_RETURN_CODE 77 RUN_SERIAL ON)
+endforeach()
