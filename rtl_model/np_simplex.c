@@ -105,12 +105,19 @@ ALWAYS_INLINE void eval_one(const np_simplex_cfg *cfg, int64_t kf, int64_t kd, u
     np_simplex_rank(off[0], off[1], off[2], &hi, &lo);
 
     int64_t s = 0, qs[3] = { 0, 0, 0 };
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC unroll 4
+#endif
     for (unsigned c = 0; c < 4; c++) {
         unsigned mask = np_simplex_corner_mask(hi, lo, c);
         int32_t d[3];
         for (unsigned a = 0; a < 3; a++)
             d[a] = np_simplex_corner_d(off[a], mask >> a & 1u, c);
-        np_grad g = np_grad_fast(np_simplex_corner_hash(cell, mask));
+        /* np_simplex_corner_hash and np_grad_decode, through the 32-bit tables (vector gathers) */
+        uint32_t gp = np_grad_packed32[np_hash6_fast32((cell[0] + (mask & 1u)) & NP_MASK(NP_SIMPLEX_HASH_BITS),
+                                                       (cell[1] + (mask >> 1 & 1u)) & NP_MASK(NP_SIMPLEX_HASH_BITS),
+                                                       (cell[2] + (mask >> 2 & 1u)) & NP_MASK(NP_SIMPLEX_HASH_BITS))];
+        np_grad g = { (int8_t)np_grad_unpack(gp, 0), (int8_t)np_grad_unpack(gp, 1), (int8_t)np_grad_unpack(gp, 2) };
         int32_t gd = np_simplex_gdot(g, d);
         uint32_t t = np_simplex_kernel_t(np_simplex_r2(d));
         uint32_t tau2 = np_simplex_tau2(cfg, t);
