@@ -7,11 +7,14 @@
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "np_classic.h"
 #include "np_hash.h"
 #include "np_rng.h"
 #include "np_simplex.h"
+#include "np_sweep.h"
+#include "np_unit.h"
 #include "np_test.h"
 
 enum { CHUNK = 4096 };
@@ -219,6 +222,154 @@ static int t_grad_table(void)
     return 0;
 }
 
+/*
+ * simplex3's sweep kernel == eval/ref per input (np_sweep_rows_generic): every
+ * code and every reference double bit for bit, on `calls` kernel calls of
+ * NP_SWEEP_ROWS rows starting at (x0 + 256 i, y0 + 8 i) for a given z.
+ */
+static uint64_t simplex_kernel_check(const char *config, uint16_t xcell, uint16_t z, unsigned y_first,
+                                     unsigned y_end, np_rng *r, unsigned random_calls)
+{
+    const np_unit *u = np_unit_find("simplex3");
+    np_unit_cfg cfg;
+    char err[256];
+    NP_CHECK(u && np_unit_configure(u, &cfg, config, err, sizeof err) == 0, "configure %s", config ? config : "default");
+    if (!u || !u->sweep_rows) {
+        NP_CHECK(u && u->sweep_rows, "simplex3 has a sweep kernel");
+        return 1;
+    }
+    np_unit_fields f;
+    u->fields(&cfg, &f);
+    size_t n = (size_t)f.n_out * NP_SWEEP_ROWS * NP_SWEEP_ROW;
+    int32_t *c1 = malloc(n * sizeof *c1), *c2 = malloc(n * sizeof *c2);
+    double *r1 = malloc(n * sizeof *r1), *r2 = malloc(n * sizeof *r2);
+    uint64_t bad = 0;
+    unsigned calls = random_calls ? random_calls : (y_end - y_first) / NP_SWEEP_ROWS;
+    for (unsigned k = 0; c1 && c2 && r1 && r2 && k < calls; k++) {
+        uint16_t x0, y0, zz;
+        if (random_calls) {
+            uint64_t w = np_rng_next(r);
+            x0 = (uint16_t)(w & 0xff00u);
+            y0 = (uint16_t)(w >> 16);
+            zz = (uint16_t)(w >> 32);
+        } else {
+            x0 = (uint16_t)(xcell << 8);
+            y0 = (uint16_t)(y_first + k * NP_SWEEP_ROWS);
+            zz = z;
+        }
+        unsigned what = NP_SWEEP_MODEL | NP_SWEEP_REF;
+        u->sweep_rows(&cfg, x0, y0, zz, NP_SWEEP_ROWS, what, c1, r1);
+        np_sweep_rows_generic(u, &cfg, x0, y0, zz, NP_SWEEP_ROWS, what, c2, r2);
+        for (size_t i = 0; i < n; i++)
+            if ((c1[i] != c2[i] || memcmp(&r1[i], &r2[i], sizeof r1[i]) != 0) && ++bad <= 5) {
+                size_t t = i % NP_SWEEP_ROW, row = i / NP_SWEEP_ROW % NP_SWEEP_ROWS,
+                       fld = i / ((size_t)NP_SWEEP_ROW * NP_SWEEP_ROWS);
+                NP_CHECK(0, "%s field %zu at (0x%04zx, 0x%04zx, 0x%04x): kernel %d %.17g, per input %d %.17g",
+                         config ? config : "default", fld, x0 + t, y0 + row, zz, c1[i], r1[i], c2[i], r2[i]);
+            }
+    }
+    free(c1);
+    free(c2);
+    free(r1);
+    free(r2);
+    return bad;
+}
+
+/* A whole x cell (2^24 inputs), x cell 0xff at z = 0xfff1 (the input words wrap), default config. */
+static int t_simplex_kernel_block(void)
+{
+    uint64_t bad = simplex_kernel_check(NULL, 0xff, 0xfff1, 0, 65536, NULL, 0);
+    printf("simplex3 sweep kernel, x cell 0xff, z = 0xfff1: 2^24 inputs, %llu mismatching inputs\n",
+           (unsigned long long)bad);
+    return 0;
+}
+
+/* Random kernel calls (x cell, y, z random) in four configurations. */
+static int t_simplex_kernel_random(void)
+{
+    static const char *const configs[] = { NULL, "deriv=0", "out_bits=8,dout_bits=10", "t_frac=12,p_frac=10" };
+    np_rng r;
+    np_rng_seed(&r, 0x6661737433ull);
+    for (unsigned k = 0; k < 4; k++) {
+        uint64_t bad = simplex_kernel_check(configs[k], 0, 0, 0, 0, &r, 200);
+        printf("simplex3 sweep kernel, %s: 200 random calls (409600 inputs), %llu mismatches\n",
+               configs[k] ? configs[k] : "default", (unsigned long long)bad);
+    }
+    return 0;
+}
+
+/*
+ * The cycle models without bundle copies (np_pipe rotates bank slots) against
+ * the copying model: two pipes of the same unit driven by the same random
+ * valid/ready streams must agree every cycle on in_ready, out_valid and the
+ * whole output bundle, and end with the same statistics.
+ */
+static uint64_t pipe_pair(const char *unit, const char *config, int in_reg, int out_skid, uint64_t cycles)
+{
+    const np_unit *u = np_unit_find(unit);
+    np_unit_cfg cfg;
+    char err[256];
+    if (!u || np_unit_configure(u, &cfg, config, err, sizeof err) != 0) {
+        NP_CHECK(0, "configure %s", unit);
+        return 1;
+    }
+    np_pipe a, b;
+    if (u->pipe_init(&a, &cfg) != 0 || u->pipe_init(&b, &cfg) != 0) {
+        NP_CHECK(0, "pipe_init %s", unit);
+        return 1;
+    }
+    b.copy_banks = 1;
+    a.in_reg = b.in_reg = in_reg;
+    a.out_skid = b.out_skid = out_skid;
+    unsigned char *in = calloc(1, a.sig_size);
+    np_rng r;
+    np_rng_seed(&r, 0x70697065ull);
+    uint64_t bad = 0, delivered = 0;
+    np_pipe_port pa, pb;
+    memset(&pa, 0, sizeof pa);
+    memset(&pb, 0, sizeof pb);
+    for (uint64_t c = 0; in && c < cycles; c++) {
+        uint64_t w = np_rng_next(&r);
+        uint64_t v[NP_UNIT_MAX_FIELDS] = { w & 0xffffu, w >> 16 & 0xffffu, w >> 32 & 0xffffu };
+        u->sig_set_in(in, v);
+        pa.in_valid = pb.in_valid = (w >> 48 & 3u) != 0;
+        pa.out_ready = pb.out_ready = (w >> 50 & 3u) != 0;
+        pa.in_sig = pb.in_sig = in;
+        np_pipe_eval(&a, &pa);
+        np_pipe_eval(&b, &pb);
+        int same = pa.in_ready == pb.in_ready && pa.out_valid == pb.out_valid &&
+                   (!pa.out_valid || memcmp(pa.out_sig, pb.out_sig, a.sig_size) == 0);
+        if (!same && ++bad <= 5)
+            NP_CHECK(same, "%s in_reg=%d out_skid=%d cycle %llu: rotating and copying pipes differ", unit, in_reg,
+                     out_skid, (unsigned long long)c);
+        delivered += pa.out_valid && pa.out_ready;
+        np_pipe_clock(&a, &pa);
+        np_pipe_clock(&b, &pb);
+    }
+    NP_CHECK(memcmp(&a.stats, &b.stats, sizeof a.stats) == 0, "%s: statistics differ", unit);
+    NP_CHECK(delivered > cycles / 4, "%s: %llu outputs in %llu cycles", unit, (unsigned long long)delivered,
+             (unsigned long long)cycles);
+    free(in);
+    np_pipe_free(&a);
+    np_pipe_free(&b);
+    return bad;
+}
+
+static int t_pipe_no_copy(void)
+{
+    static const struct { const char *unit, *config; } v[] = {
+        { "classic3", NULL }, { "simplex3", NULL }, { "simplex3", "deriv=0" },
+    };
+    for (unsigned i = 0; i < 3; i++)
+        for (int opt = 0; opt < 4; opt++) {
+            uint64_t bad = pipe_pair(v[i].unit, v[i].config, opt & 1, opt >> 1, 200000);
+            printf("%s%s%s in_reg=%d out_skid=%d: 200000 random cycles, %llu differing cycles\n", v[i].unit,
+                   v[i].config ? " " : "", v[i].config ? v[i].config : "", opt & 1, opt >> 1,
+                   (unsigned long long)bad);
+        }
+    return 0;
+}
+
 static const np_test_case cases[] = {
     { "hash_exhaustive", t_hash_exhaustive },
     { "grad_table", t_grad_table },
@@ -226,6 +377,9 @@ static const np_test_case cases[] = {
     { "classic_batch_block", t_classic_batch_block },
     { "simplex_batch_random", t_simplex_batch_random },
     { "simplex_batch_block", t_simplex_batch_block },
+    { "simplex_kernel_block", t_simplex_kernel_block },
+    { "simplex_kernel_random", t_simplex_kernel_random },
+    { "pipe_no_copy", t_pipe_no_copy },
     { NULL, NULL },
 };
 

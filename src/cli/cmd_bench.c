@@ -309,12 +309,13 @@ static int bench_units(double secs, const np_unit *classic)
 }
 
 /* The cycle-accurate model at full throughput: an input every clock, output always ready. */
-static rate bench_pipe(const np_unit *u, const void *cfg, double secs)
+static rate bench_pipe(const np_unit *u, const void *cfg, int copy_banks, double secs)
 {
     rate r = { 0, 0, 0 };
     np_pipe p;
     if (u->pipe_init(&p, cfg) != 0)
         return r;
+    p.copy_banks = copy_banks;
     unsigned char sig[1024];
     if (p.sig_size > sizeof sig) {
         np_pipe_free(&p);
@@ -396,7 +397,12 @@ int np_cmd_bench(int argc, char **argv)
         row("model + reference, sweep kernel", bench_kernel(u, &cfg, NP_SWEEP_MODEL | NP_SWEEP_REF, secs),
             "inputs", "");
     }
-    row("cycle-accurate model, np_pipe at 1 input/clock", bench_pipe(u, &cfg, secs), "cycles", "");
+    rate pipe_copy = bench_pipe(u, &cfg, 1, secs);
+    row("cycle-accurate model, copying bundles (former)", pipe_copy, "cycles", "");
+    rate pipe_rot = bench_pipe(u, &cfg, 0, secs);
+    char pnote[64];
+    snprintf(pnote, sizeof pnote, " (%.2fx copying)", per_cpu_s(pipe_copy) > 0 ? per_cpu_s(pipe_rot) / per_cpu_s(pipe_copy) : 0.0);
+    row("cycle-accurate model, np_pipe at 1 input/clock", pipe_rot, "cycles", pnote);
 
     /* The sweep itself: enough whole blocks for about secs on two threads. */
     np_sweep_opts o;
