@@ -98,9 +98,11 @@ static rate bench_ref_plain(double secs)
 static rate bench_kernel(const np_unit *u, const void *cfg, unsigned what, double secs)
 {
     rate r = { 0, 0, 0 };
-    size_t n = (size_t)NP_SWEEP_ROWS * NP_SWEEP_ROW;
-    int32_t *code = malloc(n * sizeof *code);
-    double *ref = malloc(n * sizeof *ref);
+    np_unit_fields f;
+    u->fields(cfg, &f);
+    size_t n = (size_t)NP_SWEEP_ROWS * NP_SWEEP_ROW; /* inputs per call */
+    int32_t *code = malloc(n * f.n_out * sizeof *code); /* every output field */
+    double *ref = malloc(n * f.n_out * sizeof *ref);
     if (!code || !ref) {
         free(code);
         free(ref);
