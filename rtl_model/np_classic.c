@@ -52,7 +52,7 @@ void np_classic_cell_setup(uint8_t i, uint8_t j, uint8_t k, np_classic_cell *cel
     for (unsigned c = 0; c < 8; c++) {
         uint8_t ci = (uint8_t)(i + (c & 1u)), cj = (uint8_t)(j + ((c >> 1) & 1u)),
                 ck = (uint8_t)(k + ((c >> 2) & 1u)); /* wrap mod 256 */
-        cell->g[c] = np_grad_decode(np_hash6(ci, cj, ck));
+        cell->g[c] = np_grad_fast(np_hash6_fast(ci, cj, ck));
     }
 }
 
@@ -61,6 +61,95 @@ int32_t np_classic_eval(const np_classic_cfg *cfg, uint16_t x, uint16_t y, uint1
     np_classic_cell cell;
     np_classic_cell_setup(in_cell(x), in_cell(y), in_cell(z), &cell);
     return np_classic_eval_in_cell(cfg, &cell, in_frac(x), in_frac(y), in_frac(z));
+}
+
+/*
+ * --- The batch model's specialised path: the default widths N = 8, WS = 12,
+ * WL = 11 (F = 6) in int32. The same operations as np_classic_eval_in_cell
+ * with the widths as constants; every intermediate fits 32 bits:
+ *   s            u13 Q1.12   (u^2 (768 - 2u) + 2^11) >> 12 <= 4096
+ *   g            s11 Q2.8    |g| <= 768
+ *   level 1      g0 2^12 + s (g1 - g0)   Q.20, |.| <= 768 2^12 + 4096 * 1536 < 2^24
+ *                l1 = round to Q.11 (drop 9 bits), |l1| <= 2.5 2^11 + 1
+ *   levels 2, 3  l 2^12 + s (l' - l)     Q.23, |.| <= 2.5 2^23 + 4096 * 5 2^11 + ... < 2^26
+ *                rounded to Q.11 (drop 12 bits)
+ *   out          round Q.11 to Q.6 (drop 5 bits), saturate to s8
+ * (the level bounds are np_classic_datapath's range argument; the sums have
+ * 5 bits of headroom below 2^31). Rounding is np_shr_round_half_up's: add
+ * half, then an arithmetic shift, written with unsigned operations.
+ */
+enum { D_WS = 12, D_WL = 11, D_N = 8, D_F = D_N - 2, D_SNUM_DROP = NP_CLASSIC_SNUM_BITS - D_WS };
+
+static inline int32_t asr32(int32_t v, unsigned sh)
+{
+    uint32_t u = (uint32_t)v;
+    uint32_t sign = 0u - (u >> 31);
+    return (int32_t)((u >> sh) | (sign & ~(~0u >> sh)));
+}
+static inline int32_t round32(int32_t v, unsigned sh) { return asr32(v + (1 << (sh - 1u)), sh); }
+
+/* One lerp level in int32: round(a 2^WS + s (b - a)) dropping `drop` bits. */
+static inline int32_t lerp32(int32_t s, int32_t a, int32_t b, unsigned drop)
+{
+    return round32(a * (1 << D_WS) + s * (b - a), drop);
+}
+
+static inline int32_t scurve32(int32_t u)
+{
+    return round32(u * u * (768 - 2 * u), D_SNUM_DROP);
+}
+
+/* Gradient contribution of the corner (ci, cj, ck) (u8 each) at offset (dx, dy, dz), s11. */
+static inline int32_t grad32(uint32_t ci, uint32_t cj, uint32_t ck, int32_t dx, int32_t dy, int32_t dz)
+{
+    uint32_t g = np_grad_packed32[np_hash6_fast32(ci & 255u, cj & 255u, ck & 255u)];
+    return np_grad_unpack(g, 0) * dx + np_grad_unpack(g, 1) * dy + np_grad_unpack(g, 2) * dz;
+}
+
+NP_BATCH_CLONES static void eval_n_default(const uint16_t *restrict xs, const uint16_t *restrict ys,
+                                           const uint16_t *restrict zs, int32_t *restrict out,
+                                           size_t count)
+{
+    for (size_t n = 0; n < count; n++) {
+        uint32_t x = xs[n], y = ys[n], z = zs[n];
+        uint32_t i = x >> POS_IN_CELL, j = y >> POS_IN_CELL, k = z >> POS_IN_CELL;
+        int32_t u = (int32_t)(x & NP_MASK(SIZE_IN_FRAC)), v = (int32_t)(y & NP_MASK(SIZE_IN_FRAC)),
+                w = (int32_t)(z & NP_MASK(SIZE_IN_FRAC));
+        int32_t u1 = u - 256, v1 = v - 256, w1 = w - 256;
+        int32_t g0 = grad32(i, j, k, u, v, w);
+        int32_t g1 = grad32(i + 1u, j, k, u1, v, w);
+        int32_t g2 = grad32(i, j + 1u, k, u, v1, w);
+        int32_t g3 = grad32(i + 1u, j + 1u, k, u1, v1, w);
+        int32_t g4 = grad32(i, j, k + 1u, u, v, w1);
+        int32_t g5 = grad32(i + 1u, j, k + 1u, u1, v, w1);
+        int32_t g6 = grad32(i, j + 1u, k + 1u, u, v1, w1);
+        int32_t g7 = grad32(i + 1u, j + 1u, k + 1u, u1, v1, w1);
+        int32_t sx = scurve32(u), sy = scurve32(v), sz = scurve32(w);
+        enum { DROP1 = NP_CLASSIC_FRAC_IN + D_WS - D_WL, DROP2 = D_WS };
+        int32_t a = lerp32(sx, g0, g1, DROP1), b = lerp32(sx, g2, g3, DROP1);
+        int32_t c = lerp32(sx, g4, g5, DROP1), d = lerp32(sx, g6, g7, DROP1);
+        int32_t e = lerp32(sy, a, b, DROP2), f = lerp32(sy, c, d, DROP2);
+        int32_t r = round32(lerp32(sz, e, f, DROP2), D_WL - D_F);
+        int32_t hi = (1 << (D_N - 1)) - 1, lo = -hi - 1;
+        out[n] = r > hi ? hi : r < lo ? lo : r;
+    }
+}
+
+static int is_default_cfg(const np_classic_cfg *cfg)
+{
+    return cfg->out_bits == D_N && cfg->s_frac == D_WS && cfg->lerp_frac == D_WL;
+}
+
+void np_classic_eval_n(const np_classic_cfg *cfg, const uint16_t *x, const uint16_t *y,
+                       const uint16_t *z, int32_t *out, size_t count)
+{
+    if (is_default_cfg(cfg)) {
+        eval_n_default(x, y, z, out, count);
+        return;
+    }
+    const np_classic_cfg c = *cfg;
+    for (size_t n = 0; n < count; n++)
+        out[n] = np_classic_eval(&c, x[n], y[n], z[n]);
 }
 
 /* --- Pipeline stages: the same primitives, split at the register banks. --- */
@@ -74,7 +163,7 @@ static void stage_l(const void *cfgv, void *sv)
     np_classic_sig *s = sig_of(sv);
     uint8_t i = in_cell(s->x), j = in_cell(s->y), k = in_cell(s->z);
     for (unsigned c = 0; c < 8; c++)
-        s->h[c] = np_hash6((uint8_t)(i + (c & 1u)), (uint8_t)(j + ((c >> 1) & 1u)),
+        s->h[c] = np_hash6_fast((uint8_t)(i + (c & 1u)), (uint8_t)(j + ((c >> 1) & 1u)),
                            (uint8_t)(k + ((c >> 2) & 1u)));
     const uint16_t in[3] = { s->x, s->y, s->z };
     for (unsigned a = 0; a < 3; a++) {
@@ -97,7 +186,7 @@ static void stage_h(const void *cfgv, void *sv)
         s->s[a] = (uint32_t)np_shr_round_half_up_u(num, NP_CLASSIC_SNUM_BITS - cfg->s_frac);
     }
     for (unsigned c = 0; c < 8; c++)
-        s->g[c] = np_grad_apply_q8(np_grad_decode(s->h[c]), d[c & 1u][0], d[(c >> 1) & 1u][1],
+        s->g[c] = np_grad_apply_q8(np_grad_fast(s->h[c]), d[c & 1u][0], d[(c >> 1) & 1u][1],
                                    d[(c >> 2) & 1u][2]);
 }
 

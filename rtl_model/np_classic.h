@@ -52,6 +52,7 @@
 #ifndef NP_CLASSIC_H
 #define NP_CLASSIC_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "np_datapath.h"
@@ -165,6 +166,18 @@ static inline int32_t np_classic_eval_in_cell(const np_classic_cfg *cfg,
 
 /* The bit-exact model: signed output value (sN Q2.(N-2)) for one input. */
 int32_t np_classic_eval(const np_classic_cfg *cfg, uint16_t x, uint16_t y, uint16_t z);
+
+/*
+ * The bit-exact model over arrays: out[n] = np_classic_eval(cfg, x[n], y[n],
+ * z[n]) for n < count, the same bits (fast.classic_batch_* prove it on random
+ * inputs and a whole x cell). The configuration is checked once; the default
+ * widths (np_classic_cfg_default(8): N = 8, WS = 12, WL = 11) run a
+ * specialised int32 loop (np_classic.c gives its range argument) that the
+ * compiler vectorises across inputs; other configurations run the generic
+ * per-input path. The arrays may not overlap out.
+ */
+void np_classic_eval_n(const np_classic_cfg *cfg, const uint16_t *x, const uint16_t *y,
+                       const uint16_t *z, int32_t *out, size_t count);
 
 /* --- Cycle-accurate model --- */
 

@@ -46,6 +46,20 @@
 extern "C" {
 #endif
 
+/*
+ * NP_BATCH_CLONES on a batch loop of a model (np_classic_eval_n,
+ * np_simplex_eval_n): GCC compiles it for x86-64, x86-64-v3 (AVX2) and
+ * x86-64-v4 (AVX-512) and the loader picks one by the CPU (the sweep's
+ * NP_SWEEP_CLONES, src/sweep/np_sweep.h). Integer results cannot differ
+ * between clones; -DNP_SWEEP_NO_CLONES builds the baseline only.
+ */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) && \
+    !defined(NP_SWEEP_NO_CLONES) && !defined(__SANITIZE_ADDRESS__)
+#define NP_BATCH_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#else
+#define NP_BATCH_CLONES
+#endif
+
 /* The eight 6-bit bit patterns of the seed. */
 extern const uint8_t np_hash_bit_patterns[8];
 
@@ -62,6 +76,59 @@ typedef struct np_grad {
 } np_grad;
 
 np_grad np_grad_decode(uint8_t h);
+
+/*
+ * The fast path: the same two functions as tables, inline. np_hash6 and
+ * np_grad_decode above are the specification (the bit loop of the seed);
+ * these give the same result for every argument (test fast.hash_exhaustive
+ * checks all 2^24 lattice points and all 64 indices).
+ *
+ * Why two 4 KB tables give the hash: the term of bit B,
+ * b(., ., ., B), reads only bit B of i, j and k, so the terms of bits 0..3
+ * depend only on the low nibbles of (i, j, k) and those of bits 4..7 only on
+ * the high nibbles; and a sum mod 64 is the sum mod 64 of two partial sums.
+ *   lo[(i & 15) << 8 | (j & 15) << 4 | (k & 15)] = (terms of bits 0..3) mod 64
+ *   hi[(i >> 4) << 8 | (j >> 4) << 4 | (k >> 4)] = (terms of bits 4..7) mod 64
+ *   np_hash6(i, j, k) = (lo[.] + hi[.]) mod 64                     (u6)
+ * The tables are built at compile time from the seed's eight patterns
+ * (np_hash.c); nothing is computed at run time.
+ */
+extern const uint8_t np_hash6_lo[4096];
+extern const uint8_t np_hash6_hi[4096];
+extern const np_grad np_grad_table[64];
+
+static inline uint8_t np_hash6_fast(uint8_t i, uint8_t j, uint8_t k)
+{
+    unsigned lo = ((unsigned)(i & 15u) << 8) | ((unsigned)(j & 15u) << 4) | (k & 15u);
+    unsigned hi = ((unsigned)(i >> 4) << 8) | ((unsigned)(j >> 4) << 4) | (unsigned)(k >> 4);
+    return (uint8_t)((np_hash6_lo[lo] + np_hash6_hi[hi]) & 63u);
+}
+
+/*
+ * The same tables in 32-bit words, for loops that the compiler vectorises
+ * across inputs (vector gathers load 32-bit elements): np_hash6_lo32[n] ==
+ * np_hash6_lo[n] etc., and np_grad_packed32[h] holds np_grad_decode(h) as
+ * (cx + 1) | (cy + 1) << 2 | (cz + 1) << 4 (np_grad_unpack).
+ */
+extern const uint32_t np_hash6_lo32[4096];
+extern const uint32_t np_hash6_hi32[4096];
+extern const uint32_t np_grad_packed32[64];
+
+static inline uint32_t np_hash6_fast32(uint32_t i, uint32_t j, uint32_t k)
+{
+    uint32_t lo = (i & 15u) << 8 | (j & 15u) << 4 | (k & 15u);
+    uint32_t hi = (i >> 4 & 15u) << 8 | (j >> 4 & 15u) << 4 | (k >> 4 & 15u);
+    return (np_hash6_lo32[lo] + np_hash6_hi32[hi]) & 63u;
+}
+
+/* Coefficient of axis a (0, 1, 2) from a packed gradient: -1, 0 or +1. */
+static inline int32_t np_grad_unpack(uint32_t packed, unsigned a)
+{
+    return (int32_t)(packed >> (2u * a) & 3u) - 1;
+}
+
+/* np_grad_decode(h) for a u6 h, as one table load. */
+static inline np_grad np_grad_fast(uint8_t h) { return np_grad_table[h & 63u]; }
 
 /*
  * Fixed-point gradient contribution: cx*dx + cy*dy + cz*dz with dx, dy, dz

@@ -17,11 +17,14 @@ int np_pipe_init(np_pipe *p, const np_stage_desc *stages, unsigned depth, size_t
     p->regs = calloc(depth, sig_size);
     p->valid = calloc(depth, 1);
     p->moves = calloc(depth, 1);
+    p->slot = calloc(depth, sizeof *p->slot);
     p->opt = calloc(3, sig_size);
-    if (!p->regs || !p->valid || !p->moves || !p->opt) {
+    if (!p->regs || !p->valid || !p->moves || !p->slot || !p->opt) {
         np_pipe_free(p);
         return -1;
     }
+    for (unsigned k = 0; k < depth; k++)
+        p->slot[k] = k;
     return 0;
 }
 
@@ -30,7 +33,9 @@ void np_pipe_free(np_pipe *p)
     free(p->regs);
     free(p->valid);
     free(p->moves);
+    free(p->slot);
     free(p->opt);
+    p->slot = NULL;
     p->regs = NULL;
     p->valid = p->moves = p->opt = NULL;
 }
@@ -40,6 +45,8 @@ void np_pipe_reset(np_pipe *p)
     memset(p->valid, 0, p->depth);
     memset(p->moves, 0, p->depth);
     memset(p->regs, 0, p->depth * p->sig_size);
+    for (unsigned k = 0; k < p->depth; k++)
+        p->slot[k] = k;
     memset(p->opt, 0, 3 * p->sig_size);
     p->in_v = p->main_v = p->skid_v = 0;
     memset(&p->stats, 0, sizeof p->stats);
@@ -53,7 +60,7 @@ unsigned np_pipe_occupancy(const np_pipe *p)
     return n + p->in_v + p->main_v + p->skid_v;
 }
 
-static unsigned char *bank(np_pipe *p, unsigned k) { return p->regs + (size_t)k * p->sig_size; }
+static unsigned char *bank(np_pipe *p, unsigned k) { return p->regs + (size_t)p->slot[k] * p->sig_size; }
 /* The option registers: 0 input register, 1 skid main, 2 skid spare. */
 static unsigned char *opt(np_pipe *p, unsigned k) { return p->opt + (size_t)k * p->sig_size; }
 
@@ -103,7 +110,19 @@ void np_pipe_clock(np_pipe *p, const np_pipe_port *port)
         if (p->valid[k] && !p->moves[k])
             continue; /* holds */
         if (p->moves[k - 1]) {
-            memcpy(bank(p, k), bank(p, k - 1), p->sig_size);
+            /*
+             * Bank k takes bank k - 1's bundle; bank k - 1 gets bank k's old
+             * one, which is free (it moved on: handled already, back to front;
+             * or it was empty), and is written before it is read again. Stage
+             * k works in place on the bundle, so the bits are those of a copy.
+             */
+            if (p->copy_banks) {
+                memcpy(bank(p, k), bank(p, k - 1), p->sig_size);
+            } else {
+                unsigned t = p->slot[k];
+                p->slot[k] = p->slot[k - 1];
+                p->slot[k - 1] = t;
+            }
             p->stages[k].fn(p->cfg, bank(p, k));
             p->valid[k] = 1;
         } else {

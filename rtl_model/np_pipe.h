@@ -80,7 +80,10 @@ typedef struct np_pipe {
     const np_stage_desc *stages;
     unsigned depth;
     size_t sig_size;
-    unsigned char *regs;  /* depth banks of sig_size bytes */
+    unsigned char *regs;  /* depth bundles of sig_size bytes, bank k in bundle slot[k] */
+    unsigned *slot;       /* which bundle each bank holds: a transfer passes the bundle on, no copy */
+    int copy_banks;       /* 1: copy each bundle from bank to bank instead (the former model; same
+                             bits and cycles, slower; for the bench's comparison and the tests) */
     unsigned char *valid; /* depth valid bits */
     unsigned char *moves; /* scratch: bank k transfers onward this cycle */
     np_pipe_stats stats;

@@ -80,8 +80,18 @@ double np_simplex_error_bound_lsb(const np_simplex_cfg *cfg, int deriv_field)
  * The skewed cell is not the high byte: it is floor((4x + y + z) / 768).
  */
 
-void np_simplex_eval(const np_simplex_cfg *cfg, uint16_t x, uint16_t y, uint16_t z,
-                     np_simplex_out *out)
+/*
+ * The model for one input, inlined into np_simplex_eval and into the batch
+ * loops below, where a constant cfg folds every width (one definition of
+ * the arithmetic).
+ */
+#if defined(__GNUC__)
+#define ALWAYS_INLINE static inline __attribute__((always_inline))
+#else
+#define ALWAYS_INLINE static inline
+#endif
+ALWAYS_INLINE void eval_one(const np_simplex_cfg *cfg, int64_t kf, int64_t kd, uint16_t x, uint16_t y,
+                            uint16_t z, np_simplex_out *out)
 {
     const uint16_t in[3] = { x, y, z };
     uint32_t cell[3];
@@ -95,12 +105,19 @@ void np_simplex_eval(const np_simplex_cfg *cfg, uint16_t x, uint16_t y, uint16_t
     np_simplex_rank(off[0], off[1], off[2], &hi, &lo);
 
     int64_t s = 0, qs[3] = { 0, 0, 0 };
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC unroll 4
+#endif
     for (unsigned c = 0; c < 4; c++) {
         unsigned mask = np_simplex_corner_mask(hi, lo, c);
         int32_t d[3];
         for (unsigned a = 0; a < 3; a++)
             d[a] = np_simplex_corner_d(off[a], mask >> a & 1u, c);
-        np_grad g = np_grad_decode(np_simplex_corner_hash(cell, mask));
+        /* np_simplex_corner_hash and np_grad_decode, through the 32-bit tables (vector gathers) */
+        uint32_t gp = np_grad_packed32[np_hash6_fast32((cell[0] + (mask & 1u)) & NP_MASK(NP_SIMPLEX_HASH_BITS),
+                                                       (cell[1] + (mask >> 1 & 1u)) & NP_MASK(NP_SIMPLEX_HASH_BITS),
+                                                       (cell[2] + (mask >> 2 & 1u)) & NP_MASK(NP_SIMPLEX_HASH_BITS))];
+        np_grad g = { (int8_t)np_grad_unpack(gp, 0), (int8_t)np_grad_unpack(gp, 1), (int8_t)np_grad_unpack(gp, 2) };
         int32_t gd = np_simplex_gdot(g, d);
         uint32_t t = np_simplex_kernel_t(np_simplex_r2(d));
         uint32_t tau2 = np_simplex_tau2(cfg, t);
@@ -113,10 +130,62 @@ void np_simplex_eval(const np_simplex_cfg *cfg, uint16_t x, uint16_t y, uint16_t
                 qs[a] += np_simplex_eterm(cfg, tau4, coef[a]) - np_simplex_mterm(q, d[a]);
         }
     }
-    out->f = np_simplex_out_f(cfg, np_simplex_kf(cfg), s);
-    int64_t kd = np_simplex_kd(cfg);
+    out->f = np_simplex_out_f(cfg, kf, s);
     for (unsigned a = 0; a < 3; a++)
         out->df[a] = cfg->deriv ? np_simplex_out_d(cfg, kd, qs[a]) : 0;
+}
+
+void np_simplex_eval(const np_simplex_cfg *cfg, uint16_t x, uint16_t y, uint16_t z,
+                     np_simplex_out *out)
+{
+    eval_one(cfg, np_simplex_kf(cfg), np_simplex_kd(cfg), x, y, z, out);
+}
+
+/*
+ * Batch: the default configurations (N = ND = 16, with and without the
+ * derivative) with the widths as compile-time constants; any other runs
+ * eval_one with the configuration read once. Same bits either way.
+ */
+static const np_simplex_cfg default_d = { 16, 16, 1, 24, 22, 22 };
+static const np_simplex_cfg default_f = { 16, 16, 0, 23, 20, 22 };
+
+static int same_cfg(const np_simplex_cfg *a, const np_simplex_cfg *b)
+{
+    return a->out_bits == b->out_bits && a->dout_bits == b->dout_bits && a->deriv == b->deriv &&
+           a->t_frac == b->t_frac && a->p_frac == b->p_frac && a->k_frac == b->k_frac;
+}
+
+NP_BATCH_CLONES static void eval_n_default_d(const uint16_t *x, const uint16_t *y, const uint16_t *z,
+                                             np_simplex_out *out, size_t count)
+{
+    const int64_t kf = np_simplex_kf(&default_d), kd = np_simplex_kd(&default_d);
+    for (size_t n = 0; n < count; n++)
+        eval_one(&default_d, kf, kd, x[n], y[n], z[n], &out[n]);
+}
+
+NP_BATCH_CLONES static void eval_n_default_f(const uint16_t *x, const uint16_t *y, const uint16_t *z,
+                                             np_simplex_out *out, size_t count)
+{
+    const int64_t kf = np_simplex_kf(&default_f), kd = np_simplex_kd(&default_f);
+    for (size_t n = 0; n < count; n++)
+        eval_one(&default_f, kf, kd, x[n], y[n], z[n], &out[n]);
+}
+
+void np_simplex_eval_n(const np_simplex_cfg *cfg, const uint16_t *x, const uint16_t *y,
+                       const uint16_t *z, np_simplex_out *out, size_t count)
+{
+    if (same_cfg(cfg, &default_d)) {
+        eval_n_default_d(x, y, z, out, count);
+        return;
+    }
+    if (same_cfg(cfg, &default_f)) {
+        eval_n_default_f(x, y, z, out, count);
+        return;
+    }
+    const np_simplex_cfg c = *cfg;
+    const int64_t kf = np_simplex_kf(&c), kd = np_simplex_kd(&c);
+    for (size_t n = 0; n < count; n++)
+        eval_one(&c, kf, kd, x[n], y[n], z[n], &out[n]);
 }
 
 /* --- Pipeline stages: the same primitives, split at the register banks. --- */
@@ -157,7 +226,7 @@ static void stage_ch(const void *cfgv, void *sv)
         for (unsigned a = 0; a < 3; a++)
             s->d[c][a] = np_simplex_corner_d(s->off[a], mask >> a & 1u, c);
         s->h[c] = np_simplex_corner_hash(s->cell, mask);
-        s->g[c] = np_grad_decode(s->h[c]);
+        s->g[c] = np_grad_fast(s->h[c]);
         s->gd[c] = np_simplex_gdot(s->g[c], s->d[c]);
     }
 }

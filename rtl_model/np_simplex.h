@@ -122,6 +122,7 @@
 #ifndef NP_SIMPLEX_H
 #define NP_SIMPLEX_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "np_datapath.h"
@@ -266,7 +267,7 @@ static inline int32_t np_simplex_corner_d(int32_t off, unsigned a_bit, unsigned 
 /* CH: corner hash; the skewed corner index is read mod 256 (its low 8 bits). */
 static inline uint8_t np_simplex_corner_hash(const uint32_t cell[3], unsigned mask)
 {
-    return np_hash6((uint8_t)((cell[0] + (mask & 1u)) & NP_MASK(NP_SIMPLEX_HASH_BITS)),
+    return np_hash6_fast((uint8_t)((cell[0] + (mask & 1u)) & NP_MASK(NP_SIMPLEX_HASH_BITS)),
                     (uint8_t)((cell[1] + (mask >> 1 & 1u)) & NP_MASK(NP_SIMPLEX_HASH_BITS)),
                     (uint8_t)((cell[2] + (mask >> 2 & 1u)) & NP_MASK(NP_SIMPLEX_HASH_BITS)));
 }
@@ -377,6 +378,16 @@ typedef struct np_simplex_out {
 /* The bit-exact model. */
 void np_simplex_eval(const np_simplex_cfg *cfg, uint16_t x, uint16_t y, uint16_t z,
                      np_simplex_out *out);
+
+/*
+ * The bit-exact model over arrays: out[n] = np_simplex_eval(cfg, x[n], y[n],
+ * z[n]) for n < count, the same bits (fast.simplex_batch_* prove it). The
+ * configuration is read once; the two default configurations (N = ND = 16
+ * with and without the derivative, np_simplex_cfg_default) run loops with
+ * the widths as constants.
+ */
+void np_simplex_eval_n(const np_simplex_cfg *cfg, const uint16_t *x, const uint16_t *y,
+                       const uint16_t *z, np_simplex_out *out, size_t count);
 
 /* --- Cycle-accurate model --- */
 

@@ -15,6 +15,7 @@
 #include "np_cli.h"
 #include "np_cmd.h"
 #include "np_ref.h"
+#include "np_simplex.h"
 #include "np_sweep.h"
 #include "np_unit.h"
 
@@ -93,74 +94,15 @@ static rate bench_ref_plain(double secs)
     return r;
 }
 
-/* Through the registry: unit->eval (what 0) or unit->ref (what 1), one input at a time. */
-static rate bench_unit(const np_unit *u, const void *cfg, int what, double secs)
-{
-    rate r = { 0, 0, 0 };
-    np_unit_fields f;
-    u->fields(cfg, &f);
-    uint64_t in[NP_UNIT_MAX_FIELDS] = { 0 }, out[NP_UNIT_MAX_FIELDS], acc = 0;
-    double ref[NP_UNIT_MAX_FIELDS], facc = 0.0;
-    double t0 = np_now(), c0 = cpu_now(CLOCK_THREAD_CPUTIME_ID);
-    do {
-        for (unsigned k = 0; k < 16384; k++, r.n++) {
-            uint64_t v = next_input(r.n);
-            for (unsigned i = 0; i < f.n_in; i++) /* 16-bit fields: x, y, z from one word */
-                in[i] = (v >> (16u * i)) & ((f.in[i].bits < 64 ? ((uint64_t)1 << f.in[i].bits) : 0u) - 1u);
-            if (what == 0) {
-                u->eval(cfg, in, out);
-                acc += out[0];
-            } else {
-                u->ref(cfg, in, ref);
-                facc += ref[0];
-            }
-        }
-        r.seconds = np_now() - t0;
-        r.cpu = cpu_now(CLOCK_THREAD_CPUTIME_ID) - c0;
-    } while (r.seconds < secs);
-    sink = acc + (uint64_t)facc;
-    return r;
-}
-
-/* Every unit and variant side by side, plain per-input evaluation through the registry. */
-static int bench_units(double secs)
-{
-    static const struct { const char *unit, *spec, *label; } v[] = {
-        { "classic3", NULL, "classic3" },
-        { "simplex3", "deriv=1", "simplex3 value + derivatives" },
-        { "simplex3", "deriv=0", "simplex3 value only" },
-    };
-    printf("\nunits side by side: plain per-input evaluation through the registry, one thread\n");
-    printf("%-50s %9s %9s\n", "", "wall", "CPU");
-    for (unsigned i = 0; i < sizeof v / sizeof v[0]; i++) {
-        const np_unit *u = np_unit_find(v[i].unit);
-        np_unit_cfg cfg;
-        char err[256], what[128], text[256];
-        if (!u)
-            continue;
-        if (np_unit_configure(u, &cfg, v[i].spec, err, sizeof err) != 0) {
-            np_err("bench", "%s: %s", v[i].unit, err);
-            return NP_EXIT_USAGE;
-        }
-        np_unit_cfg_format(u, &cfg, text, sizeof text);
-        printf("  %s: %s\n", v[i].label, text);
-        snprintf(what, sizeof what, "%s, bit-exact model", v[i].label);
-        row(what, bench_unit(u, &cfg, 0, secs), "evaluations", "");
-        if (i != 2) { /* the reference computes value and derivatives together */
-            snprintf(what, sizeof what, "%s, float reference", v[i].unit);
-            row(what, bench_unit(u, &cfg, 1, secs), "evaluations", "");
-        }
-    }
-    return NP_EXIT_OK;
-}
-
 /* The unit's sweep kernel, NP_SWEEP_ROWS rows of one x cell per call, walking a slice. */
 static rate bench_kernel(const np_unit *u, const void *cfg, unsigned what, double secs)
 {
     rate r = { 0, 0, 0 };
-    size_t n = (size_t)NP_SWEEP_ROWS * NP_SWEEP_ROW;
-    int32_t *code = malloc(n * sizeof *code);
-    double *ref = malloc(n * sizeof *ref);
+    np_unit_fields f;
+    u->fields(cfg, &f);
+    size_t n = (size_t)NP_SWEEP_ROWS * NP_SWEEP_ROW; /* inputs per call */
+    int32_t *code = malloc(n * f.n_out * sizeof *code); /* every output field */
+    double *ref = malloc(n * f.n_out * sizeof *ref);
     if (!code || !ref) {
         free(code);
         free(ref);
@@ -185,13 +127,197 @@ static rate bench_kernel(const np_unit *u, const void *cfg, unsigned what, doubl
     return r;
 }
 
+/*
+ * The units side by side on the same inputs (issue 13): stb_perlin_noise3
+ * (float, from Debian's libstb-dev) as the yardstick, then each model per
+ * input, through its batch API, and the float references, each as a ratio to
+ * stb per CPU second.
+ */
+#if defined(__has_include)
+#if __has_include(<stb/stb_perlin.h>)
+#define NP_HAVE_STB 1
+#endif
+#endif
+#ifdef NP_HAVE_STB
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wconversion"
+#pragma GCC diagnostic ignored "-Wsign-conversion"
+#pragma GCC diagnostic ignored "-Wdouble-promotion"
+#pragma GCC diagnostic ignored "-Wmissing-prototypes"
+#pragma GCC diagnostic ignored "-Wstrict-prototypes"
+#pragma GCC diagnostic ignored "-Wshadow"
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic ignored "-Wfloat-conversion"
+#define STB_PERLIN_IMPLEMENTATION
+#include <stb/stb_perlin.h>
+#pragma GCC diagnostic pop
+#endif
+
+enum { SIDE_N = 65536 }; /* inputs per pass; every figure runs whole passes */
+
+typedef struct side_in {
+    uint16_t x[SIDE_N], y[SIDE_N], z[SIDE_N];
+    float fx[SIDE_N], fy[SIDE_N], fz[SIDE_N]; /* the same points as floats, word / 256 */
+    int32_t code[SIDE_N];
+    np_simplex_out sout[SIDE_N];
+    np_classic_cfg cc;
+    np_simplex_cfg sd, sf;
+} side_in;
+
+typedef uint64_t (*side_fn)(side_in *in);
+
+static uint64_t side_stb(side_in *in)
+{
+    float acc = 0.0f;
+#ifdef NP_HAVE_STB
+    for (unsigned n = 0; n < SIDE_N; n++)
+        acc += stb_perlin_noise3(in->fx[n], in->fy[n], in->fz[n], 0, 0, 0);
+#else
+    (void)in;
+#endif
+    return (uint64_t)(acc != 0.0f);
+}
+static uint64_t side_classic_one(side_in *in)
+{
+    uint64_t acc = 0;
+    for (unsigned n = 0; n < SIDE_N; n++)
+        acc += (uint32_t)np_classic_eval(&in->cc, in->x[n], in->y[n], in->z[n]);
+    return acc;
+}
+static uint64_t side_classic_n(side_in *in)
+{
+    np_classic_eval_n(&in->cc, in->x, in->y, in->z, in->code, SIDE_N);
+    return (uint32_t)in->code[SIDE_N / 2];
+}
+static uint64_t side_classic_ref(side_in *in)
+{
+    double acc = 0.0;
+    for (unsigned n = 0; n < SIDE_N; n++)
+        acc += np_ref_classic3_q88(in->x[n], in->y[n], in->z[n]);
+    return (uint64_t)(acc != 0.0);
+}
+static uint64_t simplex_one(side_in *in, const np_simplex_cfg *c)
+{
+    uint64_t acc = 0;
+    for (unsigned n = 0; n < SIDE_N; n++) {
+        np_simplex_out o;
+        np_simplex_eval(c, in->x[n], in->y[n], in->z[n], &o);
+        acc += (uint32_t)(o.f + o.df[0]);
+    }
+    return acc;
+}
+static uint64_t side_simplex_d_one(side_in *in) { return simplex_one(in, &in->sd); }
+static uint64_t side_simplex_f_one(side_in *in) { return simplex_one(in, &in->sf); }
+static uint64_t side_simplex_d_n(side_in *in)
+{
+    np_simplex_eval_n(&in->sd, in->x, in->y, in->z, in->sout, SIDE_N);
+    return (uint32_t)in->sout[SIDE_N / 2].f;
+}
+static uint64_t side_simplex_f_n(side_in *in)
+{
+    np_simplex_eval_n(&in->sf, in->x, in->y, in->z, in->sout, SIDE_N);
+    return (uint32_t)in->sout[SIDE_N / 2].f;
+}
+static uint64_t side_simplex_ref(side_in *in)
+{
+    double acc = 0.0, g[3];
+    for (unsigned n = 0; n < SIDE_N; n++)
+        acc += np_ref_simplex3_q88(in->x[n], in->y[n], in->z[n], g) + g[0];
+    return (uint64_t)(acc != 0.0);
+}
+
+/* Whole passes of fn over the inputs for about secs. */
+static rate side_run(side_fn fn, side_in *in, double secs)
+{
+    rate r = { 0, 0, 0 };
+    uint64_t acc = 0;
+    double t0 = np_now(), c0 = cpu_now(CLOCK_THREAD_CPUTIME_ID);
+    do {
+        acc += fn(in);
+        r.n += SIDE_N;
+        r.seconds = np_now() - t0;
+        r.cpu = cpu_now(CLOCK_THREAD_CPUTIME_ID) - c0;
+    } while (r.seconds < secs);
+    sink = acc;
+    return r;
+}
+
+/* One line with the ratio to stb per CPU second. */
+static void side_row(const char *what, rate r, rate stb)
+{
+    char note[64] = "";
+    if (per_cpu_s(stb) > 0)
+        snprintf(note, sizeof note, "  %6.2fx stb", per_cpu_s(r) / per_cpu_s(stb));
+    row(what, r, "evaluations", note);
+}
+
+static int bench_units(double secs, const np_unit *classic)
+{
+    side_in *in = malloc(sizeof *in);
+    if (!in) {
+        np_err("bench", "out of memory");
+        return NP_EXIT_USAGE;
+    }
+    for (unsigned n = 0; n < SIDE_N; n++) { /* the same walk over cells and fractions as above */
+        uint64_t v = next_input(n);
+        in->x[n] = (uint16_t)v;
+        in->y[n] = (uint16_t)(v >> 16);
+        in->z[n] = (uint16_t)(v >> 32);
+        in->fx[n] = (float)in->x[n] / 256.0f;
+        in->fy[n] = (float)in->y[n] / 256.0f;
+        in->fz[n] = (float)in->z[n] / 256.0f;
+    }
+    in->cc = np_classic_cfg_default(8);
+    in->sd = np_simplex_cfg_default(16, 16, 1);
+    in->sf = np_simplex_cfg_default(16, 16, 0);
+    printf("\nunits side by side on the same %u inputs (8.8 words; stb gets word / 256 as float), one thread,\n"
+           "default configurations; ratios are per CPU second\n", (unsigned)SIDE_N);
+    printf("%-50s %9s %9s\n", "", "wall", "CPU");
+#ifdef NP_HAVE_STB
+    rate stb = side_run(side_stb, in, secs);
+    row("stb_perlin_noise3 (float, libstb-dev)", stb, "evaluations", "   1.00x stb");
+#else
+    rate stb = { 0, 0, 0 };
+    printf("stb_perlin_noise3: not built (no <stb/stb_perlin.h>; Debian libstb-dev)\n");
+#endif
+    rate c1 = side_run(side_classic_one, in, secs);
+    side_row("classic3 bit-exact, np_classic_eval per input", c1, stb);
+    rate cn = side_run(side_classic_n, in, secs);
+    side_row("classic3 bit-exact, np_classic_eval_n batch", cn, stb);
+    if (classic->sweep_rows) {
+        np_unit_cfg cfg;
+        char err[256];
+        if (np_unit_configure(classic, &cfg, NULL, err, sizeof err) == 0)
+            side_row("classic3 bit-exact, sweep kernel (rows of a cell)",
+                     bench_kernel(classic, &cfg, NP_SWEEP_MODEL, secs), stb);
+    }
+    side_row("classic3 float reference per input", side_run(side_classic_ref, in, secs), stb);
+    side_row("simplex3 + derivatives, np_simplex_eval per input", side_run(side_simplex_d_one, in, secs), stb);
+    side_row("simplex3 + derivatives, np_simplex_eval_n batch", side_run(side_simplex_d_n, in, secs), stb);
+    side_row("simplex3 value only, np_simplex_eval per input", side_run(side_simplex_f_one, in, secs), stb);
+    side_row("simplex3 value only, np_simplex_eval_n batch", side_run(side_simplex_f_n, in, secs), stb);
+    const np_unit *su = np_unit_find("simplex3");
+    if (su && su->sweep_rows) {
+        np_unit_cfg cfg;
+        char err[256];
+        if (np_unit_configure(su, &cfg, NULL, err, sizeof err) == 0)
+            side_row("simplex3 + derivatives, sweep kernel (rows)", bench_kernel(su, &cfg, NP_SWEEP_MODEL, secs),
+                     stb);
+    }
+    side_row("simplex3 float reference (value + gradient)", side_run(side_simplex_ref, in, secs), stb);
+    printf("  targets (issue 13, not asserted): classic3 batch >= 1x stb; simplex3 batch with derivatives >= 0.75x\n");
+    free(in);
+    return NP_EXIT_OK;
+}
+
 /* The cycle-accurate model at full throughput: an input every clock, output always ready. */
-static rate bench_pipe(const np_unit *u, const void *cfg, double secs)
+static rate bench_pipe(const np_unit *u, const void *cfg, int copy_banks, double secs)
 {
     rate r = { 0, 0, 0 };
     np_pipe p;
     if (u->pipe_init(&p, cfg) != 0)
         return r;
+    p.copy_banks = copy_banks;
     unsigned char sig[1024];
     if (p.sig_size > sizeof sig) {
         np_pipe_free(&p);
@@ -273,7 +399,12 @@ int np_cmd_bench(int argc, char **argv)
         row("model + reference, sweep kernel", bench_kernel(u, &cfg, NP_SWEEP_MODEL | NP_SWEEP_REF, secs),
             "inputs", "");
     }
-    row("cycle-accurate model, np_pipe at 1 input/clock", bench_pipe(u, &cfg, secs), "cycles", "");
+    rate pipe_copy = bench_pipe(u, &cfg, 1, secs);
+    row("cycle-accurate model, copying bundles (former)", pipe_copy, "cycles", "");
+    rate pipe_rot = bench_pipe(u, &cfg, 0, secs);
+    char pnote[64];
+    snprintf(pnote, sizeof pnote, " (%.2fx copying)", per_cpu_s(pipe_copy) > 0 ? per_cpu_s(pipe_rot) / per_cpu_s(pipe_copy) : 0.0);
+    row("cycle-accurate model, np_pipe at 1 input/clock", pipe_rot, "cycles", pnote);
 
     /* The sweep itself: enough whole blocks for about secs on two threads. */
     np_sweep_opts o;
@@ -302,5 +433,5 @@ int np_cmd_bench(int argc, char **argv)
     printf("projected full z slice (2^32 inputs): %.1f s at this run's load, %.1f s on %u idle cores\n",
            per_s(sw) > 0 ? 4294967296.0 / per_s(sw) : 0.0,
            per_cpu_s(sw) > 0 ? 4294967296.0 / per_cpu_s(sw) / r.threads : 0.0, r.threads);
-    return bench_units(secs);
+    return bench_units(secs, u);
 }

@@ -1,8 +1,15 @@
 /* SPDX-License-Identifier: MIT */
 /* noisepipe sweep: the exhaustive error sweep of one z slice (np_sweep.h). */
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#ifdef NOISEPIPE_HAVE_MPI
+#include <mpi.h>
+#endif
 
 #include "np_cli.h"
 #include "np_cmd.h"
@@ -10,20 +17,25 @@
 #include "np_unit.h"
 
 static const char usage_text[] =
-    "usage: noisepipe sweep --z Z [--unit NAME] [--config K=V,...] [--threads N]\n"
-    "                       [--journal FILE [--resume]] [--x-cells A:B] [--no-kernel]\n"
+    "usage: noisepipe sweep --z Z|A:B [--unit NAME] [--config K=V,...] [--threads N]\n"
+    "                       [--journal FILE|DIR [--resume]] [--x-cells A:B] [--no-kernel]\n"
+    "       mpirun -np N noisepipe sweep --z A:B ...   (when built with MPI)\n"
     "\n"
     "Checks every (x, y) input of the z slice Z (2^32 inputs, u16 each) of the bit-exact\n"
     "model against the float reference and prints the error statistics.\n"
     "\n"
     "  --z Z            the slice: a u16 input word (Q8.8 for classic3), decimal or 0x hex\n"
+    "  --z A:B          the slices A <= z < B (B <= 65536), one summary over all of them;\n"
+    "                   under mpirun the ranks share the slices (rank r takes every N-th)\n"
     "  --unit NAME      the unit (default classic3; `noisepipe units` lists them)\n"
     "  --config K=V,... the unit's configuration (default: the unit's default)\n"
     "  --threads N      worker threads (default: one per online CPU)\n"
-    "  --journal FILE   append each completed block (x cell, 2^24 inputs) to FILE\n"
+    "  --journal FILE   append each completed block (x cell, 2^24 inputs) to FILE;\n"
+    "                   with --z A:B a directory (made if missing), one journal per slice\n"
     "  --resume         continue FILE: skip its blocks and merge their statistics;\n"
     "                   refused when FILE was written for another unit, config or z\n"
-    "  --x-cells A:B    only x cells A <= i < B (0 <= A < B <= 256; default 0:256)\n"
+    "  --x-cells A:B    only x cells A <= i < B (0 <= A < B <= 256; default 0:256),\n"
+    "                   in every slice\n"
     "  --no-kernel      evaluate the model and the reference per input through the\n"
     "                   unit's plain functions instead of its sweep kernel (slow;\n"
     "                   gives the same statistics, for cross-checking)\n"
@@ -65,6 +77,33 @@ static int parse_cells(const char *s, unsigned *a, unsigned *b)
     return 0;
 }
 
+/* "Z" or "A:B" (A < B <= 65536): the slices a <= z < b. */
+static int parse_z(const char *s, unsigned *a, unsigned *b, int *range)
+{
+    const char *colon = strchr(s, ':');
+    uint64_t va, vb;
+    if (!colon) {
+        if (np_parse_u64_or_0x(s, 0, 0xffff, &va) != 0)
+            return -1;
+        *a = (unsigned)va;
+        *b = (unsigned)va + 1u;
+        *range = 0;
+        return 0;
+    }
+    char buf[64];
+    if ((size_t)(colon - s) >= sizeof buf)
+        return -1;
+    memcpy(buf, s, (size_t)(colon - s));
+    buf[colon - s] = '\0';
+    if (np_parse_u64_or_0x(buf, 0, 0xffff, &va) != 0 || np_parse_u64_or_0x(colon + 1, 1, 0x10000, &vb) != 0 ||
+        va >= vb)
+        return -1;
+    *a = (unsigned)va;
+    *b = (unsigned)vb;
+    *range = 1;
+    return 0;
+}
+
 static void print_hist(const np_sweep_stats *s)
 {
     uint64_t top = 1;
@@ -90,16 +129,25 @@ static void print_hist(const np_sweep_stats *s)
     }
 }
 
+/*
+ * The summary. A range of slices (z_end > z_first + 1 or range) prints the
+ * slices and the z of the maximum; the run figures (time, ranks) come last.
+ */
 static void print_summary(const np_unit *u, const void *cfg, const np_sweep_opts *o,
-                          const np_sweep_result *r, double bound)
+                          const np_sweep_result *r, double bound, unsigned z_first, unsigned z_end,
+                          int range, uint16_t zmax)
 {
     const np_sweep_stats *s = &r->total;
     char cfgtext[256];
     np_unit_fields f;
     np_unit_cfg_format(u, cfg, cfgtext, sizeof cfgtext);
     u->fields(cfg, &f);
-    printf("sweep of unit %s (%s), slice %s = 0x%04x\n", u->name, cfgtext, f.in[2].name,
-           (unsigned)o->z);
+    if (range)
+        printf("sweep of unit %s (%s), slices %s = 0x%04x..0x%04x (%u slices)\n", u->name, cfgtext,
+               f.in[2].name, z_first, z_end - 1u, z_end - z_first);
+    else
+        printf("sweep of unit %s (%s), slice %s = 0x%04x\n", u->name, cfgtext, f.in[2].name,
+               (unsigned)o->z);
     printf("x cells %u..%u: %u block%s of 2^24 inputs, %u resumed from the journal\n", o->x_first,
            o->x_end - 1u, r->blocks, r->blocks == 1 ? "" : "s", r->blocks_resumed);
     if (f.n_out > 1) {
@@ -109,13 +157,13 @@ static void print_summary(const np_unit *u, const void *cfg, const np_sweep_opts
         printf(" (each in its own LSB)\n");
     }
     printf("inputs checked      %llu\n", (unsigned long long)s->n);
-    uint64_t in[NP_UNIT_MAX_FIELDS] = { s->max_x, s->max_y, o->z }, out[NP_UNIT_MAX_FIELDS];
+    uint64_t in[NP_UNIT_MAX_FIELDS] = { s->max_x, s->max_y, zmax }, out[NP_UNIT_MAX_FIELDS];
     double ref[NP_UNIT_MAX_FIELDS];
     u->eval(cfg, in, out);
     u->ref(cfg, in, ref);
     printf("max error           %.6f LSB at %s=0x%04x %s=0x%04x %s=0x%04x:\n", s->max_err,
            f.in[0].name, (unsigned)s->max_x, f.in[1].name, (unsigned)s->max_y, f.in[2].name,
-           (unsigned)o->z);
+           (unsigned)zmax);
     for (unsigned k = 0; k < f.n_out; k++) {
         double v = np_unit_field_value(&f.out[k], out[k]);
         printf("    %-6s model %+.*f (word 0x%0*llx), reference %+.12f, error %.6f LSB\n",
@@ -138,9 +186,182 @@ static void print_summary(const np_unit *u, const void *cfg, const np_sweep_opts
            r->seconds > 0 ? (double)r->computed / r->seconds * 1e-6 : 0.0);
 }
 
-int np_cmd_sweep(int argc, char **argv)
+/* ------------------------------------------------------------ several slices, MPI */
+
+/*
+ * A run over slices z_first <= z < z_end. Each process (an MPI rank, or the
+ * only one) computes the slices z with (z - z_first) mod ranks == rank, each
+ * through np_sweep_run (threads, journal: DIR/z-0xZZZZ.journal), and rank 0
+ * merges every slice's statistics in increasing z: the same bits whatever the
+ * number of ranks and whatever came from journals (np_sweep_stats_merge in a
+ * fixed order; among equal maxima the smallest z, then x, then y).
+ */
+typedef struct slice_res {
+    np_sweep_stats s;
+    uint64_t computed;
+    uint32_t resumed, threads;
+} slice_res;
+
+typedef struct comm {
+    int rank, size, mpi;
+} comm;
+
+/* MPI only when a launcher started us (mpirun, srun): a plain run stays a plain process. */
+static void comm_init(comm *c, int *argc, char ***argv)
+{
+    c->rank = 0;
+    c->size = 1;
+    c->mpi = 0;
+#ifdef NOISEPIPE_HAVE_MPI
+    if (getenv("OMPI_COMM_WORLD_SIZE") || getenv("PMI_SIZE") || getenv("PMIX_RANK") ||
+        getenv("PMI_RANK")) {
+        MPI_Init(argc, argv);
+        MPI_Comm_rank(MPI_COMM_WORLD, &c->rank);
+        MPI_Comm_size(MPI_COMM_WORLD, &c->size);
+        c->mpi = 1;
+    }
+#else
+    (void)argc;
+    (void)argv;
+#endif
+}
+
+/* End the MPI run; status != 0 on any rank ends every rank with it. */
+static int comm_end(const comm *c, int status)
+{
+#ifdef NOISEPIPE_HAVE_MPI
+    if (c->mpi) {
+        if (status == NP_EXIT_USAGE)
+            MPI_Abort(MPI_COMM_WORLD, status);
+        MPI_Finalize();
+    }
+#else
+    (void)c;
+#endif
+    return status;
+}
+
+/* The slice results computed on other ranks, into res[] on rank 0 (fixed-size bytes: one binary). */
+static void comm_collect(const comm *c, slice_res *res, unsigned z_first, unsigned n, double *cpu)
+{
+#ifdef NOISEPIPE_HAVE_MPI
+    if (!c->mpi || c->size == 1)
+        return;
+    for (unsigned k = 0; k < n; k++) {
+        int owner = (int)(k % (unsigned)c->size);
+        if (owner == 0)
+            continue;
+        if (c->rank == owner)
+            MPI_Send(&res[k], (int)sizeof res[k], MPI_BYTE, 0, (int)(z_first + k), MPI_COMM_WORLD);
+        else if (c->rank == 0)
+            MPI_Recv(&res[k], (int)sizeof res[k], MPI_BYTE, owner, (int)(z_first + k), MPI_COMM_WORLD,
+                     MPI_STATUS_IGNORE);
+    }
+    double mine = *cpu;
+    MPI_Reduce(&mine, cpu, 1, MPI_DOUBLE, MPI_SUM, 0, MPI_COMM_WORLD);
+#else
+    (void)c;
+    (void)res;
+    (void)z_first;
+    (void)n;
+    (void)cpu;
+#endif
+}
+
+static double cpu_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
+/* Among equal maxima the first in (z, x, y) order: slices are merged in increasing z. */
+static void merge_slice(np_sweep_stats *into, uint16_t *zmax, const np_sweep_stats *from, uint16_t z)
+{
+    np_sweep_stats keep = *into;
+    np_sweep_stats_merge(into, from); /* counts, sums, histogram; its tie rule knows x, y only */
+    const np_sweep_stats *m = from->n && from->max_err > keep.max_err ? from : &keep;
+    into->max_err = m->max_err;
+    into->max_x = m->max_x;
+    into->max_y = m->max_y;
+    if (m == from)
+        *zmax = z;
+}
+
+static int run_slices(const comm *c, np_sweep_opts *o, const char *jdir, unsigned z_first, unsigned z_end,
+                      int range, double bound)
+{
+    unsigned n = z_end - z_first;
+    slice_res *res = calloc(n, sizeof *res);
+    if (!res) {
+        np_err("sweep", "out of memory");
+        return NP_EXIT_USAGE;
+    }
+    if (jdir && range && mkdir(jdir, 0777) != 0 && errno != EEXIST) {
+        np_err("sweep", "cannot make journal directory %s: %s", jdir, strerror(errno));
+        free(res);
+        return NP_EXIT_USAGE;
+    }
+    double t0 = np_now(), cpu0 = cpu_seconds();
+    char jpath[4096], err[1024];
+    np_sweep_result r;
+    memset(&r, 0, sizeof r);
+    for (unsigned k = (unsigned)c->rank; k < n; k += (unsigned)c->size) {
+        o->z = (uint16_t)(z_first + k);
+        if (jdir && range) {
+            snprintf(jpath, sizeof jpath, "%s/z-0x%04x.journal", jdir, (unsigned)o->z);
+            o->journal = jpath;
+        }
+        if (np_sweep_run(o, &r, err, sizeof err) != 0) {
+            np_err("sweep", "%s%s", c->mpi ? "rank: " : "", err);
+            free(res);
+            return NP_EXIT_USAGE;
+        }
+        res[k].s = r.total;
+        res[k].computed = r.computed;
+        res[k].resumed = r.blocks_resumed;
+        res[k].threads = r.threads;
+    }
+    double cpu = cpu_seconds() - cpu0;
+    comm_collect(c, res, z_first, n, &cpu);
+    if (c->rank != 0) {
+        free(res);
+        return NP_EXIT_OK;
+    }
+    np_sweep_result all;
+    memset(&all, 0, sizeof all);
+    np_sweep_stats_init(&all.total);
+    uint16_t zmax = (uint16_t)z_first;
+    for (unsigned k = 0; k < n; k++) {
+        merge_slice(&all.total, &zmax, &res[k].s, (uint16_t)(z_first + k));
+        all.computed += res[k].computed;
+        all.blocks_resumed += res[k].resumed;
+        all.threads = res[k].threads > all.threads ? res[k].threads : all.threads;
+    }
+    all.blocks = n * (o->x_end - o->x_first);
+    all.kernel = o->use_kernel && o->unit->sweep_rows != NULL;
+    all.seconds = np_now() - t0;
+    free(res);
+    print_summary(o->unit, o->cfg, o, &all, bound, z_first, z_end, range, zmax);
+    if (range || c->size > 1)
+        printf("processes           %d (MPI %s), %.2f CPU-seconds in all, %.2f s wall\n", c->size,
+               c->mpi ? "on" : "off", cpu, all.seconds);
+    int ok = all.total.over == 0 && all.total.max_err <= bound;
+    if (ok)
+        printf("verdict: PASS, every input within %g LSB\n", o->unit->tolerance_lsb);
+    else
+        printf("verdict: FAIL, %llu input%s over %g LSB%s\n", (unsigned long long)all.total.over,
+               all.total.over == 1 ? "" : "s", o->unit->tolerance_lsb,
+               all.total.max_err <= bound ? "" : ", and the guaranteed bound does not hold");
+    return ok ? NP_EXIT_OK : NP_EXIT_FAIL;
+}
+
+
+
+static int cmd_sweep(const comm *c, int argc, char **argv)
 {
     const char *unit_name = "classic3", *config = NULL, *z_text = NULL, *cells = NULL;
+    int threads_given = 0;
     np_sweep_opts o;
     memset(&o, 0, sizeof o);
     o.x_end = NP_SWEEP_CELLS;
@@ -165,6 +386,7 @@ int np_cmd_sweep(int argc, char **argv)
                 return NP_EXIT_USAGE;
             }
             o.threads = (unsigned)n;
+            threads_given = 1;
         } else if ((v = opt_value(argc, argv, &k, "--journal", &missing))) {
             o.journal = v;
         } else if ((v = opt_value(argc, argv, &k, "--x-cells", &missing))) {
@@ -183,12 +405,14 @@ int np_cmd_sweep(int argc, char **argv)
         np_err("sweep", "--z is required (see --help)");
         return NP_EXIT_USAGE;
     }
-    uint64_t z;
-    if (np_parse_u64_or_0x(z_text, 0, 0xffff, &z) != 0) {
-        np_err("sweep", "--z %s: expected a u16 word, 0..65535 or 0x0000..0xffff", z_text);
+    unsigned z_first, z_end;
+    int range;
+    if (parse_z(z_text, &z_first, &z_end, &range) != 0) {
+        np_err("sweep", "--z %s: expected a u16 word (0..65535 or 0x0000..0xffff) or A:B with A < B <= 65536",
+               z_text);
         return NP_EXIT_USAGE;
     }
-    o.z = (uint16_t)z;
+    o.z = (uint16_t)z_first;
     if (cells && parse_cells(cells, &o.x_first, &o.x_end) != 0) {
         np_err("sweep", "--x-cells %s: expected A:B with 0 <= A < B <= 256", cells);
         return NP_EXIT_USAGE;
@@ -210,19 +434,16 @@ int np_cmd_sweep(int argc, char **argv)
     }
     o.unit = u;
     o.cfg = &cfg;
-    np_sweep_result r;
-    if (np_sweep_run(&o, &r, err, sizeof err) != 0) {
-        np_err("sweep", "%s", err);
-        return NP_EXIT_USAGE;
-    }
-    double bound = u->error_bound_lsb(&cfg);
-    print_summary(u, &cfg, &o, &r, bound);
-    int ok = r.total.over == 0 && r.total.max_err <= bound;
-    if (ok)
-        printf("verdict: PASS, every input within %g LSB\n", u->tolerance_lsb);
-    else
-        printf("verdict: FAIL, %llu input%s over %g LSB%s\n", (unsigned long long)r.total.over,
-               r.total.over == 1 ? "" : "s", u->tolerance_lsb,
-               r.total.max_err <= bound ? "" : ", and the guaranteed bound does not hold");
-    return ok ? NP_EXIT_OK : NP_EXIT_FAIL;
+    if (c->rank != 0)
+        o.progress = 0;
+    if (c->size > 1 && !threads_given)
+        o.threads = 1; /* one thread per rank unless told: the launcher places the ranks */
+    return run_slices(c, &o, o.journal, z_first, z_end, range, u->error_bound_lsb(&cfg));
+}
+
+int np_cmd_sweep(int argc, char **argv)
+{
+    comm c;
+    comm_init(&c, &argc, &argv);
+    return comm_end(&c, cmd_sweep(&c, argc, argv));
 }

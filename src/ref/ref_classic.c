@@ -45,7 +45,7 @@ double np_ref_classic3(double x, double y, double z)
              k = (unsigned)(mk < 0 ? mk + 256.0 : mk);
     uint8_t h[8];
     for (unsigned c = 0; c < 8; c++)
-        h[c] = np_hash6((uint8_t)((i + (c & 1u)) & 255u), (uint8_t)((j + (c >> 1 & 1u)) & 255u),
+        h[c] = np_hash6_fast((uint8_t)((i + (c & 1u)) & 255u), (uint8_t)((j + (c >> 1 & 1u)) & 255u),
                         (uint8_t)((k + (c >> 2 & 1u)) & 255u));
     return np_ref_classic3_in_cell(h, x - fx, y - fy, z - fz);
 }

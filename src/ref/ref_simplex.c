@@ -42,7 +42,7 @@ double np_ref_simplex3(double x, double y, double z, double grad[3])
         double sa = (a_off[0] + a_off[1] + a_off[2]) / 6.;
         double d[3] = { u - a_off[0] + sa, v - a_off[1] + sa, w - a_off[2] + sa };
         double t = .6 - d[0] * d[0] - d[1] * d[1] - d[2] * d[2];
-        unsigned h = np_hash6(low8(i + a_off[0]), low8(j + a_off[1]), low8(k + a_off[2]));
+        unsigned h = np_hash6_fast(low8(i + a_off[0]), low8(j + a_off[1]), low8(k + a_off[2]));
         a_off[step[c]]++;
         if (t < 0)
             continue; /* K() returns 0; the sum's order is unchanged by adding 0 */

@@ -115,6 +115,16 @@ void np_sweep_rows_generic(const np_unit *u, const void *cfg, uint16_t x0, uint1
                            double *ref);
 
 /*
+ * simplex3's kernel (src/sweep/sweep_simplex.c): np_unit.sweep_rows' contract
+ * for np_simplex_cfg cfg (fields f and, with the derivative, df/dx, df/dy,
+ * df/dz, field k at code/ref + k * rows * 256). The same bits as
+ * np_simplex_eval and np_ref_simplex3_q88 per input.
+ */
+struct np_simplex_cfg;
+void np_sweep_simplex3_rows(const struct np_simplex_cfg *cfg, uint16_t x0, uint16_t y0, uint16_t z,
+                            unsigned rows, unsigned what, int32_t *code, double *ref);
+
+/*
  * Statistics of one block (x cell xcell of slice z) in the calling thread;
  * use_kernel = 0 forces np_sweep_rows_generic. 0, or -1 when out of memory.
  */

@@ -168,6 +168,49 @@ typedef struct block_acc {
 enum { HIST_WAYS = 4 };
 typedef uint32_t call_hist[HIST_WAYS][NP_SWEEP_HIST_BINS];
 
+/*
+ * sum[j] += e[t + j], sum2[j] += e[t + j]^2 and mx[j] = max over t of
+ * e[t + j] (mx from -1; a NaN never replaces it), for t = 0, 8, 16, ...: each
+ * lane's additions in increasing t, exactly the scalar loop's order; with
+ * GCC's vector extension the eight lanes are one vector (AVX-512) or two or
+ * four, whatever the clone has.
+ */
+#if defined(__GNUC__)
+typedef double lanes_d __attribute__((vector_size(LANES * sizeof(double))));
+typedef long long lanes_i __attribute__((vector_size(LANES * sizeof(long long))));
+NP_SWEEP_INLINE void lanes_sum(double *sum, double *sum2, double *mx, const double *e)
+{
+    lanes_d vs, vs2, vm, v;
+    memcpy(&vs, sum, sizeof vs);
+    memcpy(&vs2, sum2, sizeof vs2);
+    for (unsigned j = 0; j < LANES; j++)
+        vm[j] = -1.0;
+    for (unsigned t = 0; t < NP_SWEEP_ROW; t += LANES) {
+        memcpy(&v, e + t, sizeof v);
+        vs += v;
+        vs2 += v * v;
+        lanes_i gt = v > vm; /* all ones where v > vm */
+        vm = (lanes_d)(((lanes_i)v & gt) | ((lanes_i)vm & ~gt));
+    }
+    memcpy(sum, &vs, sizeof vs);
+    memcpy(sum2, &vs2, sizeof vs2);
+    memcpy(mx, &vm, sizeof vm);
+}
+#else
+static void lanes_sum(double *sum, double *sum2, double *mx, const double *e)
+{
+    for (unsigned j = 0; j < LANES; j++)
+        mx[j] = -1.0;
+    for (unsigned t = 0; t < NP_SWEEP_ROW; t += LANES)
+        for (unsigned j = 0; j < LANES; j++) {
+            double v = e[t + j];
+            sum[j] += v;
+            sum2[j] += v * v;
+            mx[j] = v > mx[j] ? v : mx[j];
+        }
+}
+#endif
+
 /* Errors and correctly-rounded flags of row r of the kernel's output. */
 NP_SWEEP_INLINE void row_errors(const sweep_unit *su, const sweep_buf *b, unsigned r, double *e,
                                 unsigned char *crm)
@@ -196,15 +239,7 @@ NP_SWEEP_INLINE void acc_row(np_sweep_stats *s, double *sum, double *sum2, call_
                              uint16_t y)
 {
     double mx[LANES];
-    for (unsigned j = 0; j < LANES; j++)
-        mx[j] = -1.0;
-    for (unsigned t = 0; t < NP_SWEEP_ROW; t += LANES)
-        for (unsigned j = 0; j < LANES; j++) {
-            double v = e[t + j];
-            sum[j] += v;
-            sum2[j] += v * v;
-            mx[j] = v > mx[j] ? v : mx[j];
-        }
+    lanes_sum(sum, sum2, mx, e);
     unsigned cr = 0, over = 0;
     for (unsigned t = 0; t < NP_SWEEP_ROW; t++) {
         cr += (unsigned)crm[t];

@@ -8,6 +8,7 @@
 #include "np_ref.h"
 #include "np_rng.h"
 #include "np_simplex.h"
+#include "np_sweep.h"
 #include "np_unit.h"
 
 /* The registry's configuration block: the model's. */
@@ -333,8 +334,16 @@ static void fine_cfg(const void *cfg, void *fine)
     k->c.dout_bits = NP_SIMPLEX_OUT_MAX;
 }
 
+/* The exhaustive sweep's kernel (src/sweep/sweep_simplex.c). */
+static void sweep_rows(const void *cfg, uint16_t x0, uint16_t y0, uint16_t z, unsigned rows, unsigned what,
+                       int32_t *code, double *ref)
+{
+    np_sweep_simplex3_rows(&((const simplex_cfg *)cfg)->c, x0, y0, z, rows, what, code, ref);
+}
+
 const np_unit np_unit_simplex3 = {
     .name = "simplex3",
+    .sweep_rows = sweep_rows,
     .summary = "3-D simplex noise with analytic derivative, 8.8 inputs, exact skew/rank "
                "(Perlin, Noise Hardware, Appendix B)",
     .keys = keys,

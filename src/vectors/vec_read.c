@@ -167,9 +167,11 @@ static int parse_hex(np_vec_lines *L, const np_vec_col *c, const char *tok, size
 /*
  * Parse a line of exactly n columns into w[kind][field]. extra_hint, when
  * not NULL, is said after a too-many-fields or truncated-line message.
+ * parse_cols_checked finds and names the first fault; parse_cols below is
+ * the one pass that well-formed lines take, falling back to it on any doubt.
  */
-static int parse_cols(np_vec_lines *L, char *s, const np_vec_col *cols, unsigned n,
-                      uint64_t (*w)[NP_UNIT_MAX_FIELDS], const char *extra_hint)
+static int parse_cols_checked(np_vec_lines *L, char *s, const np_vec_col *cols, unsigned n,
+                              uint64_t (*w)[NP_UNIT_MAX_FIELDS], const char *extra_hint)
 {
     unsigned k = 0;
     char names[NP_VEC_MAX_COLS * 24];
@@ -196,6 +198,39 @@ static int parse_cols(np_vec_lines *L, char *s, const np_vec_col *cols, unsigned
                     cols[k].name, k, n, names, extra_hint ? extra_hint : "");
     }
     return 0;
+}
+
+/*
+ * One pass over the line: each token's hex digits are accumulated while it
+ * is scanned (np__vec_hexval1 is 0 for a non-digit, NUL included). Exactly
+ * n tokens of exactly c->digits digits each, in range: the values are
+ * stored and the line is done. Anything else goes to parse_cols_checked,
+ * which parses the line again and says what is wrong (same values, same
+ * messages).
+ */
+static int parse_cols(np_vec_lines *L, char *s, const np_vec_col *cols, unsigned n,
+                      uint64_t (*w)[NP_UNIT_MAX_FIELDS], const char *extra_hint)
+{
+    const unsigned char *p = (const unsigned char *)s;
+    for (unsigned k = 0; k < n; k++) {
+        const np_vec_col *c = &cols[k];
+        while (*p == ' ' || *p == '\t')
+            p++;
+        const unsigned char *tok = p;
+        uint64_t acc = 0;
+        unsigned d;
+        while ((d = np__vec_hexval1[*p]) != 0) {
+            acc = acc << 4 | (uint64_t)(d - 1u);
+            p++;
+        }
+        if ((size_t)(p - tok) != c->digits || (*p != '\0' && *p != ' ' && *p != '\t') ||
+            (acc & ~np_vec_mask(c->bits)) != 0)
+            return parse_cols_checked(L, s, cols, n, w, extra_hint);
+        w[c->kind][c->field] = acc;
+    }
+    while (*p == ' ' || *p == '\t')
+        p++;
+    return *p == '\0' ? 0 : parse_cols_checked(L, s, cols, n, w, extra_hint);
 }
 
 /* ------------------------------------------------------------------------- */
