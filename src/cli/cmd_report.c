@@ -13,6 +13,7 @@
 #include "np_render.h"
 #include "render_cli.h"
 #include "np_report.h"
+#include "np_report_dims.h"
 #include "np_scene.h"
 #include "np_stream.h"
 
@@ -22,6 +23,7 @@ static const char usage_text[] =
     "       noisepipe report pareto [--unit U] [--samples N] [--seed S] [-o DIR]\n"
     "       noisepipe report runtime [--scene SCENE.json] [--repeat N] -o DIR\n"
     "       noisepipe report all    -o DIR        (what docs/ holds: gates + every pareto sweep + runtime in DIR/plots)\n"
+    "       noisepipe report dims   [-o DIR]      (noise in n = 2..5 dimensions: gates against n, Perlin's claims)\n"
     "\n"
     "gates: per unit and per stage, the operators, register bits, gate estimate (NAND2\n"
     "  equivalents, docs/cost-model.md), latency in clocks (from the cycle-accurate model),\n"
@@ -468,7 +470,7 @@ int np_cmd_report(int argc, char **argv)
         return NP_EXIT_USAGE;
     }
     int known = strcmp(what, "gates") == 0 || strcmp(what, "pareto") == 0 || strcmp(what, "runtime") == 0 ||
-                strcmp(what, "all") == 0;
+                strcmp(what, "all") == 0 || strcmp(what, "dims") == 0;
     if (dir && known) { /* created as render creates its folder */
         struct stat st;
         if (stat(dir, &st) == 0 && !S_ISDIR(st.st_mode)) {
@@ -491,6 +493,13 @@ int np_cmd_report(int argc, char **argv)
         np_err("report", "--scene goes with gates or runtime, without --unit/--config (the scene configures the units)");
         return NP_EXIT_USAGE;
     }
+    if (strcmp(what, "dims") == 0) {
+        if (unit || spec || scene) {
+            np_err("report", "dims takes only -o DIR (it configures every n-D unit itself)");
+            return NP_EXIT_USAGE;
+        }
+        return np_report_dims(dir);
+    }
     if (strcmp(what, "gates") == 0)
         return scene ? write_scene(dir, scene) : write_gates(dir, unit, spec);
     if (strcmp(what, "pareto") == 0)
@@ -509,6 +518,6 @@ int np_cmd_report(int argc, char **argv)
         }
         return rc;
     }
-    np_err("report", "unknown report '%s' (gates, pareto, runtime, all)", what);
+    np_err("report", "unknown report '%s' (gates, pareto, runtime, all, dims)", what);
     return NP_EXIT_USAGE;
 }
