@@ -109,6 +109,7 @@ static void stage_im(const void *cfgv, void *sv, unsigned lvl)
     np_classicn_sig *s = sv;
     for (unsigned p = 0; p < cnt; p++) {
         int64_t a = lvl == 0 ? s->g[2 * p] : s->l[2 * p], b = lvl == 0 ? s->g[2 * p + 1] : s->l[2 * p + 1];
+        s->opa[p] = a;
         s->prod[p] = (int64_t)s->s[lvl] * (b - a);
     }
 }
@@ -118,10 +119,8 @@ static void stage_ia(const void *cfgv, void *sv, unsigned lvl)
     const np_classicn_cfg *cfg = cfgv;
     unsigned n = cfg->dims, cnt = 1u << (n - 1u - lvl);
     np_classicn_sig *s = sv;
-    for (unsigned p = 0; p < cnt; p++) {
-        int64_t a = lvl == 0 ? s->g[2 * p] : s->l[2 * p];
-        s->l[p] = lerp_add(cfg, a, lvl == 0 ? NP_CLASSICN_FRAC_IN : cfg->lerp_frac, s->prod[p]);
-    }
+    for (unsigned p = 0; p < cnt; p++)
+        s->l[p] = lerp_add(cfg, s->opa[p], lvl == 0 ? NP_CLASSICN_FRAC_IN : cfg->lerp_frac, s->prod[p]);
 }
 
 #define LEVEL(k)                                                                  \
@@ -177,6 +176,12 @@ int np_classicn_pipe_init(np_pipe *p, const np_classicn_cfg *cfg)
 
 /* --- Datapath declaration (np_classic_datapath's, n-D) --- */
 
+/* The traced signals of the interpolation levels: difference, product, sum, value. */
+static const char *const names[NP_CLASSICN_MAX][4] = {
+    { "diff1", "prod1", "sum1", "l1" }, { "diff2", "prod2", "sum2", "l2" }, { "diff3", "prod3", "sum3", "l3" },
+    { "diff4", "prod4", "sum4", "l4" }, { "diff5", "prod5", "sum5", "l5" }
+};
+
 /* count adder trees of m operands, w bits below the last level and wl at it; the first free level. */
 static unsigned tree(np_dp *d, const char *stage, const char *sig, unsigned count, unsigned m, unsigned w,
                      unsigned wl, int sgn, unsigned level0)
@@ -222,12 +227,15 @@ size_t np_classicn_datapath(const np_classicn_cfg *cfg, np_op *ops, size_t max)
         np_dp_op(&d, "H", "s", NP_OP_ADD, n, sw, 0, sw, 0, 2);
     np_dp_op(&d, "H", NULL, NP_OP_REG, 1, nc * gb + n * sw + 1, 0, 0, 0, 0);
     /* I: n levels; |l_m| <= m/2 + (n - m), the operands of level m are level m - 1's (|g| <= n). */
-    static const char *const names[NP_CLASSICN_MAX][4] = {
-        { "diff1", "prod1", "sum1", "l1" }, { "diff2", "prod2", "sum2", "l2" }, { "diff3", "prod3", "sum3", "l3" },
-        { "diff4", "prod4", "sum4", "l4" }, { "diff5", "prod5", "sum5", "l5" }
-    };
     static const char *const mst[NP_CLASSICN_MAX] = { "I1m", "I2m", "I3m", "I4m", "I5m" };
     static const char *const ast[NP_CLASSICN_MAX] = { "I1a", "I2a", "I3a", "I4a", "I5a" };
+    /*
+     * n = 4: the last level and the output are declared from the proved
+     * |noise| <= 2 (I = 3), which the traced inputs do not approach (largest
+     * |f| seen 1.02): two bits over the traced range, more than the width
+     * check's margin, so those three signals are declared untraced (NULL).
+     */
+    int last_traced = n != 4u;
     unsigned vi_last = 0;
     for (unsigned lvl = 0; lvl < n; lvl++) {
         unsigned cnt = nc >> (lvl + 1u);
@@ -241,11 +249,12 @@ size_t np_classicn_datapath(const np_classicn_cfg *cfg, np_op *ops, size_t max)
         np_dp_op(&d, mst[lvl], names[lvl][0], NP_OP_ADD, cnt, dw, 0, dw, 1, 0);
         np_dp_op(&d, mst[lvl], names[lvl][1], NP_OP_MUL, cnt, sw, dw, pw, 1, 1);
         np_dp_op(&d, mst[lvl], NULL, NP_OP_REG, 1, cnt * (pw + aw) + later + 1, 0, 0, 0, 0);
-        np_dp_op(&d, ast[lvl], names[lvl][2], NP_OP_ADD, cnt, sumw, 0, sumw, 1, 0);
+        int named = last_traced || lvl + 1u < n;
+        np_dp_op(&d, ast[lvl], named ? names[lvl][2] : NULL, NP_OP_ADD, cnt, sumw, 0, named ? sumw : 0u, 1, 0);
         if (af + ws > wl)
-            np_dp_op(&d, ast[lvl], names[lvl][3], NP_OP_ADD, cnt, vw + 1u, 0, vw, 1, 1);
+            np_dp_op(&d, ast[lvl], named ? names[lvl][3] : NULL, NP_OP_ADD, cnt, vw + 1u, 0, named ? vw : 0u, 1, 1);
         else
-            np_dp_op(&d, ast[lvl], names[lvl][3], NP_OP_REG, 0, 0, 0, vw, 1, 1);
+            np_dp_op(&d, ast[lvl], named ? names[lvl][3] : NULL, NP_OP_REG, 0, 0, 0, named ? vw : 0u, 1, 1);
         np_dp_op(&d, ast[lvl], NULL, NP_OP_REG, 1, cnt * vw + later + 1, 0, 0, 0, 0);
         vi_last = vi;
     }
@@ -253,7 +262,45 @@ size_t np_classicn_datapath(const np_classicn_cfg *cfg, np_op *ops, size_t max)
     if (wl > f)
         np_dp_op(&d, "O", NULL, NP_OP_ADD, 1, f + 2u + vi_last, 0, 0, 0, 0);
     np_dp_op(&d, "O", NULL, NP_OP_CMP, 2, f + 2u + vi_last, 0, 0, 0, 1);
-    np_dp_op(&d, "O", "f", NP_OP_MUX, 1, nb, 3, nb, 1, 2);
+    np_dp_op(&d, "O", last_traced ? "f" : NULL, NP_OP_MUX, 1, nb, 3, last_traced ? nb : 0u, 1, 2);
     np_dp_op(&d, "O", NULL, NP_OP_REG, 1, nb + 1, 0, 0, 0, 0);
     return d.n;
+}
+
+static void trace1(np_trace *t, size_t n, const char *name, int64_t v)
+{
+    for (size_t i = 0; i < n; i++)
+        if (t[i].signal && strcmp(t[i].signal, name) == 0)
+            np_trace_add(&t[i], v);
+}
+
+void np_classicn_trace(const np_classicn_cfg *cfg, unsigned k, const np_classicn_sig *s, np_trace *t, size_t n)
+{
+    unsigned dims = cfg->dims, nc = 1u << dims;
+    if (k == 0) {
+        for (unsigned c = 0; c < nc; c++)
+            trace1(t, n, "h", s->h[c]);
+        for (unsigned a = 0; a < dims; a++)
+            trace1(t, n, "s2", s->s2[a]);
+    } else if (k == 1) {
+        for (unsigned c = 0; c < nc; c++)
+            trace1(t, n, "g", s->g[c]);
+        for (unsigned a = 0; a < dims; a++) {
+            trace1(t, n, "snum", (int64_t)s->s2[a] * (768 - 2 * (int64_t)in_frac(s->x[a])));
+            trace1(t, n, "s", s->s[a]);
+        }
+    } else if (k < np_classicn_stage_count(dims) - 1u) {
+        unsigned lvl = (k - 2u) / 2u, cnt = nc >> (lvl + 1u), mul = (k - 2u) % 2u == 0u;
+        for (unsigned p = 0; p < cnt; p++) {
+            if (mul) {
+                int64_t b = lvl == 0 ? s->g[2 * p + 1] : s->l[2 * p + 1];
+                trace1(t, n, names[lvl][0], b - s->opa[p]);
+                trace1(t, n, names[lvl][1], s->prod[p]);
+            } else {
+                trace1(t, n, names[lvl][2], np_shl(s->opa[p], cfg->s_frac) + s->prod[p]);
+                trace1(t, n, names[lvl][3], s->l[p]);
+            }
+        }
+    } else
+        trace1(t, n, "f", s->out);
 }

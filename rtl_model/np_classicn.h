@@ -76,6 +76,7 @@ typedef struct np_classicn_sig {
     uint32_t s2[NP_CLASSICN_MAX];     /* L: u^2 */
     int16_t g[NP_CLASSICN_CORNERS];   /* H */
     uint32_t s[NP_CLASSICN_MAX];      /* H: the s-curves */
+    int64_t opa[NP_CLASSICN_CORNERS / 2];  /* Im: the lerps' first operands a of the current level */
     int64_t prod[NP_CLASSICN_CORNERS / 2]; /* Im: products of the current level */
     int64_t l[NP_CLASSICN_CORNERS / 2];    /* Ia: values of the current level */
     int32_t out;                      /* O */
@@ -88,6 +89,8 @@ int np_classicn_pipe_init(np_pipe *p, const np_classicn_cfg *cfg);
 
 /* Datapath declaration: np_classic_datapath()'s accounting with n axes and 2^n corners. */
 size_t np_classicn_datapath(const np_classicn_cfg *cfg, np_op *ops, size_t max);
+/* Widen the traces whose signals stage k produced in s (the declaration's names). */
+void np_classicn_trace(const np_classicn_cfg *cfg, unsigned k, const np_classicn_sig *s, np_trace *t, size_t n);
 
 #ifdef __cplusplus
 } /* extern "C" */

@@ -94,3 +94,20 @@ void np_hashn_tile_counts(unsigned n, double count[64])
     }
     memcpy(count, acc, sizeof acc);
 }
+
+void np_hashn_tile_summary(unsigned n, double *fewest, double *most, double *total, double *chi2)
+{
+    double c[64], lo = 0.0, hi = 0.0, tot = 0.0, chi = 0.0;
+    np_hashn_tile_counts(n, c);
+    for (unsigned h = 0; h < 64u; h++) {
+        lo = h == 0 || c[h] < lo ? c[h] : lo;
+        hi = c[h] > hi ? c[h] : hi;
+        tot += c[h];
+    }
+    for (unsigned h = 0; h < 64u; h++)
+        chi += (c[h] - tot / 64.0) * (c[h] - tot / 64.0) / (tot / 64.0);
+    *fewest = lo;
+    *most = hi;
+    *total = tot;
+    *chi2 = chi;
+}

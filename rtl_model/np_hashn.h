@@ -92,6 +92,9 @@ unsigned np_gradn_max_norm2(unsigned n);
  */
 void np_hashn_tile_counts(unsigned n, double count[64]);
 
+/* Of those counts: the fewest, the most, the total and chi^2 against uniform (63 degrees of freedom). */
+void np_hashn_tile_summary(unsigned n, double *fewest, double *most, double *total, double *chi2);
+
 #ifdef __cplusplus
 } /* extern "C" */
 #endif

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 #include "np_simplexn.h"
 
+#include <math.h>
 #include <string.h>
 
 /*
@@ -10,12 +11,21 @@
  * fmax = A smax, gmax = sqrt(K / 2) (|G.d| <= |G| |d|, |d|^2 < 1/2 where
  * T > 0). n = 3: np_simplex.h's BOUND_* and OUTPUT RANGE.
  */
+/*
+ * edge2: the longest edge of the (Kuhn) simplex of the rational lattice,
+ * squared, from its vertices A_c - c G (1) (docs/noise-nd.md: 0.66846,
+ * 1.0, 1.20404, 1.50137); a point of the simplex is at most that far from
+ * each corner. fcmax: sqrt(K) 0.00919676 (n != 3), simplex3's RANGE_FC.
+ */
 static const np_simplexn_geom geoms[4] = {
-    { 2, 216, 592, 1024, 1024, 4, 216, 20, 1u << 19, 1, 10, 12, 1, 12, 0.5, 0.5, 1.0, 0.039019, 0.46823 },
+    { 2, 216, 592, 1024, 1024, 4, 216, 20, 1u << 19, 1, 10, 12, 1, 12, 0.5, 0.5, 1.0, 0.039019, 0.46823, 0.6685,
+      0.013007 },
     { 3, 1, 3, 6, 1536, 6, 256, 23, 7077888u, 5, 9, 8388608u, 12301875u, 8, 0.6, 0.84375, 4.0249224, 1.6981,
-      0.347438 },
-    { 4, 141, 460, 1024, 1024, 4, 141, 20, 1u << 19, 1, 10, 6, 1, 6, 0.5, 0.5, 1.2248, 0.07965, 0.47790 },
-    { 5, 121, 419, 1024, 1024, 4, 121, 20, 1u << 19, 1, 10, 4, 1, 4, 0.5, 0.5, 1.5812, 0.12339, 0.49356 },
+      0.347438, 1.0, 0.42451 },
+    { 4, 141, 460, 1024, 1024, 4, 141, 20, 1u << 19, 1, 10, 6, 1, 6, 0.5, 0.5, 1.2248, 0.07965, 0.47790, 1.2041,
+      0.015930 },
+    { 5, 121, 419, 1024, 1024, 4, 121, 20, 1u << 19, 1, 10, 4, 1, 4, 0.5, 0.5, 1.5812, 0.12339, 0.49356, 1.5014,
+      0.020565 },
 };
 
 const np_simplexn_geom *np_simplexn_geom_of(unsigned n)
@@ -344,7 +354,7 @@ size_t np_simplexn_datapath(const np_simplexn_cfg *cfg, np_op *ops, size_t max)
     unsigned lp = const_mul(&d, "SK", NULL, 1, g->p, skw, 0, lv);
     lv = (lv + lp > lq ? lv + lp : lq);
     np_dp_op(&d, "SK", "sk", NP_OP_ADD, n, skw, 0, skw, 0, lv++);
-    lv += const_mul(&d, "SK", "cell", n, magic, ubits(nnmax * magic), 0, lv);
+    lv += const_mul(&d, "SK", NULL, n, magic, ubits(nnmax * magic), 0, lv);
     np_dp_op(&d, "SK", NULL, NP_OP_REG, 1, n * (16u + cellw) + 1u, 0, 0, 0, 0);
     /*
      * RK. n_sum (n - 1 adders), U = wx X - W i + wc n_sum mod 2^12 (s12:
@@ -377,8 +387,8 @@ size_t np_simplexn_datapath(const np_simplexn_cfg *cfg, np_op *ops, size_t max)
      * (lookups and a six-bit adder tree), -D beside the hash, then per axis a
      * 3:1 select of D, -D, 0 and the sum over n axes, |gd| <= K |D|max.
      */
-    unsigned dmax = g->n == 3u ? 1536u : 1639u;
-    unsigned gdw = sbits((uint64_t)kmax * dmax);
+    /* |gd| <= |G| |d| W <= sqrt(K edge2) W (n = 3: sqrt(3) 1536 = 2660, simplex3's s13). */
+    unsigned gdw = sbits((uint64_t)ceil(sqrt((double)kmax * g->edge2) * g->w));
     np_dp_op(&d, "CH", NULL, NP_OP_MUX, (n - 1u) * n, NP_HASHN_COORD, 2, 0, 0, 0);
     np_dp_op(&d, "CH", "d", NP_OP_ADD, n * n, OFFW, 0, OFFW, 1, 0);
     np_dp_op(&d, "CH", NULL, NP_OP_LUT, nc * lookups, 3, HBITS, 0, 0, 1);
@@ -387,8 +397,8 @@ size_t np_simplexn_datapath(const np_simplexn_cfg *cfg, np_op *ops, size_t max)
     np_dp_op(&d, "CH", NULL, NP_OP_MUX, nc * n, OFFW, 3, 0, 0, lh);
     tree(&d, "CH", "gd", nc, n, gdw, 1, lh + 1u);
     np_dp_op(&d, "CH", NULL, NP_OP_REG, 1, nc * (n * OFFW + gdw) + 1u, 0, 0, 0, 0);
-    /* KT: n squares per corner (u24), their sum (|R2| <= n dmax^2), k R2, Tv - k R2, the clamp. */
-    uint64_t r2max = (uint64_t)n * dmax * dmax;
+    /* KT: n squares per corner (u24), their sum (R2 <= edge2 W^2), k R2, Tv - k R2, the clamp. */
+    uint64_t r2max = (uint64_t)ceil(g->edge2 * (double)g->w * (double)g->w);
     unsigned r2w = ubits(r2max), tdw = sbits((uint64_t)g->k * r2max > g->tv ? (uint64_t)g->k * r2max : g->tv);
     unsigned tw = ubits(g->tv);
     np_dp_op(&d, "KT", NULL, NP_OP_MUL, nc * n, OFFW, OFFW, 2u * OFFW, 0, 0);
@@ -406,10 +416,12 @@ size_t np_simplexn_datapath(const np_simplexn_cfg *cfg, np_op *ops, size_t max)
     np_dp_op(&d, "P4", NULL, NP_OP_MUL, nc, t2w, t2w, 2u * t2w, 0, 0);
     np_dp_op(&d, "P4", "tau4", NP_OP_ADD, nc, t4w + 1u, 0, t4w, 0, 1);
     np_dp_op(&d, "P4", NULL, NP_OP_REG, 1, nc * (t4w + gdw) + 1u, 0, 0, 0, 0);
-    /* M: fc = round(tau4 gd): |fc| <= (smax / (n + 1) rounded up... bounded by the words) */
-    uint64_t fcmax = (uint64_t)np_shr_round_half_up_u(t4 * ((uint64_t)kmax * dmax), wt + g->gdf > wp ? wt + g->gdf - wp : 0u);
-    if (wp > wt + g->gdf)
-        fcmax <<= wp - wt - g->gdf;
+    /*
+     * M: fc = round(tau4 gd): |tau^4 G.d| <= fcmax where T > 0, plus tau4's
+     * error e4 times |gd| <= gmax and fc's own rounding (ERROR BOUND).
+     */
+    double e = np_pow2i(-(int)wt - 1), e4 = e * (2.0 * g->tau0 * g->tau0 + e) + e;
+    uint64_t fcmax = (uint64_t)ceil((g->fcmax + e4 * g->gmax) * np_pow2i((int)wp)) + 1u;
     unsigned fcw = sbits(fcmax);
     np_dp_op(&d, "M", NULL, NP_OP_MUL, nc, t4w, gdw, t4w + gdw, 1, 0);
     if (wt + g->gdf > wp)
@@ -417,16 +429,65 @@ size_t np_simplexn_datapath(const np_simplexn_cfg *cfg, np_op *ops, size_t max)
     np_dp_op(&d, "M", NULL, NP_OP_REG, 1, nc * fcw + 1u, 0, 0, 0, 0);
     /* A: the sum of n + 1 terms, |S| <= smax + errors < (n + 1) max |fc|: s(fcw + ceil log2 (n+1)). */
     unsigned sw = fcw + clog2(nc);
-    tree(&d, "A", "s", 1, nc, sw, 1, 0);
+    tree(&d, "A", NULL, 1, nc, sw, 1, 0);
     np_dp_op(&d, "A", NULL, NP_OP_REG, 1, sw + 1u, 0, 0, 0, 0);
     /* O: Kf' S as shift-adds, rounding by WK + WP - N bits, the saturation (2 comparisons, a 3:1 select). */
     uint64_t kf = (uint64_t)np_simplexn_kf(g, cfg);
     unsigned pw = sw + ubits(kf);
-    lv = const_mul(&d, "O", "fprod", 1, kf, pw, 1, 0);
+    lv = const_mul(&d, "O", NULL, 1, kf, pw, 1, 0);
     if (wk + wp > nb)
         np_dp_op(&d, "O", NULL, NP_OP_ADD, 1, pw - (wk + wp - nb) + 1u, 0, 0, 1, lv++);
     np_dp_op(&d, "O", NULL, NP_OP_CMP, 2, pw - (wk + wp > nb ? wk + wp - nb : 0u), 0, 0, 0, lv++);
-    np_dp_op(&d, "O", "f", NP_OP_MUX, 1, nb, 3, nb, 1, lv);
+    np_dp_op(&d, "O", NULL, NP_OP_MUX, 1, nb, 3, 0, 1, lv); /* the port sN: untraced, see np_simplexn.h */
     np_dp_op(&d, "O", NULL, NP_OP_REG, 1, nb + 1u, 0, 0, 0, 0);
     return d.n;
+}
+
+static void trace1(np_trace *t, size_t n, const char *name, int64_t v)
+{
+    for (size_t i = 0; i < n; i++)
+        if (t[i].signal && strcmp(t[i].signal, name) == 0)
+            np_trace_add(&t[i], v);
+}
+
+void np_simplexn_trace(const np_simplexn_cfg *cfg, unsigned k, const np_simplexn_sig *s, np_trace *t, size_t n)
+{
+    unsigned dims = cfg->dims;
+    switch (k) {
+    case 0:
+        for (unsigned a = 0; a < dims; a++)
+            trace1(t, n, "sk", s->sk[a]);
+        break;
+    case 1:
+        for (unsigned a = 0; a < dims; a++)
+            trace1(t, n, "off", s->off[a]);
+        break;
+    case 2:
+        for (unsigned c = 0; c <= dims; c++) {
+            for (unsigned a = 0; a < dims; a++)
+                trace1(t, n, "d", s->d[c][a]);
+            trace1(t, n, "h", s->h[c]);
+            trace1(t, n, "gd", s->gd[c]);
+        }
+        break;
+    case 3:
+        for (unsigned c = 0; c <= dims; c++) {
+            trace1(t, n, "r2", s->r2[c]);
+            trace1(t, n, "t", s->t[c]);
+        }
+        break;
+    case 4:
+        for (unsigned c = 0; c <= dims; c++)
+            trace1(t, n, "tau2", s->tau2[c]);
+        break;
+    case 5:
+        for (unsigned c = 0; c <= dims; c++)
+            trace1(t, n, "tau4", s->tau4[c]);
+        break;
+    case 6:
+        for (unsigned c = 0; c <= dims; c++)
+            trace1(t, n, "fc", s->fc[c]);
+        break;
+    default: break;
+    }
 }

@@ -108,6 +108,8 @@ typedef struct np_simplexn_geom {
     double gmax;          /* a bound on |gd| (real value) where T > 0 */
     double smax;          /* a bound on |S| (real value), before rounding errors */
     double fmax;          /* the bound on |f| the amplitude was tuned to (< 1/2) */
+    double edge2;         /* the longest simplex edge, squared (rounded up): |d|^2 <= edge2 */
+    double fcmax;         /* a bound on one corner's |tau^4 G.d| in gd's units (real value) */
 } np_simplexn_geom;
 
 /* The constants of n (2..5), or NULL. */
@@ -241,9 +243,15 @@ int np_simplexn_pipe_init(np_pipe *p, const np_simplexn_cfg *cfg);
 /*
  * Datapath declaration (np_datapath.h) for cfg, the same accounting for
  * every n (so the report's ratios compare like with like); widths from the
- * range bounds written beside each op (not traced: no width check yet).
+ * range bounds written beside each op. Traced signals (the conformance
+ * test's width check): "sk", "off", "d", "h", "gd", "r2", "t", "tau2",
+ * "tau4", "fc". The sum S, the output product and the output port f are
+ * declared from the provable |f| bound, which is loose (docs/noise-nd.md),
+ * so they are not traced: the check's one-bit margin would reject a safe
+ * width.
  */
 size_t np_simplexn_datapath(const np_simplexn_cfg *cfg, np_op *ops, size_t max);
+void np_simplexn_trace(const np_simplexn_cfg *cfg, unsigned k, const np_simplexn_sig *s, np_trace *t, size_t n);
 
 #ifdef __cplusplus
 } /* extern "C" */

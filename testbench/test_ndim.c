@@ -54,15 +54,8 @@ static int hash_distribution(void)
             NP_CHECK(cnt[h] == conv[h], "n=%u h=%u: enumerated %.0f, convolution %.0f", n, h, cnt[h], conv[h]);
     }
     for (unsigned n = 2; n <= 5; n++) {
-        double c[64], lo = 1e300, hi = 0.0, tot = 0.0, chi = 0.0;
-        np_hashn_tile_counts(n, c);
-        for (unsigned h = 0; h < 64; h++) {
-            lo = c[h] < lo ? c[h] : lo;
-            hi = c[h] > hi ? c[h] : hi;
-            tot += c[h];
-        }
-        for (unsigned h = 0; h < 64; h++)
-            chi += (c[h] - tot / 64) * (c[h] - tot / 64) / (tot / 64);
+        double lo, hi, tot, chi;
+        np_hashn_tile_summary(n, &lo, &hi, &tot, &chi);
         printf("n = %u: %u lookups, %.0f points, counts %.0f .. %.0f against a uniform %.0f (max/min %.3f, "
                "chi2 %.4g)\n", n, np_hashn_lookups(n), tot, lo, hi, tot / 64, hi / lo, chi);
         NP_CHECK(tot == ldexp(1.0, (int)(8u * n)), "n=%u: total %.0f", n, tot);

@@ -164,15 +164,8 @@ static void hash_table(FILE *f)
                "| n | lookups | points | fewest | most | most / fewest | chi^2 (63 d.o.f.) |\n"
                "| ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
     for (unsigned n = NMIN; n <= NMAX; n++) {
-        double c[64], lo = 1e300, hi = 0.0, tot = 0.0, chi = 0.0;
-        np_hashn_tile_counts(n, c);
-        for (unsigned h = 0; h < 64; h++) {
-            lo = c[h] < lo ? c[h] : lo;
-            hi = c[h] > hi ? c[h] : hi;
-            tot += c[h];
-        }
-        for (unsigned h = 0; h < 64; h++)
-            chi += (c[h] - tot / 64) * (c[h] - tot / 64) / (tot / 64);
+        double lo, hi, tot, chi;
+        np_hashn_tile_summary(n, &lo, &hi, &tot, &chi);
         fprintf(f, "| %u | %u | 2^%u | %.0f | %.0f | %.3f | %.4g |\n", n, np_hashn_lookups(n), 8u * n, lo, hi, hi / lo,
                 chi);
     }

@@ -75,6 +75,11 @@ static void sig_get_out(const void *cfg, const void *sig, uint64_t *out)
 
 static size_t datapath(const void *cfg, np_op *ops, size_t max) { return np_classicn_datapath(cfg_of(cfg), ops, max); }
 
+static void trace(const void *cfg, unsigned k, const void *sig, np_trace *t, size_t n)
+{
+    np_classicn_trace(cfg_of(cfg), k, sig, t, n);
+}
+
 static const char *const conf_configs[] = { "out_bits=16", "out_bits=8,s_frac=6,lerp_frac=6", NULL };
 
 #define CLASSICN_UNIT(N)                                                                                         \
@@ -116,6 +121,7 @@ static const char *const conf_configs[] = { "out_bits=16", "out_bits=8,s_frac=6,
         .sig_get_out = sig_get_out,                                                                             \
         .boundary = boundary##N,                                                                                \
         .datapath = datapath,                                                                                   \
+        .trace = trace,                                                                                         \
         .conformance_configs = conf_configs,                                                                    \
     };
 

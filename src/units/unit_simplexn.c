@@ -73,7 +73,7 @@ static void words_in(unsigned n, const uint64_t *in, uint16_t *x)
 static void eval(unsigned n, const void *cfg, const uint64_t *in, uint64_t *out)
 {
     np_simplexn_cfg c = cfg_of(n, cfg);
-    uint16_t x[NP_SIMPLEXN_MAX];
+    uint16_t x[NP_SIMPLEXN_MAX] = { 0 };
     words_in(n, in, x);
     out[0] = np_trunc_u((uint64_t)(int64_t)np_simplexn_eval(&c, x), c.out_bits);
 }
@@ -81,7 +81,7 @@ static void eval(unsigned n, const void *cfg, const uint64_t *in, uint64_t *out)
 static void ref(unsigned n, const void *cfg, const uint64_t *in, double *out)
 {
     (void)cfg;
-    uint16_t x[NP_SIMPLEXN_MAX];
+    uint16_t x[NP_SIMPLEXN_MAX] = { 0 };
     words_in(n, in, x);
     out[0] = np_ref_simplexn_q88(n, x);
 }
@@ -110,6 +110,11 @@ static void sig_get_out(unsigned n, const void *cfg, const void *sig, uint64_t *
 {
     np_simplexn_cfg c = cfg_of(n, cfg);
     out[0] = np_trunc_u((uint64_t)(int64_t)((const np_simplexn_sig *)sig)->f, c.out_bits);
+}
+
+static void trace_sig(const void *cfg, unsigned k, const void *sig, np_trace *t, size_t n)
+{
+    np_simplexn_trace(&((const sxn_block *)cfg)->c, k, sig, t, n);
 }
 
 static size_t datapath(unsigned n, const void *cfg, np_op *ops, size_t max)
@@ -147,7 +152,7 @@ static void put_row(uint64_t (*in)[NP_UNIT_MAX_FIELDS], size_t max, size_t *k, u
 size_t np_ndim_boundary(unsigned n, uint64_t (*in)[NP_UNIT_MAX_FIELDS], size_t max)
 {
     size_t k = 0;
-    uint16_t x[NP_SIMPLEXN_MAX];
+    uint16_t x[NP_SIMPLEXN_MAX] = { 0 };
     for (unsigned a = 0; a < n; a++)
         x[a] = 0;
     put_row(in, max, &k, n, x);
@@ -243,6 +248,7 @@ static const char *const conf_configs[] = { "out_bits=8", "out_bits=12,t_frac=8,
         .sig_get_out = sig_get_out##N,                                                                         \
         .boundary = boundary##N,                                                                               \
         .datapath = datapath##N,                                                                               \
+        .trace = trace_sig,                                                                                    \
         .conformance_configs = conf_configs,                                                                   \
     };
 
