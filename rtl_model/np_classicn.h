@@ -23,7 +23,7 @@
  * the saturation never acts.
  * Error (np_classic.h's argument with |b - a| <= 2n and n levels):
  *   |out - noise| <= 1/2 + n (n 2^(F-WS) + 2^(F-WL-1))  LSB
- * Defaults WS = F + 6 (n <= 3), F + 7 (n >= 4); WL = F + 5: bounds 0.5625
+ * Defaults WS = F + 6 (n <= 3), F + 7 (n >= 4); WL = F + 5: bounds 0.5938
  * (n = 2), 0.6875 (n = 3), 0.6875 (n = 4), 0.7734 (n = 5): faithful.
  */
 #ifndef NP_CLASSICN_H

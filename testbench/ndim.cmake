@@ -11,3 +11,6 @@ set_tests_properties(ndim.cycle_simplex_1e6 ndim.cycle_classic_1e6 ndim.error_cl
 add_test(NAME ndim.report_dims_fresh COMMAND ${CMAKE_COMMAND} -DNOISEPIPE=$<TARGET_FILE:noisepipe>
   -DOUT=${CMAKE_CURRENT_BINARY_DIR}/dims-fresh -DDOCS=${PROJECT_SOURCE_DIR}/docs
   -P ${CMAKE_CURRENT_SOURCE_DIR}/ndim_fresh.cmake)
+# The time-varying solid texture through 4-D noise: frames written, moving, deterministic.
+add_test(NAME ndim.anim4d_frames COMMAND ${CMAKE_COMMAND} -DNOISEPIPE=$<TARGET_FILE:noisepipe>
+  -DOUT=${CMAKE_CURRENT_BINARY_DIR}/anim4d-test -P ${CMAKE_CURRENT_SOURCE_DIR}/ndim_anim.cmake)

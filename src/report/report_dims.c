@@ -189,7 +189,7 @@ static void plot(FILE *f, row rows[FAMS][WIDTHS][NN])
             s[i] = (np_plot_series){ labels[i], colors[i], x, y[i], NN, 1, 1 };
         }
     np_plot p = { "Gates against dimension, faithful outputs", "dimension n", "gates (NAND2 equivalents)", 1.5, 5.5,
-                  0.0, 0.0, 1, NAN, NAN, NULL, NULL };
+                  0.0, 0.0, 1, (double)NAN, (double)NAN, NULL, NULL };
     np_plot_svg(f, &p, s, 4);
 }
 

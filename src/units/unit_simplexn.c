@@ -137,7 +137,8 @@ static size_t datapath(unsigned n, const void *cfg, np_op *ops, size_t max)
  *   then the skewed cell wrap: every word 0x7fff and 0x8000 (the hash reads
  *        the cell mod 256), and one axis 0xffff -> 0x0000 with the others
  *        0x1357 (the input wrap: no tiling at 256, the output jumps)
- *   then the largest |f| found by ndim.max_magnitude's search (none here yet)
+ * The classic units (unit_classicn.c) use the same table: there the pair,
+ * triple and diagonal rows are points with equal fractions on those axes.
  */
 enum { MAXB = 96 };
 
