@@ -14,6 +14,8 @@
 #include "render_cli.h"
 #include "np_report.h"
 #include "np_tradeoff.h"
+#include "np_report_dims.h"
+#include "np_anim4d.h"
 #include "np_scene.h"
 #include "np_stream.h"
 
@@ -28,6 +30,8 @@ static const char usage_text[] =
     "       noisepipe report all    -o DIR        (what docs/ holds: gates + every pareto sweep + runtime in DIR/plots)\n"
     "       noisepipe report tradeoff --scene SCENE.json [-o DIR]   (fdiff against texel at <= 1 LSB: gates x cycles\n"
     "                                     against image size and octave count; DIR/tradeoff-NAME.{md,svg})\n"
+    "       noisepipe report dims   [-o DIR]      (noise in n = 2..5 dimensions: gates against n, Perlin's claims)\n"
+    "       noisepipe report anim4d [--frames N] -o DIR  (a time-varying solid texture through simplex4: PNG frames)\n"
     "\n"
     "gates: per unit and per stage, the operators, register bits, gate estimate (NAND2\n"
     "  equivalents, docs/cost-model.md), latency in clocks (from the cycle-accurate model),\n"
@@ -427,7 +431,7 @@ int np_cmd_report(int argc, char **argv)
     }
     const char *what = argv[1], *dir = NULL, *spec = NULL, *scene = NULL;
     const np_unit *unit = NULL;
-    uint64_t samples = 262144, seed = 1, repeat = 3;
+    uint64_t samples = 262144, seed = 1, repeat = 3, frames = 8;
     for (int i = 2; i < argc; i++) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -445,6 +449,12 @@ int np_cmd_report(int argc, char **argv)
             spec = v;
         else if (strcmp(a, "--scene") == 0)
             scene = v;
+        else if (strcmp(a, "--frames") == 0) {
+            if (np_parse_u64(v, 1, 100, &frames) != 0) {
+                np_err("report", "--frames %s: expected an integer in 1..100", v);
+                return NP_EXIT_USAGE;
+            }
+        }
         else if (strcmp(a, "--unit") == 0) {
             unit = np_unit_find(v);
             if (!unit) {
@@ -484,7 +494,8 @@ int np_cmd_report(int argc, char **argv)
         return NP_EXIT_USAGE;
     }
     int known = strcmp(what, "gates") == 0 || strcmp(what, "pareto") == 0 || strcmp(what, "runtime") == 0 ||
-                strcmp(what, "all") == 0 || strcmp(what, "tradeoff") == 0;
+                strcmp(what, "all") == 0 || strcmp(what, "tradeoff") == 0 || strcmp(what, "dims") == 0 ||
+                strcmp(what, "anim4d") == 0;
     if (dir && known) { /* created as render creates its folder */
         struct stat st;
         if (stat(dir, &st) == 0 && !S_ISDIR(st.st_mode)) {
@@ -510,6 +521,26 @@ int np_cmd_report(int argc, char **argv)
         np_err("report", "--scene goes with gates or runtime, without --unit/--config (the scene configures the units)");
         return NP_EXIT_USAGE;
     }
+    if (strcmp(what, "anim4d") == 0) {
+        char err[512];
+        if (!dir || unit || spec || scene) {
+            np_err("report", "anim4d takes -o DIR and --frames N only");
+            return NP_EXIT_USAGE;
+        }
+        if (np_anim4d_frames(dir, (unsigned)frames, err, sizeof err) != 0) {
+            np_err("report", "anim4d: %s", err);
+            return NP_EXIT_USAGE;
+        }
+        printf("wrote %s/anim4d-00.png .. anim4d-%02u.png\n", dir, (unsigned)frames - 1u);
+        return NP_EXIT_OK;
+    }
+    if (strcmp(what, "dims") == 0) {
+        if (unit || spec || scene) {
+            np_err("report", "dims takes only -o DIR (it configures every n-D unit itself)");
+            return NP_EXIT_USAGE;
+        }
+        return np_report_dims(dir);
+    }
     if (strcmp(what, "gates") == 0)
         return scene ? write_scene(dir, scene) : write_gates(dir, unit, spec);
     if (strcmp(what, "pareto") == 0)
@@ -528,6 +559,6 @@ int np_cmd_report(int argc, char **argv)
         }
         return rc;
     }
-    np_err("report", "unknown report '%s' (gates, pareto, runtime, all)", what);
+    np_err("report", "unknown report '%s' (gates, pareto, runtime, all, dims, anim4d)", what);
     return NP_EXIT_USAGE;
 }

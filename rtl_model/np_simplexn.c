@@ -1,0 +1,493 @@
+/* SPDX-License-Identifier: MIT */
+#include "np_simplexn.h"
+
+#include <math.h>
+#include <string.h>
+
+/*
+ * The constants of np_simplexn.h. Bounds are rounded up. For n != 3:
+ * max over s in [0, 1/2] of (1/2 - s)^4 sqrt(s) is at s = 1/18,
+ * (4/9)^4 sqrt(1/2) / 3 = 0.00919676; smax = (n + 1) sqrt(K) 0.00919676,
+ * fmax = A smax, gmax = sqrt(K / 2) (|G.d| <= |G| |d|, |d|^2 < 1/2 where
+ * T > 0). n = 3: np_simplex.h's BOUND_* and OUTPUT RANGE.
+ */
+/*
+ * edge2: the longest edge of the (Kuhn) simplex of the rational lattice,
+ * squared, from its vertices A_c - c G (1) (docs/noise-nd.md: 0.66846,
+ * 1.0, 1.20404, 1.50137); a point of the simplex is at most that far from
+ * each corner. fcmax: sqrt(K) 0.00919676 (n != 3), simplex3's RANGE_FC.
+ */
+static const np_simplexn_geom geoms[4] = {
+    { 2, 216, 592, 1024, 1024, 4, 216, 20, 1u << 19, 1, 10, 12, 1, 12, 0.5, 0.5, 1.0, 0.039019, 0.46823, 0.6685,
+      0.013007 },
+    { 3, 1, 3, 6, 1536, 6, 256, 23, 7077888u, 5, 9, 8388608u, 12301875u, 8, 0.6, 0.84375, 4.0249224, 1.6981,
+      0.347438, 1.0, 0.42451 },
+    { 4, 141, 460, 1024, 1024, 4, 141, 20, 1u << 19, 1, 10, 6, 1, 6, 0.5, 0.5, 1.2248, 0.07965, 0.47790, 1.2041,
+      0.015930 },
+    { 5, 121, 419, 1024, 1024, 4, 121, 20, 1u << 19, 1, 10, 4, 1, 4, 0.5, 0.5, 1.5812, 0.12339, 0.49356, 1.5014,
+      0.020565 },
+};
+
+const np_simplexn_geom *np_simplexn_geom_of(unsigned n)
+{
+    return n >= 2u && n <= NP_SIMPLEXN_MAX ? &geoms[n - 2u] : NULL;
+}
+
+/*
+ * Default widths. n = 3: np_simplex_cfg_default(N, N, 0) (WT = N + 7,
+ * WP = N + 4, WK = N + 6). n != 3: WT = WP = N + x with x the smallest that
+ * keeps the bound <= 0.625 LSB (ndim.error_bound_defaults prints them):
+ * x = 9 (n = 2), 9 (n = 4), 9 (n = 5).
+ */
+static unsigned umin(unsigned a, unsigned b) { return a < b ? a : b; }
+
+np_simplexn_cfg np_simplexn_cfg_default(unsigned dims, unsigned out_bits)
+{
+    np_simplexn_cfg c;
+    c.dims = dims;
+    c.out_bits = out_bits;
+    if (dims == 3u) {
+        c.t_frac = umin(out_bits + 7u, NP_SIMPLEXN_WT_MAX);
+        c.p_frac = umin(out_bits + 4u, NP_SIMPLEXN_WP_MAX);
+        c.k_frac = umin(out_bits + 6u, NP_SIMPLEXN_WK_MAX);
+    } else {
+        c.t_frac = umin(out_bits + 9u, NP_SIMPLEXN_WT_MAX);
+        c.p_frac = umin(out_bits + 9u, NP_SIMPLEXN_WP_MAX);
+        c.k_frac = 0u;
+    }
+    return c;
+}
+
+const char *np_simplexn_cfg_check(const np_simplexn_cfg *cfg)
+{
+    if (!np_simplexn_geom_of(cfg->dims))
+        return "dims must be 2..5";
+    if (cfg->out_bits < NP_SIMPLEXN_OUT_MIN || cfg->out_bits > NP_SIMPLEXN_OUT_MAX)
+        return "out_bits must be 8..20";
+    if (cfg->t_frac < 1u || cfg->t_frac > NP_SIMPLEXN_WT_MAX)
+        return "t_frac must be 1..30";
+    if (cfg->p_frac < 1u || cfg->p_frac > NP_SIMPLEXN_WP_MAX)
+        return "p_frac must be 1..32";
+    if (cfg->dims == 3u ? (cfg->k_frac < 1u || cfg->k_frac > NP_SIMPLEXN_WK_MAX) : cfg->k_frac != 0u)
+        return cfg->dims == 3u ? "k_frac must be 1..26" : "k_frac must be 0 (Kf = A is exact) for dims != 3";
+    return NULL;
+}
+
+double np_simplexn_error_bound_lsb(const np_simplexn_cfg *cfg)
+{
+    const np_simplexn_geom *g = np_simplexn_geom_of(cfg->dims);
+    double e = np_pow2i(-(int)cfg->t_frac - 1), p = np_pow2i(-(int)cfg->p_frac - 1);
+    double k = g->kf_den == 1u ? 0.0 : np_pow2i(-(int)cfg->k_frac - 1);
+    double kf = (double)g->kf_num / (double)g->kf_den;
+    double e4 = e * (2.0 * g->tau0 * g->tau0 + e) + e;
+    double ef = (double)(g->n + 1u) * (e4 * g->gmax + p);
+    return 0.5 + np_pow2i((int)cfg->out_bits) * (kf * ef + k * (g->smax + ef));
+}
+
+/* Optimal networks (Knuth, TAOCP 5.3.4); ndim.sorting_networks checks them by the 0-1 principle. */
+static const uint8_t net2[][2] = { { 0, 1 } };
+static const uint8_t net3[][2] = { { 0, 2 }, { 0, 1 }, { 1, 2 } };
+static const uint8_t net4[][2] = { { 0, 1 }, { 2, 3 }, { 0, 2 }, { 1, 3 }, { 1, 2 } };
+static const uint8_t net5[][2] = { { 0, 1 }, { 3, 4 }, { 2, 4 }, { 2, 3 }, { 0, 3 },
+                                   { 0, 2 }, { 1, 4 }, { 1, 3 }, { 1, 2 } };
+
+unsigned np_simplexn_network(unsigned n, const uint8_t (**pairs)[2])
+{
+    switch (n) {
+    case 2: *pairs = net2; return 1;
+    case 3: *pairs = net3; return 3;
+    case 4: *pairs = net4; return 5;
+    default: *pairs = net5; return 9;
+    }
+}
+
+void np_simplexn_rank(unsigned n, const int32_t *off, uint8_t *order)
+{
+    const uint8_t(*pairs)[2];
+    unsigned m = np_simplexn_network(n, &pairs);
+    int32_t v[NP_SIMPLEXN_MAX];
+    for (unsigned a = 0; a < n; a++) {
+        v[a] = off[a];
+        order[a] = (uint8_t)a;
+    }
+    for (unsigned k = 0; k < m; k++) {
+        unsigned i = pairs[k][0], j = pairs[k][1];
+        /* j's element goes first when it is larger, or equal with the lower axis. */
+        int swap = v[j] > v[i] || (v[j] == v[i] && order[j] < order[i]);
+        if (swap) {
+            int32_t tv = v[i];
+            uint8_t to = order[i];
+            v[i] = v[j];
+            order[i] = order[j];
+            v[j] = tv;
+            order[j] = to;
+        }
+    }
+}
+
+/* --- Stages (the bit-exact model runs them in order on one bundle) --- */
+
+static const np_simplexn_geom *geom(const void *cfgv) { return np_simplexn_geom_of(((const np_simplexn_cfg *)cfgv)->dims); }
+
+static void stage_sk(const void *cfgv, void *sv)
+{
+    const np_simplexn_geom *g = geom(cfgv);
+    np_simplexn_sig *s = sv;
+    uint32_t sum = 0;
+    for (unsigned a = 0; a < g->n; a++)
+        sum += s->x[a];
+    for (unsigned a = 0; a < g->n; a++) {
+        s->sk[a] = np_simplexn_skew(g, s->x[a], sum);
+        s->cell[a] = np_simplexn_cell(g, s->sk[a]);
+    }
+}
+
+static void stage_rk(const void *cfgv, void *sv)
+{
+    const np_simplexn_geom *g = geom(cfgv);
+    np_simplexn_sig *s = sv;
+    uint32_t nsum = 0;
+    for (unsigned a = 0; a < g->n; a++)
+        nsum += s->cell[a];
+    for (unsigned a = 0; a < g->n; a++)
+        s->off[a] = np_simplexn_offset(g, s->x[a], s->cell[a], nsum);
+    np_simplexn_rank(g->n, s->off, s->order);
+}
+
+static void stage_ch(const void *cfgv, void *sv)
+{
+    const np_simplexn_geom *g = geom(cfgv);
+    np_simplexn_sig *s = sv;
+    unsigned mask = 0;
+    for (unsigned c = 0; c <= g->n; c++) {
+        if (c > 0)
+            mask |= 1u << s->order[c - 1u];
+        uint8_t pt[NP_SIMPLEXN_MAX] = { 0 };
+        int32_t gd = 0;
+        for (unsigned a = 0; a < g->n; a++) {
+            s->d[c][a] = np_simplexn_corner_d(g, s->off[a], mask >> a & 1u, c);
+            pt[a] = (uint8_t)((s->cell[a] + (mask >> a & 1u)) & NP_MASK(NP_HASHN_COORD));
+        }
+        s->h[c] = np_hashn(g->n, pt);
+        np_gradn_decode(g->n, s->h[c], s->g[c]);
+        for (unsigned a = 0; a < g->n; a++)
+            gd += s->g[c][a] * s->d[c][a];
+        s->gd[c] = gd;
+    }
+}
+
+static void stage_kt(const void *cfgv, void *sv)
+{
+    const np_simplexn_geom *g = geom(cfgv);
+    np_simplexn_sig *s = sv;
+    for (unsigned c = 0; c <= g->n; c++) {
+        uint32_t r2 = 0;
+        for (unsigned a = 0; a < g->n; a++)
+            r2 += (uint32_t)(s->d[c][a] * s->d[c][a]);
+        s->r2[c] = r2;
+        s->t[c] = np_simplexn_kernel_t(g, r2);
+    }
+}
+
+static void stage_p2(const void *cfgv, void *sv)
+{
+    const np_simplexn_geom *g = geom(cfgv);
+    np_simplexn_sig *s = sv;
+    for (unsigned c = 0; c <= g->n; c++)
+        s->tau2[c] = np_simplexn_tau2(g, cfgv, s->t[c]);
+}
+
+static void stage_p4(const void *cfgv, void *sv)
+{
+    const np_simplexn_geom *g = geom(cfgv);
+    np_simplexn_sig *s = sv;
+    for (unsigned c = 0; c <= g->n; c++)
+        s->tau4[c] = np_simplexn_tau4(cfgv, s->tau2[c]);
+}
+
+static void stage_m(const void *cfgv, void *sv)
+{
+    const np_simplexn_geom *g = geom(cfgv);
+    np_simplexn_sig *s = sv;
+    for (unsigned c = 0; c <= g->n; c++)
+        s->fc[c] = np_simplexn_fterm(g, cfgv, s->tau4[c], s->gd[c]);
+}
+
+static void stage_a(const void *cfgv, void *sv)
+{
+    const np_simplexn_geom *g = geom(cfgv);
+    np_simplexn_sig *s = sv;
+    s->s = 0;
+    for (unsigned c = 0; c <= g->n; c++)
+        s->s += s->fc[c];
+}
+
+static void stage_o(const void *cfgv, void *sv)
+{
+    np_simplexn_sig *s = sv;
+    s->f = np_simplexn_out(cfgv, np_simplexn_kf(geom(cfgv), cfgv), s->s);
+}
+
+const np_stage_desc np_simplexn_stages[NP_SIMPLEXN_STAGES] = {
+    { "SK", stage_sk }, { "RK", stage_rk }, { "CH", stage_ch }, { "KT", stage_kt }, { "P2", stage_p2 },
+    { "P4", stage_p4 }, { "M", stage_m },   { "A", stage_a },   { "O", stage_o },
+};
+
+int32_t np_simplexn_eval(const np_simplexn_cfg *cfg, const uint16_t *x)
+{
+    np_simplexn_sig s;
+    memset(&s, 0, sizeof s);
+    memcpy(s.x, x, cfg->dims * sizeof x[0]);
+    for (unsigned k = 0; k < NP_SIMPLEXN_STAGES; k++)
+        np_simplexn_stages[k].fn(cfg, &s);
+    return s.f;
+}
+
+int np_simplexn_pipe_init(np_pipe *p, const np_simplexn_cfg *cfg)
+{
+    return np_pipe_init(p, np_simplexn_stages, NP_SIMPLEXN_STAGES, sizeof(np_simplexn_sig), cfg);
+}
+
+/* --- Datapath declaration --- */
+
+static unsigned ubits(uint64_t v) { return np_bits_for_range(0, (int64_t)v, 0); }
+static unsigned sbits(uint64_t v) { return np_bits_for_range(-(int64_t)v, (int64_t)v, 1); }
+static unsigned clog2(unsigned v)
+{
+    unsigned b = 0;
+    while ((1u << b) < v)
+        b++;
+    return b;
+}
+
+/* Non-zero digits of k's canonical signed-digit form: a constant multiply is that many terms. */
+static unsigned csd_digits(uint64_t k)
+{
+    unsigned d = 0;
+    while (k) {
+        if (k & 1u) {
+            d++;
+            k = (k & 2u) ? k + 1u : k - 1u;
+        }
+        k >>= 1;
+    }
+    return d;
+}
+
+/* count adder trees of m operands of w bits (modulo 2^w) from level0; returns the first free level. */
+static unsigned tree(np_dp *d, const char *stage, const char *sig, unsigned count, unsigned m, unsigned w, int sgn,
+                     unsigned level0)
+{
+    unsigned lv = level0;
+    while (m > 1u) {
+        unsigned adders = m / 2u;
+        m -= adders;
+        np_dp_op(d, stage, m == 1u ? sig : NULL, NP_OP_ADD, count * adders, w, 0, m == 1u ? w : 0u, sgn, lv++);
+    }
+    return lv;
+}
+
+/*
+ * A multiply by the constant k of an operand of w bits into an out-bit
+ * result: digits - 1 adders of out bits in a tree (none for a power of two).
+ * Returns the levels it takes.
+ */
+static unsigned const_mul(np_dp *d, const char *stage, const char *sig, unsigned count, uint64_t k, unsigned out,
+                          int sgn, unsigned level)
+{
+    unsigned terms = csd_digits(k);
+    if (terms <= 1u)
+        return 0;
+    return tree(d, stage, sig, count, terms, out, sgn, level) - level;
+}
+
+/*
+ * The divider floor(v / q) for 0 <= v <= vmax as (v M) >> sh: the smallest
+ * sh with M = ceil(2^sh / q) exact over the range (checked here, on every
+ * value). The 3-D unit's is M = 683, sh = 11.
+ */
+static uint64_t div_magic(uint32_t q, uint32_t vmax, unsigned *sh)
+{
+    for (unsigned s = 0; s < 40u; s++) {
+        uint64_t m = (((uint64_t)1 << s) + q - 1u) / q;
+        uint32_t v = 0;
+        for (; v <= vmax; v++)
+            if (((uint64_t)v * m) >> s != v / q)
+                break;
+        if (v > vmax) {
+            *sh = s;
+            return m;
+        }
+    }
+    *sh = 0;
+    return 0;
+}
+
+/* Comparators per layer of the sorting network of n (a comparator goes one layer after its inputs'); the depth. */
+static unsigned network_layers(unsigned n, unsigned per_layer[16])
+{
+    const uint8_t(*pairs)[2];
+    unsigned m = np_simplexn_network(n, &pairs), lvl[NP_SIMPLEXN_MAX] = { 0 }, depth = 0;
+    memset(per_layer, 0, 16 * sizeof per_layer[0]);
+    for (unsigned k = 0; k < m; k++) {
+        unsigned i = pairs[k][0], j = pairs[k][1], l = (lvl[i] > lvl[j] ? lvl[i] : lvl[j]) + 1u;
+        lvl[i] = lvl[j] = l;
+        per_layer[l - 1u]++;
+        depth = l > depth ? l : depth;
+    }
+    return depth;
+}
+
+size_t np_simplexn_datapath(const np_simplexn_cfg *cfg, np_op *ops, size_t max)
+{
+    np_dp d = { ops, max, 0 };
+    const np_simplexn_geom *g = np_simplexn_geom_of(cfg->dims);
+    unsigned n = g->n, nc = n + 1u, wt = cfg->t_frac, wp = cfg->p_frac, wk = cfg->k_frac, nb = cfg->out_bits;
+    unsigned kmax = np_gradn_max_terms(n), lookups = np_hashn_lookups(n);
+    /* SK. sum X <= n 65535; SX = q X + p sum <= l 65535; nn = SX >> 8; the cell = floor(nn / q). */
+    unsigned sumw = 16u + clog2(n), skw = ubits((uint64_t)g->l * 65535u);
+    uint32_t nnmax = (uint32_t)(((uint64_t)g->l * 65535u) >> 8);
+    unsigned cellw = ubits(nnmax / g->q), sh;
+    uint64_t magic = div_magic(g->q, nnmax, &sh);
+    unsigned lv = tree(&d, "SK", NULL, 1, n, sumw, 0, 0);
+    unsigned lq = const_mul(&d, "SK", NULL, n, g->q, skw, 0, 0);
+    unsigned lp = const_mul(&d, "SK", NULL, 1, g->p, skw, 0, lv);
+    lv = (lv + lp > lq ? lv + lp : lq);
+    np_dp_op(&d, "SK", "sk", NP_OP_ADD, n, skw, 0, skw, 0, lv++);
+    lv += const_mul(&d, "SK", NULL, n, magic, ubits(nnmax * magic), 0, lv);
+    np_dp_op(&d, "SK", NULL, NP_OP_REG, 1, n * (16u + cellw) + 1u, 0, 0, 0, 0);
+    /*
+     * RK. n_sum (n - 1 adders), U = wx X - W i + wc n_sum mod 2^12 (s12:
+     * |U| < W, W <= 1536 < 2048): the constant multiplies as shift-adds, two
+     * adders per axis; the cells + 1 for the far corners; then the sorting
+     * network: per comparator a (12 + 3)-bit comparison (value, then axis)
+     * and two 2:1 selects of (value, axis).
+     */
+    enum { OFFW = 12, AXW = 3, HBITS = 6 };
+    lv = tree(&d, "RK", NULL, 1, n, cellw + clog2(n), 0, 0);
+    unsigned lw = const_mul(&d, "RK", NULL, 1, g->wc, OFFW, 1, lv);
+    unsigned lx = const_mul(&d, "RK", NULL, n, g->wx, OFFW, 1, 0);
+    unsigned li = const_mul(&d, "RK", NULL, n, g->w, OFFW, 1, 0);
+    lv = lv + lw > lx ? lv + lw : lx;
+    lv = lv > li ? lv : li;
+    np_dp_op(&d, "RK", NULL, NP_OP_ADD, n, OFFW, 0, 0, 0, lv++);
+    np_dp_op(&d, "RK", "off", NP_OP_ADD, n, OFFW, 0, OFFW, 1, lv++);
+    np_dp_op(&d, "RK", NULL, NP_OP_ADD, n, NP_HASHN_COORD, 0, 0, 0, 0); /* cell + 1 mod 256 */
+    unsigned layer[16], depth = network_layers(n, layer);
+    for (unsigned k = 0; k < depth; k++) {
+        np_dp_op(&d, "RK", NULL, NP_OP_CMP, layer[k], OFFW + AXW, 0, 0, 0, lv + 2u * k);
+        np_dp_op(&d, "RK", NULL, NP_OP_MUX, 2u * layer[k], OFFW + AXW, 2, 0, 0, lv + 2u * k + 1u);
+    }
+    np_dp_op(&d, "RK", NULL, NP_OP_REG, 1, n * OFFW + n * AXW + 2u * n * NP_HASHN_COORD + 1u, 0, 0, 0, 0);
+    /*
+     * CH, per corner c = 0..n: the mask (the first c axes of the ranking: a
+     * decoder, as in 3-D not counted), D = U - W A + wc c (corner 0: U),
+     * |D| < 1.6 W (|d_a| < 1 + n G): s12; the corner's cells (cell or
+     * cell + 1: corners 1..n-1 select, corner n is all cell + 1), the hash
+     * (lookups and a six-bit adder tree), -D beside the hash, then per axis a
+     * 3:1 select of D, -D, 0 and the sum over n axes, |gd| <= K |D|max.
+     */
+    /* |gd| <= |G| |d| W <= sqrt(K edge2) W (n = 3: sqrt(3) 1536 = 2660, simplex3's s13). */
+    unsigned gdw = sbits((uint64_t)ceil(sqrt((double)kmax * g->edge2) * g->w));
+    np_dp_op(&d, "CH", NULL, NP_OP_MUX, (n - 1u) * n, NP_HASHN_COORD, 2, 0, 0, 0);
+    np_dp_op(&d, "CH", "d", NP_OP_ADD, n * n, OFFW, 0, OFFW, 1, 0);
+    np_dp_op(&d, "CH", NULL, NP_OP_LUT, nc * lookups, 3, HBITS, 0, 0, 1);
+    unsigned lh = tree(&d, "CH", "h", nc, lookups, HBITS, 0, 2);
+    np_dp_op(&d, "CH", NULL, NP_OP_NEG, nc * n, OFFW, 0, 0, 0, 2);
+    np_dp_op(&d, "CH", NULL, NP_OP_MUX, nc * n, OFFW, 3, 0, 0, lh);
+    tree(&d, "CH", "gd", nc, n, gdw, 1, lh + 1u);
+    np_dp_op(&d, "CH", NULL, NP_OP_REG, 1, nc * (n * OFFW + gdw) + 1u, 0, 0, 0, 0);
+    /* KT: n squares per corner (u24), their sum (R2 <= edge2 W^2), k R2, Tv - k R2, the clamp. */
+    uint64_t r2max = (uint64_t)ceil(g->edge2 * (double)g->w * (double)g->w);
+    unsigned r2w = ubits(r2max), tdw = sbits((uint64_t)g->k * r2max > g->tv ? (uint64_t)g->k * r2max : g->tv);
+    unsigned tw = ubits(g->tv);
+    np_dp_op(&d, "KT", NULL, NP_OP_MUL, nc * n, OFFW, OFFW, 2u * OFFW, 0, 0);
+    lv = tree(&d, "KT", "r2", nc, n, r2w, 0, 1);
+    lv += const_mul(&d, "KT", NULL, nc, g->k, tdw, 0, lv);
+    np_dp_op(&d, "KT", NULL, NP_OP_ADD, nc, tdw, 0, 0, 1, lv++);
+    np_dp_op(&d, "KT", "t", NP_OP_MUX, nc, tw, 2, tw, 0, lv);
+    np_dp_op(&d, "KT", NULL, NP_OP_REG, 1, nc * (tw + gdw) + 1u, 0, 0, 0, 0);
+    /* P2, P4: the largest words are at T = Tv (every rounding is monotone). */
+    uint64_t t2 = np_simplexn_tau2(g, cfg, g->tv), t4 = np_simplexn_tau4(cfg, (uint32_t)t2);
+    unsigned t2w = ubits(t2), t4w = ubits(t4);
+    np_dp_op(&d, "P2", NULL, NP_OP_MUL, nc, tw, tw, 2u * tw, 0, 0);
+    np_dp_op(&d, "P2", "tau2", NP_OP_ADD, nc, t2w + 1u, 0, t2w, 0, 1);
+    np_dp_op(&d, "P2", NULL, NP_OP_REG, 1, nc * (t2w + gdw) + 1u, 0, 0, 0, 0);
+    np_dp_op(&d, "P4", NULL, NP_OP_MUL, nc, t2w, t2w, 2u * t2w, 0, 0);
+    np_dp_op(&d, "P4", "tau4", NP_OP_ADD, nc, t4w + 1u, 0, t4w, 0, 1);
+    np_dp_op(&d, "P4", NULL, NP_OP_REG, 1, nc * (t4w + gdw) + 1u, 0, 0, 0, 0);
+    /*
+     * M: fc = round(tau4 gd): |tau^4 G.d| <= fcmax where T > 0, plus tau4's
+     * error e4 times |gd| <= gmax and fc's own rounding (ERROR BOUND).
+     */
+    double e = np_pow2i(-(int)wt - 1), e4 = e * (2.0 * g->tau0 * g->tau0 + e) + e;
+    uint64_t fcmax = (uint64_t)ceil((g->fcmax + e4 * g->gmax) * np_pow2i((int)wp)) + 1u;
+    unsigned fcw = sbits(fcmax);
+    np_dp_op(&d, "M", NULL, NP_OP_MUL, nc, t4w, gdw, t4w + gdw, 1, 0);
+    if (wt + g->gdf > wp)
+        np_dp_op(&d, "M", "fc", NP_OP_ADD, nc, fcw + 1u, 0, fcw, 1, 1);
+    np_dp_op(&d, "M", NULL, NP_OP_REG, 1, nc * fcw + 1u, 0, 0, 0, 0);
+    /* A: the sum of n + 1 terms, |S| <= smax + errors < (n + 1) max |fc|: s(fcw + ceil log2 (n+1)). */
+    unsigned sw = fcw + clog2(nc);
+    tree(&d, "A", NULL, 1, nc, sw, 1, 0);
+    np_dp_op(&d, "A", NULL, NP_OP_REG, 1, sw + 1u, 0, 0, 0, 0);
+    /* O: Kf' S as shift-adds, rounding by WK + WP - N bits, the saturation (2 comparisons, a 3:1 select). */
+    uint64_t kf = (uint64_t)np_simplexn_kf(g, cfg);
+    unsigned pw = sw + ubits(kf);
+    lv = const_mul(&d, "O", NULL, 1, kf, pw, 1, 0);
+    if (wk + wp > nb)
+        np_dp_op(&d, "O", NULL, NP_OP_ADD, 1, pw - (wk + wp - nb) + 1u, 0, 0, 1, lv++);
+    np_dp_op(&d, "O", NULL, NP_OP_CMP, 2, pw - (wk + wp > nb ? wk + wp - nb : 0u), 0, 0, 0, lv++);
+    np_dp_op(&d, "O", NULL, NP_OP_MUX, 1, nb, 3, 0, 1, lv); /* the port sN: untraced, see np_simplexn.h */
+    np_dp_op(&d, "O", NULL, NP_OP_REG, 1, nb + 1u, 0, 0, 0, 0);
+    return d.n;
+}
+
+static void trace1(np_trace *t, size_t n, const char *name, int64_t v)
+{
+    for (size_t i = 0; i < n; i++)
+        if (t[i].signal && strcmp(t[i].signal, name) == 0)
+            np_trace_add(&t[i], v);
+}
+
+void np_simplexn_trace(const np_simplexn_cfg *cfg, unsigned k, const np_simplexn_sig *s, np_trace *t, size_t n)
+{
+    unsigned dims = cfg->dims;
+    switch (k) {
+    case 0:
+        for (unsigned a = 0; a < dims; a++)
+            trace1(t, n, "sk", s->sk[a]);
+        break;
+    case 1:
+        for (unsigned a = 0; a < dims; a++)
+            trace1(t, n, "off", s->off[a]);
+        break;
+    case 2:
+        for (unsigned c = 0; c <= dims; c++) {
+            for (unsigned a = 0; a < dims; a++)
+                trace1(t, n, "d", s->d[c][a]);
+            trace1(t, n, "h", s->h[c]);
+            trace1(t, n, "gd", s->gd[c]);
+        }
+        break;
+    case 3:
+        for (unsigned c = 0; c <= dims; c++) {
+            trace1(t, n, "r2", s->r2[c]);
+            trace1(t, n, "t", s->t[c]);
+        }
+        break;
+    case 4:
+        for (unsigned c = 0; c <= dims; c++)
+            trace1(t, n, "tau2", s->tau2[c]);
+        break;
+    case 5:
+        for (unsigned c = 0; c <= dims; c++)
+            trace1(t, n, "tau4", s->tau4[c]);
+        break;
+    case 6:
+        for (unsigned c = 0; c <= dims; c++)
+            trace1(t, n, "fc", s->fc[c]);
+        break;
+    default: break;
+    }
+}

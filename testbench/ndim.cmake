@@ -1,0 +1,16 @@
+# SPDX-License-Identifier: MIT
+# Noise in n = 2..5 dimensions (testbench/test_ndim.c; docs/noise-nd.md has the figures).
+np_test_program(test_ndim test_ndim.c pipe_drive.c)
+np_add_cases(test_ndim ndim
+  hash3_is_seed hash_distribution grad_sets sorting_networks
+  simplex3_bit_exact classic3_bit_exact classic3_same_datapath
+  error_bound_defaults error_simplex error_classic kernel_continuity output_range
+  cycle_simplex_1e6 cycle_classic_1e6 registry)
+set_tests_properties(ndim.cycle_simplex_1e6 ndim.cycle_classic_1e6 ndim.error_classic PROPERTIES TIMEOUT 300)
+# docs/dims.md and docs/dims.svg are `noisepipe report dims -o docs` byte for byte.
+add_test(NAME ndim.report_dims_fresh COMMAND ${CMAKE_COMMAND} -DNOISEPIPE=$<TARGET_FILE:noisepipe>
+  -DOUT=${CMAKE_CURRENT_BINARY_DIR}/dims-fresh -DDOCS=${PROJECT_SOURCE_DIR}/docs
+  -P ${CMAKE_CURRENT_SOURCE_DIR}/ndim_fresh.cmake)
+# The time-varying solid texture through 4-D noise: frames written, moving, deterministic.
+add_test(NAME ndim.anim4d_frames COMMAND ${CMAKE_COMMAND} -DNOISEPIPE=$<TARGET_FILE:noisepipe>
+  -DOUT=${CMAKE_CURRENT_BINARY_DIR}/anim4d-test -P ${CMAKE_CURRENT_SOURCE_DIR}/ndim_anim.cmake)

@@ -1,0 +1,18 @@
+# SPDX-License-Identifier: MIT
+# Regenerate `noisepipe report dims` into OUT and compare dims.md and dims.svg with DOCS.
+file(REMOVE_RECURSE ${OUT})
+file(MAKE_DIRECTORY ${OUT})
+execute_process(COMMAND ${NOISEPIPE} report dims -o ${OUT} RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "noisepipe report dims failed (${rc})")
+endif()
+foreach(f dims.md dims.svg)
+  file(SHA256 ${OUT}/${f} a)
+  if(NOT EXISTS ${DOCS}/${f})
+    message(FATAL_ERROR "docs/${f} missing; refresh with: build/noisepipe report dims -o docs")
+  endif()
+  file(SHA256 ${DOCS}/${f} b)
+  if(NOT a STREQUAL b)
+    message(FATAL_ERROR "docs/${f} is stale; refresh with: build/noisepipe report dims -o docs")
+  endif()
+endforeach()
