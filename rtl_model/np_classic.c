@@ -271,12 +271,12 @@ size_t np_classic_datapath(const np_classic_cfg *cfg, np_op *ops, size_t max)
     unsigned ws = cfg->s_frac, wl = cfg->lerp_frac, nb = cfg->out_bits, f = nb - 2u;
     unsigned sw = ws + 1u;   /* s: u(WS+1) Q1.WS */
     /* L: cell + 1 (three 8-bit incrementers), 64 pattern lookups, an adder tree per corner. */
-    OP("L", NULL, NP_OP_ADD, 3, 8, 0, 0, 0, 0);
+    OP("L", NULL, NP_OP_INC, 3, 8, 0, 0, 0, 0);
     OP("L", NULL, NP_OP_LUT, 64, 3, 6, 0, 0, 1);
     OP("L", NULL, NP_OP_ADD, 32, 6, 0, 0, 0, 2);
     OP("L", NULL, NP_OP_ADD, 16, 6, 0, 0, 0, 3);
     OP("L", "h", NP_OP_ADD, 8, 6, 0, 6, 0, 4);
-    OP("L", "s2", NP_OP_MUL, 3, 8, 8, 16, 0, 0);
+    OP("L", "s2", NP_OP_SQR, 3, 8, 0, 16, 0, 0); /* u * u: a squarer */
     OP("L", NULL, NP_OP_REG, 1, 3 * 8 + 8 * 6 + 3 * 16 + 1, 0, 0, 0, 0); /* u,v,w; h; squares; valid */
     /* H: select p, q, r (3:1 muxes of s9 offsets), conditional negates, two additions. */
     OP("H", NULL, NP_OP_MUX, 24, 9, 3, 0, 0, 0);
@@ -285,10 +285,10 @@ size_t np_classic_datapath(const np_classic_cfg *cfg, np_op *ops, size_t max)
     OP("H", NULL, NP_OP_ADD, 8, 10, 0, 0, 0, 2);
     OP("H", "g", NP_OP_ADD, 8, NP_CLASSIC_G_BITS, 0, NP_CLASSIC_G_BITS, 1, 3);
     /* S second half, in parallel: 768 - 2u, the 16 x 10 product, rounding to WS bits. */
-    OP("H", NULL, NP_OP_ADD, 3, 10, 0, 0, 0, 0);
+    OP("H", NULL, NP_OP_INC, 3, 10, 0, 0, 0, 0); /* 768 - 2u: a constant minus x */
     OP("H", "snum", NP_OP_MUL, 3, 16, 10, NP_CLASSIC_SNUM_BITS, 0, 1);
     if (ws < NP_CLASSIC_SNUM_BITS)
-        OP("H", "s", NP_OP_ADD, 3, sw, 0, sw, 0, 2);
+        OP("H", "s", NP_OP_INC, 3, sw, 0, sw, 0, 2); /* + half an LSB */
     OP("H", NULL, NP_OP_REG, 1, 8 * NP_CLASSIC_G_BITS + 3 * sw + 1, 0, 0, 0, 0);
     /* I: three levels of (difference, product | sum, rounding). */
     static const char *const names[3][4] = { { "diff1", "prod1", "sum1", "l1" },
@@ -311,30 +311,75 @@ size_t np_classic_datapath(const np_classic_cfg *cfg, np_op *ops, size_t max)
      * difference's: pw = dw + WS.
      */
     static const unsigned val_int[3] = { 2, 2, 1 };
+    /*
+     * Constant-zero low bits: when level 1 widens (8 + WS < WL), l1 = (the
+     * exact sum) << (WL - 8 - WS) ends in that many 0 bits, and they pass on
+     * (a level drops WS of them). Hardware (and synthesis) keeps no zero bit,
+     * so each level is priced at its effective widths: operand fraction
+     * af - zin, result fraction WL - zout. The traced widths (out) stay the
+     * words' full widths.
+     */
+    unsigned zin = 0;
     for (unsigned lvl = 0; lvl < 3; lvl++) {
         unsigned cnt = 4u >> lvl;                         /* 4, 2, 1 interpolators */
         unsigned af = lvl == 0 ? NP_CLASSIC_FRAC_IN : wl; /* operand fraction bits */
-        unsigned aw = af + 3u;                            /* operand s(af+3) Q2.af */
         unsigned dw = af + 4u;                            /* b - a: s(af+4) Q3.af */
         unsigned pw = dw + ws;                            /* s (b - a): Q3.(af+WS) */
         unsigned sumw = af + ws + 1u + val_int[lvl];      /* a + s (b - a), exact */
         unsigned vw = wl + 1u + val_int[lvl];             /* rounded level value */
         unsigned later = (lvl < 1 ? sw : 0u) + (lvl < 2 ? sw : 0u); /* sy, sz still needed */
-        OP(mstage[lvl], names[lvl][0], NP_OP_ADD, cnt, dw, 0, dw, 1, 0);
-        OP(mstage[lvl], names[lvl][1], NP_OP_MUL, cnt, sw, dw, pw, 1, 1);
-        OP(mstage[lvl], NULL, NP_OP_REG, 1, cnt * (pw + aw) + later + 1, 0, 0, 0, 0);
-        OP(astage[lvl], names[lvl][2], NP_OP_ADD, cnt, sumw, 0, sumw, 1, 0);
-        if (af + ws > wl) /* rounding adder spans the kept bits plus the round bit */
-            OP(astage[lvl], names[lvl][3], NP_OP_ADD, cnt, vw + 1u, 0, vw, 1, 1);
+        unsigned zout = lvl == 0 ? (wl > af + ws ? wl - af - ws : 0u) : (zin > ws ? zin - ws : 0u);
+        unsigned afe = af - zin, wle = wl - zout;         /* effective fraction bits */
+        unsigned dwe = afe + 4u, pwe = dwe + ws, sumwe = afe + ws + 1u + val_int[lvl], vwe = wle + 1u + val_int[lvl];
+        /*
+         * The rounding below drops sh = af + WS - WL bits (0: it widens): of
+         * prod's low bits it reads only bit sh - 1 (the carry of its half LSB),
+         * and none of the WS bits under a 2^WS when sh > WS, so the bank
+         * keeps prod without its dead low bits.
+         */
+        unsigned sh = afe + ws > wle ? afe + ws - wle : 0u;
+        unsigned dead = sh == 0u ? 0u : (sh - 1u < ws ? sh - 1u : ws);
+        OP(mstage[lvl], names[lvl][0], NP_OP_ADD, cnt, dwe, 0, dw, 1, 0);
+        OP(mstage[lvl], names[lvl][1], NP_OP_MUL, cnt, sw, dwe, pw, 1, 1);
+        OP(mstage[lvl], NULL, NP_OP_REG, 1, cnt * (pwe - dead + afe + 3u) + later + 1, 0, 0, 0, 0);
+        /*
+         * a 2^WS + prod: the low WS bits are prod's (a 2^WS has none there), so
+         * the adder spans only the sumw - WS bits above them. The rounding
+         * drops sh bits: its half LSB meets only prod's bits when sh <= WS,
+         * so it is an incrementer of bits sh..WS-1 whose carry enters the
+         * adder (sh == WS: the adder's carry-in); when sh > WS it lands on
+         * the adder's sum: an incrementer over the kept bits and the round
+         * bit after it. l3: O reads only the bits from its own round bit
+         * (WL - F - 1) up; under them the adder only carries (a comparator's
+         * chain).
+         */
+        unsigned unread = lvl == 2u && wl > f + 1u + zout ? wl - f - 1u - zout : 0u;
+        OP(astage[lvl], names[lvl][2], NP_OP_ADD, cnt, sumwe - ws - unread, 0, sumw, 1, 0);
+        if (unread > 0u)
+            OP(astage[lvl], NULL, NP_OP_CMP, cnt, unread, 0, 0, 0, 0);
+        if (sh > 0u && sh < ws)
+            OP(astage[lvl], names[lvl][3], NP_OP_INC, cnt, ws - sh + 1u, 0, vw, 1, 1);
+        else if (sh > ws)
+            OP(astage[lvl], names[lvl][3], NP_OP_INC, cnt, vwe + 1u, 0, vw, 1, 1);
         else
-            OP(astage[lvl], names[lvl][3], NP_OP_REG, 0, 0, 0, vw, 1, 1); /* wiring only */
-        OP(astage[lvl], NULL, NP_OP_REG, 1, cnt * vw + later + 1, 0, 0, 0, 0);
+            OP(astage[lvl], names[lvl][3], NP_OP_REG, 0, 0, 0, vw, 1, 1); /* wiring, or the adder's carry-in */
+        OP(astage[lvl], NULL, NP_OP_REG, 1, cnt * (vwe - unread) + later + 1, 0, 0, 0, 0);
+        zin = zout;
     }
     /* O: round to Q2.F, saturate to N bits (two comparisons, a 3:1 mux). */
+    /*
+     * Round to Q2.F (adding half an LSB: an incrementer over the kept bits
+     * and the round bit) and saturate to sN. Since |l3| <= 1.5 < 2, the
+     * rounded word leaves sN only by the rounding's carry into +2.0, whose
+     * low N bits (the minimum) are the saturated maximum inverted: the clamp
+     * is that carry and one gate per bit, which synthesis folds into the
+     * incrementer (report gates --synth: O is the incrementer and the bank).
+     * Without rounding (wl == f) l3 is already sN Q2.F: wiring.
+     */
     if (wl > f)
-        OP("O", NULL, NP_OP_ADD, 1, f + 3u, 0, 0, 0, 0);
-    OP("O", NULL, NP_OP_CMP, 2, f + 3u, 0, 0, 0, 1);
-    OP("O", "f", NP_OP_MUX, 1, nb, 3, nb, 1, 2);
+        OP("O", "f", NP_OP_INC, 1, f + 3u, 0, nb, 1, 0);
+    else
+        OP("O", "f", NP_OP_REG, 0, 0, 0, nb, 1, 0); /* wiring only */
     OP("O", NULL, NP_OP_REG, 1, nb + 1, 0, 0, 0, 0);
     return n;
 }

@@ -28,6 +28,9 @@ typedef enum np_op_kind {
     NP_OP_LUT,  /* fixed-function lookup (logic, no storage): a index bits -> b bits */
     NP_OP_ROM,  /* read-only memory: 2^a words of b bits */
     NP_OP_REG,  /* pipeline register: a bits (stage = the bank after that stage) */
+    NP_OP_INC,  /* adding a constant (half an LSB to round, +1, constant - x): a = width */
+    NP_OP_CMPK, /* comparison with a constant (saturation, clamps): a = width */
+    NP_OP_SQR,  /* squarer x * x: a = the operand's width */
     NP_OP_KINDS
 } np_op_kind;
 

@@ -519,20 +519,20 @@ static void out_round(np_op *ops, size_t max, size_t *n, unsigned count, unsigne
 {
     int sat = rw > ow;
     if (drop > 0u)
-        put(ops, max, n, (np_op){ "O", sat ? NULL : sig, NP_OP_ADD, count, rw + 1u, 0, sat ? 0u : ow, 1, lvl });
+        put(ops, max, n, (np_op){ "O", sat ? NULL : sig, NP_OP_INC, count, rw + 1u, 0, sat ? 0u : ow, 1, lvl });
     else if (!sat)
         put(ops, max, n, (np_op){ "O", sig, NP_OP_REG, 0, 0, 0, ow, 1, lvl }); /* wiring only */
     if (sat) {
-        put(ops, max, n, (np_op){ "O", NULL, NP_OP_CMP, 2u * count, rw, 0, 0, 0, lvl + 1u });
+        put(ops, max, n, (np_op){ "O", NULL, NP_OP_CMPK, 2u * count, rw, 0, 0, 0, lvl + 1u });
         put(ops, max, n, (np_op){ "O", sig, NP_OP_MUX, count, ow, 3, ow, 1, lvl + 2u });
     }
 }
 
-/* A rounding that drops sh bits: an adder over the kept bits plus the round bit, or wiring. */
+/* A rounding that drops sh bits: adding half an LSB over the kept bits plus the round bit, or wiring. */
 #define ROUND(stage, sig, count, sh, vw, level)                          \
     do {                                                                \
         if ((sh) > 0)                                                   \
-            OP(stage, sig, NP_OP_ADD, count, (vw) + 1u, 0, vw, 1, level); \
+            OP(stage, sig, NP_OP_INC, count, (vw) + 1u, 0, vw, 1, level); \
         else                                                            \
             OP(stage, sig, NP_OP_REG, 0, 0, 0, vw, 1, level);           \
     } while (0)
@@ -578,7 +578,7 @@ size_t np_simplex_datapath(const np_simplex_cfg *cfg, np_op *ops, size_t max)
     OP("RK", NULL, NP_OP_ADD, 3, 11, 0, 0, 0, 0);             /* (2a + a) mod 2^11 */
     OP("RK", NULL, NP_OP_ADD, 3, 3, 0, 0, 0, 0);              /* 3i mod 8 */
     OP("RK", NULL, NP_OP_ADD, 1, 4, 0, 0, 0, 0);              /* (i + j) mod 16 */
-    OP("RK", NULL, NP_OP_ADD, 3, CELL_LIVE, 0, 0, 0, 0);      /* cell + 1 mod 256 */
+    OP("RK", NULL, NP_OP_INC, 3, CELL_LIVE, 0, 0, 0, 0);      /* cell + 1 mod 256 */
     OP("RK", NULL, NP_OP_ADD, 1, 4, 0, 0, 0, 1);              /* n mod 16 */
     OP("RK", NULL, NP_OP_ADD, 3, 4, 0, 0, 0, 2);              /* (n - 6i) mod 16 */
     OP("RK", "off", NP_OP_ADD, 3, 4, 0, ob, 1, 3);            /* U[11:8] */
@@ -611,16 +611,16 @@ size_t np_simplex_datapath(const np_simplex_cfg *cfg, np_op *ops, size_t max)
     OP("CH", NULL, NP_OP_REG, 1, 4 * 3 * ob + 4 * GD_BITS + h_live + 1, 0, 0, 0, 0); /* D; gd; (h) */
 
     /*
-     * KT. D_a^2 <= 1536^2 = 2359296 < 2^22 (u22, a 12 x 12 multiplier: no
-     * squarer in the cost model); R2 and its partial sum <= 1536^2 (u22);
+     * KT. D_a^2 <= 1536^2 = 2359296 < 2^22 (u22, a 12-bit squarer); R2 and
+     * its partial sum <= 1536^2 (u22);
      * 5 R2 = 4 R2 + R2 <= 11796480 < 2^24 (u24); 7077888 - 5 R2 in
      * [-4718592, 7077888] (s24); T = the clamp at 0 by the sign bit (u23).
      */
-    OP("KT", "dsq", NP_OP_MUL, 12, ob, ob, NP_SIMPLEX_R2_BITS, 0, 0);
+    OP("KT", "dsq", NP_OP_SQR, 12, ob, 0, NP_SIMPLEX_R2_BITS, 0, 0);
     OP("KT", "r2p", NP_OP_ADD, 4, NP_SIMPLEX_R2_BITS, 0, NP_SIMPLEX_R2_BITS, 0, 1);
     OP("KT", "r2", NP_OP_ADD, 4, NP_SIMPLEX_R2_BITS, 0, NP_SIMPLEX_R2_BITS, 0, 2);
     OP("KT", "r2x5", NP_OP_ADD, 4, NP_SIMPLEX_TD_BITS, 0, NP_SIMPLEX_TD_BITS, 0, 3);
-    OP("KT", "td", NP_OP_ADD, 4, NP_SIMPLEX_TD_BITS, 0, NP_SIMPLEX_TD_BITS, 1, 4);
+    OP("KT", "td", NP_OP_INC, 4, NP_SIMPLEX_TD_BITS, 0, NP_SIMPLEX_TD_BITS, 1, 4); /* a constant minus 5 R2 */
     OP("KT", "t", NP_OP_MUX, 4, NP_SIMPLEX_T_BITS, 2, NP_SIMPLEX_T_BITS, 0, 5);
     OP("KT", NULL, NP_OP_REG, 1, 4 * NP_SIMPLEX_T_BITS + 4 * GD_BITS + d_live + h_live + 1, 0, 0, 0, 0);
 
@@ -630,15 +630,15 @@ size_t np_simplex_datapath(const np_simplex_cfg *cfg, np_op *ops, size_t max)
      * tau3 ~ 0.6007, each u(WT); the products tau2^2 and tau2 T at their
      * exact maxima. Each rounding drops at least one bit (46 - WT, WT, 23).
      */
-    OP("P2", "tsq", NP_OP_MUL, 4, NP_SIMPLEX_T_BITS, NP_SIMPLEX_T_BITS, w.tsq, 0, 0);
-    OP("P2", "tau2", NP_OP_ADD, 4, w.tau2 + 1u, 0, w.tau2, 0, 1);
+    OP("P2", "tsq", NP_OP_SQR, 4, NP_SIMPLEX_T_BITS, 0, w.tsq, 0, 0);
+    OP("P2", "tau2", NP_OP_INC, 4, w.tau2 + 1u, 0, w.tau2, 0, 1);
     OP("P2", NULL, NP_OP_REG, 1,
        4 * w.tau2 + 4 * GD_BITS + (dv ? 4u * NP_SIMPLEX_T_BITS : 0u) + d_live + h_live + 1, 0, 0, 0, 0);
-    OP("P4", "tau4p", NP_OP_MUL, 4, w.tau2, w.tau2, w.t4p, 0, 0);
-    OP("P4", "tau4", NP_OP_ADD, 4, w.tau4 + 1u, 0, w.tau4, 0, 1);
+    OP("P4", "tau4p", NP_OP_SQR, 4, w.tau2, 0, w.t4p, 0, 0);
+    OP("P4", "tau4", NP_OP_INC, 4, w.tau4 + 1u, 0, w.tau4, 0, 1);
     if (dv) {
         OP("P4", "tau3p", NP_OP_MUL, 4, w.tau2, NP_SIMPLEX_T_BITS, w.t3p, 0, 0);
-        OP("P4", "tau3", NP_OP_ADD, 4, w.tau3 + 1u, 0, w.tau3, 0, 1);
+        OP("P4", "tau3", NP_OP_INC, 4, w.tau3 + 1u, 0, w.tau3, 0, 1);
     }
     OP("P4", NULL, NP_OP_REG, 1, 4 * w.tau4 + 4 * GD_BITS + (dv ? 4u * w.tau3 : 0u) + d_live + h_live + 1, 0, 0,
        0, 0);
@@ -658,7 +658,7 @@ size_t np_simplex_datapath(const np_simplex_cfg *cfg, np_op *ops, size_t max)
         ROUND("M", "q", 4, shp, w.q, 1);
         OP("M", NULL, NP_OP_NEG, 4, w.tau4 + 1u, 0, 0, 0, 0);
         if (wt > wp)
-            OP("M", NULL, NP_OP_ADD, 8, w.e + 1u, 0, 0, 0, 1);
+            OP("M", NULL, NP_OP_INC, 8, w.e + 1u, 0, 0, 0, 1);
         OP("M", "e", NP_OP_MUX, 12, w.e, 3, w.e, 1, 2);
     }
     OP("M", NULL, NP_OP_REG, 1, 4 * w.fc + (dv ? 4u * w.q + 12u * w.e : 0u) + d_live + 1, 0, 0, 0, 0);
@@ -671,7 +671,7 @@ size_t np_simplex_datapath(const np_simplex_cfg *cfg, np_op *ops, size_t max)
     if (dv) {
         OP("M2", "q5", NP_OP_ADD, 4, w.q5, 0, w.q5, 1, 0);
         OP("M2", "mp", NP_OP_MUL, 12, w.q5, ob, w.mp, 1, 1);
-        OP("M2", "m", NP_OP_ADD, 12, w.m + 1u, 0, w.m, 1, 2);
+        OP("M2", "m", NP_OP_INC, 12, w.m + 1u, 0, w.m, 1, 2);
         OP("M2", NULL, NP_OP_REG, 1, 4 * w.fc + 12 * w.e + 12 * w.m + 1, 0, 0, 0, 0);
     }
 

@@ -14,6 +14,12 @@ module lut3x6(input [2:0] i, output reg [5:0] y);
                      4: y = 6'h0d; 5: y = 6'h13; 6: y = 6'h07; default: y = 6'h2a; endcase
 endmodule
 module dff16(input clk, input [15:0] d, output reg [15:0] q); always @(posedge clk) q <= d; endmodule
+// A pipeline bank: flip-flops that hold under a stall (a load enable).
+module dffe16(input clk, en, input [15:0] d, output reg [15:0] q); always @(posedge clk) if (en) q <= d; endmodule
+// Adding a constant (an incrementer), comparing with a constant, squaring.
+module inc16(input [15:0] a, output [15:0] y); assign y = a + 16'd1; endmodule
+module cmpk16(input signed [15:0] a, output y); assign y = a > 16'sd1234; endmodule
+module sqr8(input [7:0] a, output [15:0] y); assign y = a * a; endmodule
 // The seed's whole table-free hash: 8 lookups and 7 six-bit additions.
 module hash6(input [7:0] i, j, k, output [5:0] h);
   function [5:0] T(input [2:0] x);

@@ -44,10 +44,10 @@ function(np_rtl_builds unit variant top)
     set(sfx ".${variant}")
   endif()
   np_rtl_test(rtl.${unit}.icarus.build${sfx} "${NP_IVERILOG}" pass "" "rtl"
-    ${NP_IVERILOG} -g2012 -Wall ${defs} -o ${dir}/${top}.vvp -s ${top} ${ARGN})
+    ${NP_IVERILOG} -g2012 -Wall -I${NP_RTL_SRC} ${defs} -o ${dir}/${top}.vvp -s ${top} ${ARGN})
   set_tests_properties(rtl.${unit}.icarus.build${sfx} PROPERTIES FIXTURES_SETUP rtl_${unit}_icarus_${variant})
   np_rtl_test(rtl.${unit}.verilator.build${sfx} "${NP_VERILATOR}" pass "" "rtl;nosan"
-    ${NP_VERILATOR} --binary -j 1 -Wall ${defs} --top-module ${top} -Mdir ${dir}/verilator -o ${top} ${ARGN})
+    ${NP_VERILATOR} --binary -j 1 -Wall -I${NP_RTL_SRC} ${defs} --top-module ${top} -Mdir ${dir}/verilator -o ${top} ${ARGN})
   set_tests_properties(rtl.${unit}.verilator.build${sfx} PROPERTIES
     FIXTURES_SETUP rtl_${unit}_verilator_${variant})
 endfunction()
@@ -168,7 +168,7 @@ function(np_rtl_cosim_build unit name top defs gparams)
     string(APPEND cflags " -DNP_COSIM_SIMPLEX")
   endif()
   np_rtl_test(rtl.${unit}.cosim.build.${name} "${NP_VERILATOR}" pass "" "rtl;nosan"
-    ${NP_VERILATOR} --cc --exe --build -j 1 -Wall ${defs} ${gparams} --top-module ${top} --prefix Vcosim
+    ${NP_VERILATOR} --cc --exe --build -j 1 -Wall -I${NP_RTL_SRC} ${defs} ${gparams} --top-module ${top} --prefix Vcosim
     -Mdir ${dir} -o cosim -CFLAGS ${cflags}
     -LDFLAGS "$<TARGET_FILE:np_cosim> $<TARGET_FILE:np_rtl_model>"
     ${NP_RTL_TB}/cosim_main.cpp ${ARGN})
@@ -291,7 +291,7 @@ foreach(v ok fault_flip)
   set(dir ${NP_RTL_WORK}/dpi/${v})
   file(MAKE_DIRECTORY ${dir})
   np_rtl_test(rtl.dpi.build${sfx} "${NP_VERILATOR}" pass "" "rtl;nosan"
-    ${NP_VERILATOR} --binary -j 1 -Wall ${defs} --top-module dpi_classic3_tb -Mdir ${dir} -o dpi_classic3_tb
+    ${NP_VERILATOR} --binary -j 1 -Wall -I${NP_RTL_SRC} ${defs} --top-module dpi_classic3_tb -Mdir ${dir} -o dpi_classic3_tb
     ${NP_RTL_SRC}/dpi/np_dpi_pkg.sv ${NP_RTL_TB}/dpi_classic3_tb.sv ${NP_RTL_C3_RTL}
     $<TARGET_FILE:np_dpi> $<TARGET_FILE:np_rtl_model>)
   set_tests_properties(rtl.dpi.build${sfx} PROPERTIES FIXTURES_SETUP rtl_dpi_${v})
@@ -314,7 +314,7 @@ foreach(u "classic3;np_classic3;;default" "classic3;np_classic3;-set IN_REG 1 -s
   list(GET u 2 params)
   list(GET u 3 name)
   string(JOIN " " pipe_src ${NP_RTL_PIPE_SRC})
-  set(ys "read_verilog ${NP_RTL_SRC}/${top}.v ${pipe_src}\n")
+  set(ys "read_verilog -I${NP_RTL_SRC} ${NP_RTL_SRC}/${top}.v ${pipe_src}\n")
   if(params)
     string(APPEND ys "chparam ${params} ${top}\n")
   endif()

@@ -92,24 +92,8 @@ module np_classic3 #(
     end
 
     // ---------------------------------------------------------------- L
-    // Hash of one lattice point (np_hash6): eight pattern lookups, sum mod 64.
-    function [5:0] pat;
-        input [2:0] idx;
-        begin
-            case (idx)
-                3'd0: pat = 6'h15; 3'd1: pat = 6'h38; 3'd2: pat = 6'h32; 3'd3: pat = 6'h2c;
-                3'd4: pat = 6'h0d; 3'd5: pat = 6'h13; 3'd6: pat = 6'h07; default: pat = 6'h2a;
-            endcase
-        end
-    endfunction
-    function [5:0] hash6;
-        input [7:0] i, j, k;
-        begin
-            hash6 = pat({i[0], j[0], k[0]}) + pat({j[1], k[1], i[1]}) + pat({k[2], i[2], j[2]})
-                  + pat({i[3], j[3], k[3]}) + pat({j[4], k[4], i[4]}) + pat({k[5], i[5], j[5]})
-                  + pat({i[6], j[6], k[6]}) + pat({j[7], k[7], i[7]});
-        end
-    endfunction
+    // Hash of one lattice point (np_hash6) and the gradient decode: np_hash.vh.
+`include "np_hash.vh"
 
     wire [7:0] ci = cx[15:8], cj = cy[15:8], ck = cz[15:8];
     wire [7:0] ci1 = ci + 8'd1, cj1 = cj + 8'd1, ck1 = ck + 8'd1;  // the tile wraps at 256
@@ -128,26 +112,33 @@ module np_classic3 #(
     end
 
     // ---------------------------------------------------------------- H
-    // Gradient (np_grad_decode / np_grad_apply_q8): with b = h[1:0], p, q, r
-    // select among the corner offsets, each conditionally negated, and
-    // g = p + (b == 0 ? q + r : (h[2] ? r : q)). An offset is s9 Q1.8 in
-    // [-256, 255]; its negation needs s10 (-(-256) = 256), so the negates
-    // work on s10 and the sum on s11.
+    // Gradient (np_grad_decode / np_grad_apply_q8): p, q, r are the corner
+    // offsets of the axes grad_fields(h) names (np_hash.vh), each
+    // conditionally negated, and g = p + q + r, p + q or p + r as its use bits
+    // say. An offset is s9 Q1.8 in [-256, 255]; its negation needs s10
+    // (-(-256) = 256), so the negates work on s10 and the sum on s11.
+    function signed [9:0] axis10;
+        input [1:0] a;
+        input signed [8:0] dx, dy, dz;
+        begin
+            axis10 = a == 2'd0 ? {dx[8], dx} : a == 2'd1 ? {dy[8], dy} : {dz[8], dz};
+        end
+    endfunction
     function signed [GW-1:0] grad;
         input [5:0] h;
         input signed [8:0] dx, dy, dz;
+        reg [10:0] gf;
         reg signed [9:0] p, q, r;
         begin
-            case (h[1:0])
-                2'd1: begin p = {dx[8], dx}; q = {dy[8], dy}; r = {dz[8], dz}; end
-                2'd2: begin p = {dy[8], dy}; q = {dz[8], dz}; r = {dx[8], dx}; end
-                default: begin p = {dz[8], dz}; q = {dx[8], dx}; r = {dy[8], dy}; end
-            endcase
-            if (h[5] == h[3]) p = -p;
-            if (h[5] == h[4]) q = -q;
-            if (h[5] != (h[4] ^ h[3])) r = -r;
-            if (h[1:0] == 2'd0) grad = {p[9], p} + {q[9], q} + {r[9], r};
-            else if (!h[2]) grad = {p[9], p} + {q[9], q};
+            gf = grad_fields(h);
+            p = axis10(gf[1:0], dx, dy, dz);
+            q = axis10(gf[3:2], dx, dy, dz);
+            r = axis10(gf[5:4], dx, dy, dz);
+            if (gf[6]) p = -p;
+            if (gf[7]) q = -q;
+            if (gf[8]) r = -r;
+            if (gf[9] && gf[10]) grad = {p[9], p} + {q[9], q} + {r[9], r};
+            else if (gf[9]) grad = {p[9], p} + {q[9], q};
             else grad = {p[9], p} + {r[9], r};
         end
     endfunction

@@ -163,41 +163,20 @@ module np_simplex3 #(
     end
 
     // ---------------------------------------------------------------- CH
-    function [5:0] pat;
-        input [2:0] idx;
-        begin
-            case (idx)
-                3'd0: pat = 6'h15; 3'd1: pat = 6'h38; 3'd2: pat = 6'h32; 3'd3: pat = 6'h2c;
-                3'd4: pat = 6'h0d; 3'd5: pat = 6'h13; 3'd6: pat = 6'h07; default: pat = 6'h2a;
-            endcase
-        end
-    endfunction
-    function [5:0] hash6;
-        input [7:0] i, j, k;
-        begin
-            hash6 = pat({i[0], j[0], k[0]}) + pat({j[1], k[1], i[1]}) + pat({k[2], i[2], j[2]})
-                  + pat({i[3], j[3], k[3]}) + pat({j[4], k[4], i[4]}) + pat({k[5], i[5], j[5]})
-                  + pat({i[6], j[6], k[6]}) + pat({j[7], k[7], i[7]});
-        end
-    endfunction
+    // The hash (hash6) and the gradient decode (grad_fields): np_hash.vh.
+`include "np_hash.vh"
     // np_grad_decode as three coefficients in {-1, 0, 1} (s2 each): {cz, cy, cx}.
     function [5:0] coefs;
         input [5:0] h;
-        reg [1:0] ap, aq, ar;
-        reg signed [1:0] sp, sq, sr;
+        reg [10:0] gf;
         reg signed [1:0] cc[0:2];
         integer a;
         begin
-            ap = h[1:0] == 2'd1 ? 2'd0 : h[1:0] == 2'd2 ? 2'd1 : 2'd2;
-            aq = h[1:0] == 2'd1 ? 2'd1 : h[1:0] == 2'd2 ? 2'd2 : 2'd0;
-            ar = h[1:0] == 2'd1 ? 2'd2 : h[1:0] == 2'd2 ? 2'd0 : 2'd1;
-            sp = h[5] == h[3] ? -2'sd1 : 2'sd1;
-            sq = h[5] == h[4] ? -2'sd1 : 2'sd1;
-            sr = h[5] != (h[4] ^ h[3]) ? -2'sd1 : 2'sd1;
+            gf = grad_fields(h);
             for (a = 0; a < 3; a = a + 1) cc[a] = 2'sd0;
-            cc[ap] = sp;  // p, q and r are distinct axes
-            if (h[1:0] == 2'd0 || !h[2]) cc[aq] = sq;
-            if (h[1:0] == 2'd0 || h[2]) cc[ar] = sr;
+            cc[gf[1:0]] = gf[6] ? -2'sd1 : 2'sd1;  // p, q and r are distinct axes
+            if (gf[9]) cc[gf[3:2]] = gf[7] ? -2'sd1 : 2'sd1;
+            if (gf[10]) cc[gf[5:4]] = gf[8] ? -2'sd1 : 2'sd1;
             coefs = {cc[2], cc[1], cc[0]};
         end
     endfunction

@@ -17,6 +17,7 @@
 #include "np_report_dims.h"
 #include "np_anim4d.h"
 #include "np_scene.h"
+#include "np_synth.h"
 #include "np_stream.h"
 
 /* --levels: the target clock in gate levels the gate reports pipeline every stage to (np_report_levels_md). */
@@ -25,6 +26,7 @@ static unsigned g_levels = NP_REPORT_LEVELS_DEFAULT;
 static const char usage_text[] =
     "usage: noisepipe report gates  [--unit U] [--config K=V,...] [--levels N] [-o DIR]\n"
     "       noisepipe report gates  --scene SCENE.json [--levels N] [-o DIR]\n"
+    "       noisepipe report gates  --synth [--unit U] [--config K=V,...] [--rtl DIR] [--tolerance PCT]\n"
     "       noisepipe report pareto [--unit U] [--samples N] [--seed S] [-o DIR]\n"
     "       noisepipe report runtime [--scene SCENE.json] [--repeat N] -o DIR\n"
     "       noisepipe report all    -o DIR        (what docs/ holds: gates + every pareto sweep + runtime in DIR/plots)\n"
@@ -42,6 +44,10 @@ static const char usage_text[] =
     "  octaves, transforms and colour table), which outputs it reads, how many units and passes,\n"
     "  the cycles per frame from each unit's cycle-accurate model; the units it does not use are\n"
     "  listed as left out. With -o, DIR/scene-NAME-gates.md and .json.\n"
+    "  --synth: synthesise the reference RTL (rtl_model/verilog, or --rtl DIR) with Yosys + ABC\n"
+    "  and print its NAND2 equivalents per stage beside the cost model's (classic3, simplex3;\n"
+    "  docs/cost-model.md). Needs yosys (exit 2 without it); --tolerance PCT: exit 1 when a\n"
+    "  stage is more than PCT % from synthesis.\n"
     "pareto: the design-space sweep of a unit's internal widths: each configuration's verdict\n"
     "  (faithful (proved), no counterexample in N adversarial inputs, not faithful with the\n"
     "  counterexample) and the adversarial search's max error against gates and latency;\n"
@@ -429,8 +435,10 @@ int np_cmd_report(int argc, char **argv)
         fputs(usage_text, argc < 2 ? stderr : stdout);
         return argc < 2 ? NP_EXIT_USAGE : NP_EXIT_OK;
     }
-    const char *what = argv[1], *dir = NULL, *spec = NULL, *scene = NULL;
+    const char *what = argv[1], *dir = NULL, *spec = NULL, *scene = NULL, *rtl = NULL;
     const np_unit *unit = NULL;
+    int synth = 0;
+    double tolerance = -1.0;
     uint64_t samples = 262144, seed = 1, repeat = 3, frames = 8;
     for (int i = 2; i < argc; i++) {
         const char *a = argv[i];
@@ -438,6 +446,10 @@ int np_cmd_report(int argc, char **argv)
         if (strcmp(a, "--help") == 0) {
             fputs(usage_text, stdout);
             return NP_EXIT_OK;
+        }
+        if (strcmp(a, "--synth") == 0) {
+            synth = 1;
+            continue;
         }
         if (!v) {
             np_err("report", "%s needs a value (or unknown option)", a);
@@ -452,6 +464,16 @@ int np_cmd_report(int argc, char **argv)
         else if (strcmp(a, "--frames") == 0) {
             if (np_parse_u64(v, 1, 100, &frames) != 0) {
                 np_err("report", "--frames %s: expected an integer in 1..100", v);
+                return NP_EXIT_USAGE;
+            }
+        }
+        else if (strcmp(a, "--rtl") == 0)
+            rtl = v;
+        else if (strcmp(a, "--tolerance") == 0) {
+            char *end;
+            tolerance = strtod(v, &end);
+            if (end == v || *end || !(tolerance >= 0.0 && tolerance <= 1000.0)) {
+                np_err("report", "--tolerance %s: expected a percentage in 0..1000", v);
                 return NP_EXIT_USAGE;
             }
         }
@@ -541,6 +563,12 @@ int np_cmd_report(int argc, char **argv)
         }
         return np_report_dims(dir);
     }
+    if ((synth || rtl || tolerance >= 0.0) && (strcmp(what, "gates") != 0 || scene || dir || !synth)) {
+        np_err("report", "--synth (with --rtl, --tolerance) goes with gates, without --scene or -o (Markdown on stdout)");
+        return NP_EXIT_USAGE;
+    }
+    if (synth)
+        return np_report_gates_synth(unit, spec, rtl, tolerance);
     if (strcmp(what, "gates") == 0)
         return scene ? write_scene(dir, scene) : write_gates(dir, unit, spec);
     if (strcmp(what, "pareto") == 0)

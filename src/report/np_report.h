@@ -24,12 +24,16 @@ extern "C" {
 typedef struct np_cost_model {
     double add_bit;   /* ripple-carry adder, per bit */
     double cmp_bit;   /* magnitude comparator, per bit */
-    double mul_pp;    /* array multiplier, per partial-product bit (a * b) */
+    double mul_pp;    /* array multiplier a x b: mul_pp a b - mul_edge (a + b) (at least 1.5 a b: the AND array) */
+    double mul_edge;
     double mux2_bit;  /* 2:1 multiplexer, per bit (a k:1 mux is k - 1 of them) */
     double neg_bit;   /* conditional negate, per bit */
     double lut_bit;   /* fixed-function lookup logic, per stored bit (2^a * b) */
     double rom_bit;   /* ROM, per stored bit */
-    double ff_bit;    /* D flip-flop */
+    double ff_bit;    /* D flip-flop with its load enable (every pipeline bank holds under a stall) */
+    double inc_bit;   /* adding a constant, per bit (an incrementer: half adders) */
+    double cmpk_bit;  /* comparison with a constant, per bit */
+    double sqr_pp;    /* squarer, per partial-product bit (a * a) */
     /* delays, in gate levels: add 2w + add_d0; cmp w; mul mul_d * (a + b); mux levels per 2:1 */
     double add_d0, mul_d, mux_d, lut_d;
 } np_cost_model;

@@ -13,19 +13,28 @@
  *   16-bit 2:1 mux 48.5 (3.0 per bit, 3 levels)
  *   12-bit conditional negate 70.5 (5.9 per bit, 23 levels)
  *   8x8 multiplier 550 (8.6 per pp bit, 47 levels), 13x13 signed 1643.5
- *     (9.7 per pp bit, 72 levels): 9.2 per pp bit, 2.8 (a + b) levels
- *   3 -> 6 bit pattern lookup 16 (0.33 per table bit, 5 levels)
- *   D flip-flop 4 per bit (the notes: real libraries 4.5 - 6)
+ *     (9.7 per pp bit, 72 levels), 2.8 (a + b) levels; per stage of the
+ *     synthesised RTL (report gates --synth, docs/cost-model.md) narrow
+ *     multipliers cost less per pp bit: 10.2 a b - 8.0 (a + b)
+ *   3 -> 6 bit pattern lookup 16 alone, but nothing beyond the adder it feeds
+ *     (hash6: 448 against 415.8 for its seven adders): 0
+ *   D flip-flop 4, with its load enable 7.03 per bit (dffe16 112.5): 7.0
+ *   incrementer 16 bits 67 (4.3 per bit), comparison with a constant 16 bits
+ *     23.5 (1.5), squarer 8 bits 354 - 364 (5.5 per a^2 bit)
  */
 const np_cost_model np_cost_default = {
     .add_bit = 9.9,
     .cmp_bit = 7.9,
-    .mul_pp = 9.2,
+    .mul_pp = 10.2,
+    .mul_edge = 8.0,
     .mux2_bit = 3.0,
     .neg_bit = 5.9,
-    .lut_bit = 0.33,
+    .lut_bit = 0.0,
     .rom_bit = 0.33,
-    .ff_bit = 4.0,
+    .ff_bit = 7.0,
+    .inc_bit = 4.3,
+    .cmpk_bit = 1.5,
+    .sqr_pp = 5.5,
     .add_d0 = 3.0,
     .mul_d = 2.8,
     .mux_d = 3.0,
@@ -46,12 +55,19 @@ double np_cost_op_gates(const np_cost_model *m, const np_op *op)
     switch (op->kind) {
     case NP_OP_ADD: per = m->add_bit * a; break;
     case NP_OP_CMP: per = m->cmp_bit * a; break;
-    case NP_OP_MUL: per = m->mul_pp * a * b; break;
+    case NP_OP_MUL:
+        per = m->mul_pp * a * b - m->mul_edge * (a + b);
+        if (per < 1.5 * a * b)
+            per = 1.5 * a * b;
+        break;
     case NP_OP_MUX: per = m->mux2_bit * a * (b > 1 ? b - 1.0 : 0.0); break;
     case NP_OP_NEG: per = m->neg_bit * a; break;
     case NP_OP_LUT: per = m->lut_bit * ldexp(1.0, (int)op->a) * b; break;
     case NP_OP_ROM: per = m->rom_bit * ldexp(1.0, (int)op->a) * b; break;
     case NP_OP_REG: per = m->ff_bit * a; break;
+    case NP_OP_INC: per = m->inc_bit * a; break;
+    case NP_OP_CMPK: per = m->cmpk_bit * a; break;
+    case NP_OP_SQR: per = m->sqr_pp * a * a; break;
     default: per = 0.0; break;
     }
     return per * (double)op->count;
@@ -70,6 +86,9 @@ double np_cost_op_delay(const np_cost_model *m, const np_op *op)
     case NP_OP_NEG: return 2.0 * a;
     case NP_OP_LUT: return m->lut_d;
     case NP_OP_ROM: return 2.0 * a + m->lut_d;
+    case NP_OP_INC: return 2.0 * a + m->add_d0;
+    case NP_OP_CMPK: return a;
+    case NP_OP_SQR: return m->mul_d * 2.0 * a;
     default: return 0.0;
     }
 }
@@ -327,7 +346,8 @@ void np_report_levels_md(FILE *f, const np_unit_cost *c, size_t n, unsigned leve
 
 static const char *kind_name(np_op_kind k)
 {
-    static const char *const n[NP_OP_KINDS] = { "add", "cmp", "mul", "mux", "neg", "lut", "rom", "reg" };
+    static const char *const n[NP_OP_KINDS] = { "add", "cmp", "mul", "mux", "neg", "lut", "rom", "reg",
+                                                                "inc", "cmpk", "sqr" };
     return k < NP_OP_KINDS ? n[k] : "?";
 }
 

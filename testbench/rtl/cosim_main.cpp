@@ -218,9 +218,10 @@ int main(int argc, char **argv)
         double t_rtl = seconds_since(t2);
         np_cosim_close(g);
         std::printf("bench %s cfg %s%s: C cycle model %.3g cycles/s, Verilated RTL %.3g cycles/s, "
-                    "both in lock step %.3g cycles/s (same stimulus, %llu cycles)\n",
+                    "both in lock step %.3g cycles/s (same stimulus, %llu cycles); "
+                    "the C cycle model is %.2fx the Verilated RTL's speed\n",
                     unit, cfg, traffic ? " with bubbles and stalls" : " streaming", cycles / t_model,
-                    cycles / t_rtl, cycles / t_both, cycles);
+                    cycles / t_rtl, cycles / t_both, cycles, t_rtl / t_model);
     }
     return mismatches == 0 ? 0 : 1;
 }

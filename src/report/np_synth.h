@@ -1,0 +1,66 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * np_synth.h - `noisepipe report gates --synth`: the reference RTL
+ * (rtl_model/verilog/) synthesised with Yosys + ABC to NAND2 equivalents per
+ * pipeline stage, beside the cost model's estimate (docs/cost-model.md,
+ * "Synthesis per stage").
+ */
+#ifndef NP_SYNTH_H
+#define NP_SYNTH_H
+
+#include <stdio.h>
+
+#include "np_report.h"
+#include "np_unit.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct np_synth_stage {
+    char name[16];
+    unsigned dff;  /* flip-flops left in the stage's bank after synthesis */
+    double gates;  /* NAND2 equivalents of the cells only this bank's input cone holds (flip-flops included) */
+} np_synth_stage;
+
+typedef struct np_synth_result {
+    unsigned n_stages;
+    np_synth_stage st[NP_REPORT_MAX_STAGES];
+    double shared;   /* cells outside every single bank's cone: valid bits, handshake, options, shared logic */
+    double total;    /* the whole design */
+    unsigned dff;    /* all flip-flops */
+} np_synth_result;
+
+/* 1 when unit u has reference RTL that --synth can synthesise. */
+int np_synth_has_rtl(const np_unit *u);
+
+/*
+ * Synthesise u's RTL (files in rtl_dir) at configuration cfg with the
+ * stages of model c (np_unit_cost_compute). 0; -1 with a message in err;
+ * -2 when yosys cannot be run (message in err).
+ */
+int np_synth_run(const np_unit *u, const void *cfg, const np_unit_cost *c, const char *rtl_dir, np_synth_result *r,
+                 char *err, size_t errlen);
+
+/*
+ * Markdown: per stage the model's logic, registers and total beside Yosys's,
+ * and model / Yosys. Returns the largest |model / Yosys - 1| over the stages.
+ */
+double np_synth_print(FILE *f, const np_unit_cost *c, const np_synth_result *r);
+
+/*
+ * The command: `noisepipe report gates --synth [--unit U] [--config K=V,...]
+ * [--rtl DIR] [--tolerance PCT]`. Every unit with RTL (or U), each at its
+ * default or at --config. NP_EXIT_USAGE when yosys is absent or the input is
+ * bad; NP_EXIT_FAIL when a stage is more than PCT % from synthesis.
+ */
+int np_report_gates_synth(const np_unit *only, const char *spec, const char *rtl_dir, double tolerance_pct);
+
+/* The RTL folder compiled in (the source tree's rtl_model/verilog). */
+const char *np_synth_default_rtl_dir(void);
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
+
+#endif /* NP_SYNTH_H */

@@ -1,0 +1,305 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * report_synth.c - `noisepipe report gates --synth`: Yosys + ABC on the
+ * reference RTL, NAND2 equivalents per pipeline stage, beside the cost model.
+ *
+ * Flow (the one the cost model's constants were measured with, so that both
+ * columns count the same cells; docs/cost-model.md):
+ *   read_verilog; chparam (every configuration key, upper case, is a parameter);
+ *   synth -top T -flatten; dfflegalize -cell $_DFF_P_ 01 (enables and resets
+ *   become logic in front of a plain flip-flop); abc -g NAND; opt_clean;
+ *   stat -tech cmos.
+ * Weights: Yosys 0.23's CMOS transistor counts (`stat -tech cmos`, kernel/cost.h:
+ * $_NAND_ 4, $_NOT_ 2, $_DFF_P_ 16), divided by 4 (one NAND2 = 4 transistors):
+ * NAND2 1, NOT 0.5, D flip-flop 4.
+ *
+ * Per stage: the stage whose results bank k holds (registers named rK_* in the
+ * RTL) is the input cone of bank k's flip-flops, stopping at other flip-flops'
+ * outputs (`select w:*rK_* %ci1 %ci*:-$_DFF_P_[Q]`). Cells in exactly one
+ * bank's cone are that stage's; the rest (the valid bits and their handshake,
+ * whose enables fan out to every bank, the pipe options, and any cell two cones
+ * share) are reported as "shared".
+ */
+#include <ctype.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "np_cli.h"
+#include "np_synth.h"
+
+#ifndef NP_RTL_DIR
+#define NP_RTL_DIR "rtl_model/verilog"
+#endif
+
+const char *np_synth_default_rtl_dir(void)
+{
+    return NP_RTL_DIR;
+}
+
+/* A unit's RTL: top module, files, and the register prefix of each stage's bank. */
+typedef struct rtl_desc {
+    const char *unit, *top;
+    const char *files[4];
+    struct { const char *stage, *prefix; } bank[12];
+} rtl_desc;
+
+static const rtl_desc rtl_units[] = {
+    { "classic3", "np_classic3", { "np_classic3.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },
+      { { "L", "r0" }, { "H", "r1" }, { "I1m", "r2" }, { "I1a", "r3" }, { "I2m", "r4" }, { "I2a", "r5" },
+        { "I3m", "r6" }, { "I3a", "r7" }, { "O", "r8" }, { NULL, NULL } } },
+    /* simplex3 names its banks by the derivative datapath's numbering; without it there is no r7 (M2). */
+    { "simplex3", "np_simplex3", { "np_simplex3.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },
+      { { "SK", "r0" }, { "RK", "r1" }, { "CH", "r2" }, { "KT", "r3" }, { "P2", "r4" }, { "P4", "r5" },
+        { "M", "r6" }, { "M2", "r7" }, { "A", "r8" }, { "O", "r9" }, { NULL, NULL } } },
+};
+
+static const rtl_desc *rtl_of(const np_unit *u)
+{
+    for (size_t i = 0; i < sizeof rtl_units / sizeof rtl_units[0]; i++)
+        if (strcmp(rtl_units[i].unit, u->name) == 0)
+            return &rtl_units[i];
+    return NULL;
+}
+
+int np_synth_has_rtl(const np_unit *u)
+{
+    return rtl_of(u) != NULL;
+}
+
+static const char *prefix_of(const rtl_desc *d, const char *stage)
+{
+    for (unsigned i = 0; i < 12 && d->bank[i].stage; i++)
+        if (strcmp(d->bank[i].stage, stage) == 0)
+            return d->bank[i].prefix;
+    return NULL;
+}
+
+/* The script: synthesis, then one selection per bank and a stat of what only it holds. */
+static int write_script(FILE *f, const rtl_desc *d, const np_unit *u, const void *cfg, const np_unit_cost *c,
+                        const char *dir, const char *out, char *err, size_t errlen)
+{
+    fprintf(f, "read_verilog -I%s", dir);
+    for (unsigned i = 0; i < 4 && d->files[i]; i++)
+        fprintf(f, " %s/%s", dir, d->files[i]);
+    fprintf(f, "\nchparam");
+    size_t nk = np_unit_key_count(u);
+    for (size_t k = 0; k < nk; k++) {
+        const np_unit_key *key = &u->keys[k];
+        fprintf(f, " -set ");
+        for (const char *p = key->name; *p; p++)
+            fputc(toupper((unsigned char)*p), f);
+        fprintf(f, " %u", np_unit_key_get(key, cfg));
+    }
+    fprintf(f, " %s\n", d->top);
+    fprintf(f, "synth -top %s -flatten\ndfflegalize -cell $_DFF_P_ 01\nabc -g NAND\nopt_clean\n", d->top);
+    fprintf(f, "tee -q -o %s log NP_TOTAL\ntee -q -a %s stat -tech cmos\n", out, out);
+    for (unsigned k = 0; k < c->n_stages; k++) {
+        const char *p = prefix_of(d, c->st[k].name);
+        if (!p) {
+            snprintf(err, errlen, "%s: stage %s has no register bank in %s", u->name, c->st[k].name, d->files[0]);
+            return -1;
+        }
+        fprintf(f, "select -set c%u w:*%s_* %%ci1 %%ci*:-$_DFF_P_[Q]\n", k, p);
+    }
+    fprintf(f, "select -set cv w:v %%ci1 %%ci*:-$_DFF_P_[Q]\n");
+    for (unsigned k = 0; k < c->n_stages; k++) {
+        fprintf(f, "tee -q -a %s log NP_STAGE %u\ntee -q -a %s stat -tech cmos @c%u", out, k, out, k);
+        for (unsigned j = 0; j < c->n_stages; j++)
+            if (j != k)
+                fprintf(f, " @c%u %%d", j);
+        fprintf(f, " @cv %%d\n");
+    }
+    return 0;
+}
+
+/* Parse the tee'd statistics: "NP_TOTAL" / "NP_STAGE k" markers, then $_DFF_P_ and transistor counts. */
+static int parse_stats(FILE *f, np_synth_result *r, unsigned n_stages)
+{
+    char line[512];
+    int cur = -2, seen_total = 0; /* -1: the whole design; k: stage k */
+    while (fgets(line, sizeof line, f)) {
+        const char *p;
+        if (strncmp(line, "NP_TOTAL", 8) == 0) {
+            cur = -1;
+            seen_total = 1;
+        } else if (strncmp(line, "NP_STAGE ", 9) == 0) {
+            long k = strtol(line + 9, NULL, 10);
+            cur = k >= 0 && (unsigned long)k < n_stages ? (int)k : -2;
+        } else if ((p = strstr(line, "$_DFF_P_")) != NULL) {
+            unsigned v = (unsigned)strtoul(p + 8, NULL, 10);
+            if (cur == -1)
+                r->dff = v;
+            else if (cur >= 0)
+                r->st[cur].dff = v;
+        } else if ((p = strstr(line, "Estimated number of transistors:")) != NULL) {
+            double g = atof(p + strlen("Estimated number of transistors:")) / 4.0;
+            if (cur == -1)
+                r->total = g;
+            else if (cur >= 0)
+                r->st[cur].gates = g;
+        }
+    }
+    return seen_total && r->total > 0 ? 0 : -1;
+}
+
+int np_synth_run(const np_unit *u, const void *cfg, const np_unit_cost *c, const char *rtl_dir, np_synth_result *r,
+                 char *err, size_t errlen)
+{
+    memset(r, 0, sizeof *r);
+    const rtl_desc *d = rtl_of(u);
+    if (!d) {
+        snprintf(err, errlen, "unit %s has no reference RTL (--synth: classic3, simplex3)", u->name);
+        return -1;
+    }
+    if (system("yosys -V >/dev/null 2>&1") != 0) {
+        snprintf(err, errlen, "--synth needs yosys (and berkeley-abc) on PATH: apt-get install yosys berkeley-abc");
+        return -2;
+    }
+    for (unsigned i = 0; i < 4 && d->files[i]; i++) {
+        char path[4096];
+        snprintf(path, sizeof path, "%s/%s", rtl_dir, d->files[i]);
+        if (access(path, R_OK) != 0) {
+            snprintf(err, errlen, "%s: cannot read the RTL (--rtl DIR names rtl_model/verilog)", path);
+            return -1;
+        }
+    }
+    const char *tmpdir = getenv("TMPDIR");
+    char dir[4096], script[4200], out[4200], log[4200];
+    snprintf(dir, sizeof dir, "%s/noisepipe-synth-XXXXXX", tmpdir && *tmpdir ? tmpdir : "/tmp");
+    if (!mkdtemp(dir)) {
+        snprintf(err, errlen, "cannot create a temporary folder in %s", tmpdir && *tmpdir ? tmpdir : "/tmp");
+        return -1;
+    }
+    snprintf(script, sizeof script, "%s/synth.ys", dir);
+    snprintf(out, sizeof out, "%s/stat.txt", dir);
+    snprintf(log, sizeof log, "%s/yosys.log", dir);
+    int rc = -1;
+    FILE *f = fopen(script, "w");
+    if (!f) {
+        snprintf(err, errlen, "cannot write %s", script);
+    } else {
+        int w = write_script(f, d, u, cfg, c, rtl_dir, out, err, errlen);
+        if (fclose(f) != 0 && w == 0) {
+            snprintf(err, errlen, "cannot write %s", script);
+            w = -1;
+        }
+        if (w == 0) {
+            char cmd[8800];
+            snprintf(cmd, sizeof cmd, "yosys -q -s '%s' >'%s' 2>&1", script, log);
+            int st = system(cmd);
+            FILE *s = st == 0 ? fopen(out, "r") : NULL;
+            if (!s) {
+                snprintf(err, errlen, "yosys failed (status %d); its log: %s", st, log);
+            } else {
+                r->n_stages = c->n_stages;
+                for (unsigned k = 0; k < c->n_stages; k++)
+                    snprintf(r->st[k].name, sizeof r->st[k].name, "%s", c->st[k].name);
+                if (parse_stats(s, r, c->n_stages) != 0) {
+                    snprintf(err, errlen, "no statistics in yosys's output %s (log %s)", out, log);
+                } else {
+                    double sum = 0.0;
+                    for (unsigned k = 0; k < r->n_stages; k++)
+                        sum += r->st[k].gates;
+                    r->shared = r->total - sum;
+                    rc = 0;
+                }
+                fclose(s);
+            }
+        }
+    }
+    if (rc == 0) { /* keep the files of a failed run for its message */
+        remove(script);
+        remove(out);
+        remove(log);
+        rmdir(dir);
+    }
+    return rc;
+}
+
+/*
+ * The model's stage without its valid bit (every declared bank counts one):
+ * synthesis puts the valid bits, whose handshake reaches every bank, in the
+ * shared row, so the model's valid bits are compared there too.
+ */
+static double model_stage(const np_stage_cost *m, double ff)
+{
+    return m->logic + m->regs - (m->reg_bits > 0 ? ff : 0.0);
+}
+
+double np_synth_print(FILE *f, const np_unit_cost *c, const np_synth_result *r)
+{
+    double worst = 0.0, ff = np_cost_default.ff_bit, valid = 0.0;
+    unsigned sd = 0;
+    fprintf(f, "| stage | model logic | model registers (bits) | model | Yosys flip-flops | Yosys | model / Yosys |\n");
+    fprintf(f, "| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    for (unsigned k = 0; k < c->n_stages && k < r->n_stages; k++) {
+        const np_stage_cost *m = &c->st[k];
+        double mt = model_stage(m, ff), y = r->st[k].gates;
+        double q = y > 0 ? mt / y : 0.0;
+        valid += m->reg_bits > 0 ? ff : 0.0;
+        sd += r->st[k].dff;
+        if (y > 0 && fabs(q - 1.0) > worst)
+            worst = fabs(q - 1.0);
+        fprintf(f, "| %s | %.0f | %.0f (%u) | %.0f | %u | %.0f | %.3f |\n", m->name, m->logic, m->regs - (m->reg_bits ? ff : 0.0),
+                m->reg_bits ? m->reg_bits - 1u : 0u, mt, r->st[k].dff, y, q);
+    }
+    fprintf(f, "| shared: valid bits, handshake, options | | %.0f (%u) | %.0f | %u | %.0f | |\n", valid,
+            c->n_stages, valid, r->dff - sd, r->shared);
+    fprintf(f, "| **total** | **%.0f** | **%.0f (%u)** | **%.0f** | **%u** | **%.0f** | **%.3f** |\n", c->logic,
+            c->regs, c->reg_bits, c->total, r->dff, r->total, r->total > 0 ? c->total / r->total : 0.0);
+    return worst;
+}
+
+int np_report_gates_synth(const np_unit *only, const char *spec, const char *rtl_dir, double tolerance_pct)
+{
+    if (!rtl_dir)
+        rtl_dir = np_synth_default_rtl_dir();
+    int rc = NP_EXIT_OK, any = 0;
+    const np_unit *u;
+    for (size_t i = 0; (u = np_unit_at(i)) != NULL; i++) {
+        if ((only && u != only) || (!only && !np_synth_has_rtl(u)))
+            continue;
+        any = 1;
+        char err[512];
+        np_unit_cfg cfg;
+        np_unit_cost *c = calloc(1, sizeof *c);
+        if (!c)
+            return NP_EXIT_USAGE;
+        if (np_unit_configure(u, &cfg, only ? spec : NULL, err, sizeof err) != 0 ||
+            np_unit_cost_compute(u, &cfg, &np_cost_default, c, err, sizeof err) != 0) {
+            np_err("report", "%s: %s", u->name, err);
+            free(c);
+            return NP_EXIT_USAGE;
+        }
+        if (isatty(2))
+            fprintf(stderr, "report: synthesising %s (%s) with yosys (about 1 minute for classic3, several for simplex3)...\n",
+                    u->name, c->cfg);
+        double t0 = np_now();
+        np_synth_result r;
+        int s = np_synth_run(u, &cfg, c, rtl_dir, &r, err, sizeof err);
+        if (s != 0) {
+            np_err("report", "%s: %s", u->name, err);
+            free(c);
+            return NP_EXIT_USAGE;
+        }
+        printf("## %s (`%s`): cost model against Yosys\n\n", u->name, c->cfg);
+        double worst = np_synth_print(stdout, c, &r);
+        printf("\nNAND2 equivalents: Yosys 0.23 + ABC (`abc -g NAND`, `stat -tech cmos` transistors / 4; "
+               "enables and the valid bits' logic included); largest stage deviation %.1f %%; yosys took %.0f s.\n\n",
+               100.0 * worst, np_now() - t0);
+        if (tolerance_pct >= 0.0 && 100.0 * worst > tolerance_pct) {
+            np_err("report", "%s: a stage is %.1f %% from synthesis (tolerance %.1f %%)", u->name, 100.0 * worst,
+                   tolerance_pct);
+            rc = NP_EXIT_FAIL;
+        }
+        free(c);
+    }
+    if (!any) {
+        np_err("report", "unit %s has no reference RTL (--synth: classic3, simplex3)", only ? only->name : "(any)");
+        return NP_EXIT_USAGE;
+    }
+    return rc;
+}
