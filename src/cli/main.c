@@ -21,6 +21,7 @@ static const np_cmd commands[] = {
     { "render", np_cmd_render, "render a scene with the float reference and the texture units (EXR + PNG)" },
     { "report", np_cmd_report, "write reports: gate and latency estimates, error against run time" },
     { "stream", np_cmd_stream, "stream vectors over USB to an FPGA board and verify the results" },
+    { "seeds", np_cmd_seeds, "de Bruijn seed sets of the hatching unit: cell proof, spacing, search" },
     { "help", cmd_help, "this list, or `noisepipe help COMMAND`" },
 };
 enum { N_COMMANDS = sizeof commands / sizeof commands[0] };
