@@ -3,7 +3,8 @@
 # against the float reference, nesting, coverage lists, zoom, stiff cases.
 np_test_program(test_hatch test_hatch.c)
 np_add_cases(test_hatch hatch
-  seeds_fkm16 seeds_fkm64 seeds_all16 seeds_shipped seeds_random)
+  seeds_fkm16 seeds_fkm64 seeds_all16 seeds_shipped seeds_random
+  tone_exact alpha_error model_vs_ref guard_bits nesting)
 # The command prints the figures of the design (worst / median / best over all B(4,2)).
 add_test(NAME hatch.cli_seeds_all COMMAND noisepipe seeds --order 2 --all)
 set_tests_properties(hatch.cli_seeds_all PROPERTIES
