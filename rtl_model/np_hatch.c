@@ -10,21 +10,32 @@
 
 #define ONE30 ((uint64_t)1 << NP_HATCH_AF)
 
+const np_hatch_set np_hatch_sets[NP_HATCH_SETS] = {
+    { "fkm16", "noisepipe seeds --order 2 (FKM)", 2, 16, 0x0A5Fu, 0x23B3u, 0.1154 },
+    { "best16", "noisepipe seeds --order 2 --all (one of the 8 best; digits 0011331230210322)", 2, 16, 0x0DA7u,
+      0x3E94u, 0.1668 },
+    { "fkm64", "noisepipe seeds --order 3 (FKM)", 3, 64, 0x024129B4D896DBFFu, 0x105A64169F797717u, 0.0291 },
+    { "best64", "noisepipe seeds --order 3 --search --count 3688960 --seed 1 (a 60 s run)", 3, 64,
+      0x1FB34B5AD1F8C844u, 0x6EA31EBC148D2E3Cu, 0.0678 },
+};
+
 const char *np_hatch_cfg_check(const np_hatch_cfg *cfg)
 {
-    if (cfg->n != 4u && cfg->n != 16u && cfg->n != 64u)
-        return "n: seeds per layer must be 4, 16 or 64";
+    if (cfg->set >= NP_HATCH_SETS)
+        return "set: fkm16, best16, fkm64 or best64";
+    unsigned n = np_hatch_n(cfg);
     if (cfg->layers < 1u || cfg->layers > NP_HATCH_LAYERS_MAX)
         return "layers: 1..4";
     if (cfg->guard > NP_HATCH_GUARD_MAX)
         return "guard: 0..22";
-    if (cfg->lanes < 1u || cfg->lanes > NP_HATCH_LANES_MAX || (cfg->lanes & (cfg->lanes - 1u)) || cfg->n % cfg->lanes)
-        return "lanes: a power of two that divides N, at most 16";
+    if (cfg->lanes < 1u || cfg->lanes > NP_HATCH_LANES_MAX || (cfg->lanes & (cfg->lanes - 1u)) || n % cfg->lanes)
+        return "lanes: a power of two that divides N (16 or 64), at most 16";
     if (cfg->fade > NP_HATCH_FADE_ONE_BY_ONE)
         return "fade: 0 (smooth) or 1 (one by one)";
-    for (unsigned l = 0; l < cfg->layers; l++)
-        if ((cfg->n < 64u && ((cfg->bu[l] | cfg->bv[l]) >> cfg->n)) || cfg->bu[l] == 0u || cfg->bv[l] == 0u)
-            return "b_u, b_v: nonzero N-bit patterns";
+    if (cfg->rot >= NP_HATCH_ROTS)
+        return "rot: pin, 0, 45, 90 or 1e-4";
+    if (cfg->inv_u < 1u || cfg->inv_u > 0xFFFFu || cfg->inv_v < 1u || cfg->inv_v > 0xFFFFu)
+        return "inv_len, inv_wid: u16 Q8.8, nonzero";
     return NULL;
 }
 
@@ -37,22 +48,30 @@ static uint64_t rotl_n(uint64_t b, unsigned i, unsigned n)
     return i == 0 ? b & m : ((b << i) | ((b & m) >> (n - i))) & m;
 }
 
-void np_hatch_cfg_layers(np_hatch_cfg *cfg, unsigned n, uint64_t bu, uint64_t bv)
+void np_hatch_layer_b(const np_hatch_cfg *cfg, unsigned l, uint64_t *bu, uint64_t *bv)
 {
-    /* cos 45 deg in Q1.14: round(16384 / sqrt 2) = 11585. */
-    static const int16_t rot[NP_HATCH_LAYERS_MAX][2][2] = {
-        { { 11585, 11585 }, { -11585, 11585 } },  /* 45 */
-        { { 11585, -11585 }, { 11585, 11585 } },  /* -45 */
+    const np_hatch_set *st = &np_hatch_sets[cfg->set];
+    uint64_t m = nmask(st->n);
+    *bu = (l & 1u ? ~st->bu : st->bu) & m;
+    *bv = (l & 2u ? ~st->bv : st->bv) & m;
+}
+
+void np_hatch_layer_r(const np_hatch_cfg *cfg, unsigned l, int16_t r[2][2])
+{
+    /*
+     * R = [[c, s], [-s, c]] in Q1.14: cos 45 = round(16384 / sqrt 2) = 11585; 1e-4 rad: cos rounds
+     * to 16384, sin to round(1.6384) = 2.
+     */
+    static const int16_t rot[][2][2] = {
         { { 16384, 0 }, { 0, 16384 } },           /* 0 */
+        { { 11585, 11585 }, { -11585, 11585 } },  /* 45 */
         { { 0, 16384 }, { -16384, 0 } },          /* 90 */
+        { { 16384, 2 }, { -2, 16384 } },          /* 1e-4 rad */
+        { { 11585, -11585 }, { 11585, 11585 } },  /* -45 */
     };
-    uint64_t m = nmask(n);
-    cfg->n = n;
-    for (unsigned l = 0; l < NP_HATCH_LAYERS_MAX; l++) {
-        cfg->bu[l] = (l & 1u ? ~bu : bu) & m;
-        cfg->bv[l] = (l & 2u ? ~bv : bv) & m;
-        memcpy(cfg->r[l], rot[l], sizeof rot[l]);
-    }
+    static const unsigned pin[NP_HATCH_LAYERS_MAX] = { 1, 4, 0, 2 }; /* 45, -45, 0, 90 */
+    unsigned k = cfg->rot == NP_HATCH_ROT_PIN ? pin[l] : cfg->rot - 1u;
+    memcpy(r, rot[k], sizeof rot[k]);
 }
 
 /* The first 32 bits of the periodic binary fraction 0.WWW... of an N-bit word (wiring). */
@@ -91,8 +110,8 @@ void np_hatch_setup(const np_hatch_cfg *cfg, np_hatch_sig *s)
         s->al[l] = l < cfg->layers ? (uint32_t)(v < 0 ? 0 : (v > (int64_t)ONE30 ? (int64_t)ONE30 : v)) : 0u;
     }
     s->oms = s->om > (1u << NP_HATCH_M_FRAC) ? 1u << NP_HATCH_M_FRAC : s->om;
-    s->ku = (uint64_t)s->pm * cfg->inv_u;
-    s->kv = (uint64_t)s->pm * cfg->inv_v;
+    s->ku = (uint64_t)s->pm * (uint16_t)cfg->inv_u;
+    s->kv = (uint64_t)s->pm * (uint16_t)cfg->inv_v;
     s->c = (uint32_t)1u << (8u + cfg->guard);
     s->pos = 0;
     s->nz = 0;
@@ -120,15 +139,18 @@ static uint32_t profile30(int64_t Qu, int64_t Qv)
 void np_hatch_seed(const np_hatch_cfg *cfg, np_hatch_sig *s, unsigned l, unsigned i, np_hatch_seed_sig *o)
 {
     np_hatch_seed_sig z;
-    unsigned n = cfg->n;
-    uint64_t wu = rotl_n(cfg->bu[l], i, n), wv = rotl_n(cfg->bv[l], i, n);
+    unsigned n = np_hatch_n(cfg);
+    uint64_t bu, bv;
+    int16_t R[2][2];
+    np_hatch_layer_b(cfg, l, &bu, &bv);
+    np_hatch_layer_r(cfg, l, R);
+    uint64_t wu = rotl_n(bu, i, n), wv = rotl_n(bv, i, n);
     uint64_t m33 = NP_MASK(NP_HATCH_X_BITS), half = (uint64_t)1 << 31;
     z.du = (s->xu + (m33 ^ seed_st(wu, n)) + half) & m33;
     z.dv = (s->xv + (m33 ^ seed_st(wv, n)) + half) & m33;
     z.surv = ((z.du >> 32) & 1u) == (wu & 1u) && ((z.dv >> 32) & 1u) == (wv & 1u);
     z.ru = (int64_t)(z.du & NP_MASK(32)) - (int64_t)half;
     z.rv = (int64_t)(z.dv & NP_MASK(32)) - (int64_t)half;
-    const int16_t(*R)[2] = cfg->r[l];
     z.qu = (int64_t)R[0][0] * z.ru + (int64_t)R[0][1] * z.rv;
     z.qv = (int64_t)R[1][0] * z.ru + (int64_t)R[1][1] * z.rv;
     z.Qu = stroke_q(z.qu, s->ku);
@@ -174,7 +196,7 @@ uint32_t np_hatch_eval(const np_hatch_cfg *cfg, uint64_t xu, uint64_t xv, uint32
     load_inputs(&s, xu, xv, tone, pm, om);
     np_hatch_setup(cfg, &s);
     for (unsigned l = 0; l < cfg->layers; l++)
-        for (unsigned i = 0; i < cfg->n; i++)
+        for (unsigned i = 0; i < np_hatch_n(cfg); i++)
             np_hatch_seed(cfg, &s, l, i, NULL);
     np_hatch_output(cfg, &s);
     if (sig_out)
@@ -187,8 +209,10 @@ double np_hatch_alpha_bound(const np_hatch_cfg *cfg, uint32_t pm_max)
     const double h = np_pow2i(-31), t32 = np_pow2i(-32);
     double ru = 0, rv = 0;
     for (unsigned l = 0; l < cfg->layers; l++) {
-        double a = (abs(cfg->r[l][0][0]) + abs(cfg->r[l][0][1])) / 16384.0;
-        double b = (abs(cfg->r[l][1][0]) + abs(cfg->r[l][1][1])) / 16384.0;
+        int16_t r[2][2];
+        np_hatch_layer_r(cfg, l, r);
+        double a = (abs(r[0][0]) + abs(r[0][1])) / 16384.0;
+        double b = (abs(r[1][0]) + abs(r[1][1])) / 16384.0;
         ru = a > ru ? a : ru;
         rv = b > rv ? b : rv;
     }
@@ -197,7 +221,7 @@ double np_hatch_alpha_bound(const np_hatch_cfg *cfg, uint32_t pm_max)
     double dy = 8.0 * dqu + 4.0 * dqv + 11.0 * h;
     double dat = 4.0 * h, dam = 0.0;
     if (cfg->fade == NP_HATCH_FADE_ONE_BY_ONE) {
-        dat += 1.5 * (cfg->n + 1u) * 4.0 * h + 4.0 * h;
+        dat += 1.5 * (np_hatch_n(cfg) + 1u) * 4.0 * h + 4.0 * h;
         dam = 4.0 * h;
     }
     return dat + dam + dy + 2.0 * h;
@@ -243,7 +267,7 @@ static int rect_meets_texel(double cu, double cv, double eu, double ev, double a
 
 int np_hatch_cover_build(const np_hatch_cfg *cfg, np_hatch_cover *cv)
 {
-    unsigned K = log2u(cfg->n) / 2u, t = 4u << K;
+    unsigned n = np_hatch_n(cfg), K = log2u(n) / 2u, t = 4u << K;
     memset(cv, 0, sizeof *cv);
     cv->t = t;
     cv->layers = cfg->layers;
@@ -262,14 +286,18 @@ int np_hatch_cover_build(const np_hatch_cfg *cfg, np_hatch_cover *cv)
     double sum = 0;
     int rc = 0;
     for (unsigned l = 0; l < cfg->layers; l++) {
-        double c = cfg->r[l][0][0] / 16384.0, s = cfg->r[l][0][1] / 16384.0;
+        int16_t r[2][2];
+        uint64_t bu, bv;
+        np_hatch_layer_r(cfg, l, r);
+        np_hatch_layer_b(cfg, l, &bu, &bv);
+        double c = r[0][0] / 16384.0, s = r[0][1] / 16384.0;
         double rho = c * c + s * s;
         rho = rho > 0 ? __builtin_sqrt(rho) : 1.0;
         double eu = c / rho, ev = s / rho;
-        double a = 256.0 / (rho * cfg->inv_u) + margin, b = 256.0 / (rho * cfg->inv_v) + margin;
-        for (unsigned i = 0; i < cfg->n; i++) {
-            double dn = cfg->n == 64u ? 18446744073709551615.0 : (double)nmask(cfg->n);
-            double su = (double)rotl_n(cfg->bu[l], i, cfg->n) / dn, sv = (double)rotl_n(cfg->bv[l], i, cfg->n) / dn;
+        double a = 256.0 / (rho * (double)cfg->inv_u) + margin, b = 256.0 / (rho * (double)cfg->inv_v) + margin;
+        for (unsigned i = 0; i < n; i++) {
+            double dn = n == 64u ? 18446744073709551615.0 : (double)nmask(n);
+            double su = (double)rotl_n(bu, i, n) / dn, sv = (double)rotl_n(bv, i, n) / dn;
             for (unsigned tv = 0; tv < t; tv++)
                 for (unsigned tu = 0; tu < t; tu++) {
                     if (!rect_meets_texel(su, sv, eu, ev, a, b, tu * w, tv * w, w))
@@ -336,13 +364,14 @@ static void st_seeds(const void *vcfg, void *vsig)
 {
     const np_hatch_cfg *cfg = vcfg;
     np_hatch_sig *s = vsig;
+    unsigned n = np_hatch_n(cfg);
     for (unsigned k = 0; k < cfg->lanes; k++, s->pos++)
-        np_hatch_seed(cfg, s, s->pos / cfg->n, s->pos % cfg->n, NULL);
-    if (s->pos == cfg->layers * cfg->n)
+        np_hatch_seed(cfg, s, s->pos / n, s->pos % n, NULL);
+    if (s->pos == cfg->layers * n)
         np_hatch_output(cfg, s);
 }
 
-unsigned np_hatch_depth(const np_hatch_cfg *cfg) { return 1u + cfg->layers * cfg->n / cfg->lanes; }
+unsigned np_hatch_depth(const np_hatch_cfg *cfg) { return 1u + cfg->layers * np_hatch_n(cfg) / cfg->lanes; }
 
 /* A, then S0..S(G-1): a prefix of one table serves every configuration. */
 static const np_stage_desc stages[1 + NP_HATCH_LAYERS_MAX * 64] = {
@@ -612,65 +641,102 @@ int np_hatch_pipe_init(np_pipe *p, const np_hatch_cfg *cfg)
 
 /* --- datapath declaration --- */
 
-static const char *stage_names_of(unsigned k) { return stages[1u + k].name; }
+/* Signed bits of [-m, m]. */
+static unsigned sbits(uint64_t m)
+{
+    unsigned n = 1;
+    while (n < 64u && m > NP_MASK(n - 1u))
+        n++;
+    return n;
+}
+
+unsigned np_hatch_q_bits(const np_hatch_cfg *cfg)
+{
+    uint64_t m = 0;
+    for (unsigned l = 0; l < cfg->layers; l++) {
+        int16_t r[2][2];
+        np_hatch_layer_r(cfg, l, r);
+        for (unsigned row = 0; row < 2; row++) {
+            uint64_t v = ((uint64_t)abs(r[row][0]) + (uint64_t)abs(r[row][1])) << 31;
+            m = v > m ? v : m;
+        }
+    }
+    return sbits(m);
+}
+
+unsigned np_hatch_k_bits(const np_hatch_cfg *cfg)
+{
+    uint64_t inv = cfg->inv_u > cfg->inv_v ? cfg->inv_u : cfg->inv_v;
+    return np_bits_for_range(0, (int64_t)(NP_MASK(NP_HATCH_M_BITS) * inv), 0);
+}
+
+unsigned np_hatch_bigq_bits(const np_hatch_cfg *cfg)
+{
+    uint64_t inv = cfg->inv_u > cfg->inv_v ? cfg->inv_u : cfg->inv_v;
+    np_u128 qm = (np_u128)1 << (np_hatch_q_bits(cfg) - 1u), km = (np_u128)NP_MASK(NP_HATCH_M_BITS) * inv;
+    return sbits((uint64_t)((qm * km) >> 39) + 1u);
+}
 
 #define OP(st, sg, k, cnt, a, b, o, sgn, lv) np_dp_op(&d, st, sg, k, cnt, a, b, o, sgn, lv)
 
+/*
+ * Stages A and S; the G = layers N / P seed stages S0..S(G-1) of the pipe are
+ * identical, so they are declared as one row "S" whose counts are G times one
+ * stage's (the gate report's stages are the declaration's: unit_hatch.c's
+ * timing). The widths are the configuration's: k from 1/(F e), q from R, Q
+ * from both; the traced signals are S0's.
+ */
 size_t np_hatch_datapath(const np_hatch_cfg *cfg, np_op *ops, size_t max)
 {
     np_dp d = { ops, max, 0 };
-    unsigned p = cfg->lanes, f1 = 9u + cfg->guard, g = cfg->layers * cfg->n / cfg->lanes;
-    unsigned obo = cfg->fade == NP_HATCH_FADE_ONE_BY_ONE;
-    /* What every bank carries besides c: x (66), layer tones (31 each), oms (17), ku, kv (66), valid. */
-    unsigned carry = 66u + 31u * cfg->layers + 17u + 66u + 1u;
-    /* A: tone -> A (a 256-word constant ROM), 4 (A - l) clamps, 1 - m saturation, the two k products. */
+    unsigned n = np_hatch_n(cfg), p = cfg->lanes, f1 = 9u + cfg->guard, g = cfg->layers * n / cfg->lanes;
+    unsigned gp = g * p, obo = cfg->fade == NP_HATCH_FADE_ONE_BY_ONE;
+    unsigned kb = np_hatch_k_bits(cfg), qb = np_hatch_q_bits(cfg), Qb = np_hatch_bigq_bits(cfg);
+    /* What every bank carries besides c: x (66), the layer tones, oms (17), ku, kv, valid. */
+    unsigned carry = 66u + 31u * cfg->layers + 17u + 2u * kb + 1u;
+    /* A: tone -> A (a 256-word constant ROM), the (4A - l) clamps, 1 - m saturation, the two k products. */
     OP("A", "A", NP_OP_ROM, 1, 8, 31, 31, 0, 0);
     OP("A", "al", NP_OP_ADD, cfg->layers, 33, 0, 31, 0, 1);
     OP("A", NULL, NP_OP_MUX, cfg->layers, 31, 3, 0, 0, 2);
     OP("A", "oms", NP_OP_CMP, 1, 17, 0, 17, 0, 0);
     OP("A", NULL, NP_OP_MUX, 1, 17, 2, 0, 0, 1);
-    OP("A", "k", NP_OP_MUL, 2, 17, 16, 33, 0, 0);
+    OP("A", "k", NP_OP_MUL, 2, 17, 16, kb, 0, 0);
     OP("A", NULL, NP_OP_REG, 1, carry + f1, 0, 0, 0, 0);
-    for (unsigned k = 0; k < g; k++) {
-        const char *st = stage_names_of(k);
-        int named = k == 0u; /* S0's signals are the traced ones (every S stage is the same datapath) */
-        unsigned lv = 0;
-        OP(st, named ? "d" : NULL, NP_OP_ADD, 2 * p, 33, 0, named ? 33 : 0, 0, lv++);
-        OP(st, NULL, NP_OP_LUT, p, 4, 1, 0, 0, lv);                       /* survival: two XNOR, one AND */
-        OP(st, NULL, NP_OP_MUL, 4 * p, 16, 33, 0, 0, lv++);
-        OP(st, named ? "q" : NULL, NP_OP_ADD, 2 * p, 49, 0, named ? 49 : 0, 1, lv++);
-        OP(st, NULL, NP_OP_MUL, 2 * p, 49, 33, 0, 0, lv++);
-        OP(st, named ? "Q" : NULL, NP_OP_ADD, 2 * p, 42, 0, named ? 42 : 0, 1, lv++);
-        OP(st, NULL, NP_OP_NEG, 2 * p, 42, 0, 0, 0, lv++);
-        OP(st, NULL, NP_OP_CMP, 2 * p, 42, 0, 0, 0, lv++);
-        OP(st, NULL, NP_OP_MUL, 2 * p, 30, 30, 0, 0, lv++);               /* U^2, V^2 */
-        OP(st, NULL, NP_OP_MUL, 2 * p, 31, 31, 0, 0, lv++);               /* U^4, V^4 */
-        OP(st, NULL, NP_OP_MUL, p, 31, 31, 0, 0, lv++);                   /* U^8 */
-        OP(st, named ? "profile" : NULL, NP_OP_MUL, p, 31, 31, named ? 31 : 0, 0, lv++);
-        if (obo) {
-            /* (N+1) x - i and its clamp, then S(t) = t^2 (3 - 2t): tone and level, in parallel with the stroke. */
-            OP(st, NULL, NP_OP_ADD, 4 * p, 38, 0, 0, 0, 1);
-            OP(st, NULL, NP_OP_MUX, 2 * p, 31, 3, 0, 0, 2);
-            OP(st, NULL, NP_OP_MUL, 2 * p, 31, 31, 0, 0, 3);
-            OP(st, NULL, NP_OP_ADD, 2 * p, 32, 0, 0, 0, 3);
-            OP(st, NULL, NP_OP_MUL, 2 * p, 31, 32, 0, 0, 4);
-            OP(st, NULL, NP_OP_ADD, p, 31, 0, 0, 0, 5);
-        }
-        OP(st, NULL, NP_OP_MUX, p, 31, 2, 0, 0, 2);                       /* am: 1 or the fade */
-        OP(st, NULL, NP_OP_MUL, p, 31, 31, 0, 0, 6);                      /* at am */
-        OP(st, named ? "alpha" : NULL, NP_OP_MUL, p, 31, 31, named ? 31 : 0, 0, lv++);
-        /* The P blends are serial: compositing order matters. */
-        for (unsigned q = 0; q < p; q++) {
-            OP(st, NULL, NP_OP_MUL, 1, 31, f1, 0, 0, lv++);
-            OP(st, named && q + 1u == p ? "c" : NULL, NP_OP_ADD, 1, f1, 0, named && q + 1u == p ? f1 : 0, 0, lv++);
-        }
-        if (k + 1u == g) {
-            OP(st, NULL, NP_OP_ADD, 1, f1 + 8u, 0, 0, 0, lv++);           /* 255 c = 256 c - c, then round */
-            OP(st, "out", NP_OP_ADD, 1, 8, 0, 8, 0, lv++);
-            OP(st, NULL, NP_OP_REG, 1, 8u + 1u, 0, 0, 0, 0);
-        } else {
-            OP(st, NULL, NP_OP_REG, 1, carry + f1, 0, 0, 0, 0);
-        }
+    /* S: per seed, the parity add, survival, R r, 2 q k, the profile, the fades, alpha; then the blends. */
+    unsigned lv = 0;
+    OP("S", "d", NP_OP_ADD, 2 * gp, 33, 0, 33, 0, lv++);
+    OP("S", NULL, NP_OP_LUT, gp, 4, 1, 0, 0, lv);                 /* survival: two XNOR, one AND */
+    OP("S", NULL, NP_OP_MUL, 4 * gp, 16, 33, 0, 0, lv++);
+    OP("S", "q", NP_OP_ADD, 2 * gp, qb, 0, qb, 1, lv++);
+    OP("S", NULL, NP_OP_MUL, 2 * gp, qb, kb, 0, 0, lv++);
+    OP("S", "Q", NP_OP_ADD, 2 * gp, Qb, 0, Qb, 1, lv++);
+    OP("S", NULL, NP_OP_NEG, 2 * gp, Qb, 0, 0, 0, lv++);
+    OP("S", NULL, NP_OP_CMP, 2 * gp, Qb, 0, 0, 0, lv++);
+    OP("S", NULL, NP_OP_MUL, 2 * gp, 30, 30, 0, 0, lv++);          /* U^2, V^2 */
+    OP("S", NULL, NP_OP_MUL, 2 * gp, 31, 31, 0, 0, lv++);          /* U^4, V^4 */
+    OP("S", NULL, NP_OP_MUL, gp, 31, 31, 0, 0, lv++);              /* U^8 */
+    OP("S", "profile", NP_OP_MUL, gp, 31, 31, 31, 0, lv++);
+    if (obo) {
+        /* (N+1) x - i and its clamp, then S(t) = t^2 (3 - 2t), tone and level, beside the stroke. */
+        OP("S", NULL, NP_OP_ADD, 4 * gp, 38, 0, 0, 0, 1);
+        OP("S", NULL, NP_OP_MUX, 2 * gp, 31, 3, 0, 0, 2);
+        OP("S", NULL, NP_OP_MUL, 2 * gp, 31, 31, 0, 0, 3);
+        OP("S", NULL, NP_OP_ADD, 2 * gp, 32, 0, 0, 0, 3);
+        OP("S", NULL, NP_OP_MUL, 2 * gp, 31, 32, 0, 0, 4);
+        OP("S", NULL, NP_OP_ADD, gp, 31, 0, 0, 0, 5);
     }
+    OP("S", NULL, NP_OP_MUX, gp, 31, 2, 0, 0, 2);                  /* am: 1 or the fade */
+    OP("S", NULL, NP_OP_MUL, gp, 31, 31, 0, 0, 6);                 /* at am */
+    OP("S", "alpha", NP_OP_MUL, gp, 31, 31, 31, 0, lv++);
+    /* The P blends of a stage are serial (compositing order matters): P (multiply, subtract) pairs of levels. */
+    for (unsigned q = 0; q < p; q++) {
+        OP("S", NULL, NP_OP_MUL, g, 31, f1, 0, 0, lv++);
+        OP("S", q + 1u == p ? "c" : NULL, NP_OP_ADD, g, f1, 0, q + 1u == p ? f1 : 0, 0, lv++);
+    }
+    /* The last stage rounds the output: 255 c = 256 c - c, then the rounding add. */
+    OP("S", NULL, NP_OP_ADD, 1, f1 + 8u, 0, 0, 0, lv++);
+    OP("S", "out", NP_OP_ADD, 1, 8, 0, 8, 0, lv++);
+    OP("S", NULL, NP_OP_REG, g - 1u, carry + f1, 0, 0, 0, 0);
+    OP("S", NULL, NP_OP_REG, 1, 8u + 1u, 0, 0, 0, 0);
     return d.n;
 }

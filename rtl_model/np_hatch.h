@@ -16,8 +16,8 @@
  *   out       u8 unorm8   the paper's colour after all strokes, round(255 c).
  *
  * Per configuration (np_hatch_cfg; per layer l < layers <= 4):
- *   bu[l], bv[l]  N-bit patterns (N = 16 or 64), seed i = rotl_N(b, i)/(2^N-1)
- *   r[l]          2x2 s16 Q1.14 stroke rotation R = [[c, s], [-s, c]]
+ *   b_u, b_v      N-bit patterns (N = 16 or 64), seed i = rotl_N(b, i)/(2^N-1)
+ *   R             2x2 s16 Q1.14 stroke rotation R = [[c, s], [-s, c]]
  *   inv_u, inv_v  u16 Q8.8 1/(F e) along and across the stroke (every layer)
  *
  * Set-up (stage A, once per point):
@@ -103,27 +103,49 @@ enum {
 
 enum { NP_HATCH_FADE_SMOOTH = 0, NP_HATCH_FADE_ONE_BY_ONE = 1 };
 
+/* Stroke rotations: the PIN per-layer angles, or one angle for every layer (the coverage stiff cases). */
+enum { NP_HATCH_ROT_PIN = 0, NP_HATCH_ROT_0, NP_HATCH_ROT_45, NP_HATCH_ROT_90, NP_HATCH_ROT_1E4, NP_HATCH_ROTS };
+
+/*
+ * The shipped seed sets, as data (src/units/hatch_seeds.h generates and
+ * checks them; `noisepipe seeds --set NAME` prints each): N-bit patterns.
+ */
+typedef struct np_hatch_set {
+    const char *name;    /* "fkm16", "best16", "fkm64", "best64" */
+    const char *origin;  /* the command that reproduces it */
+    unsigned K, n;       /* N = 4^K seeds */
+    uint64_t bu, bv;
+    double spacing;      /* minimum toroidal spacing, 4 decimals (test_hatch seeds_shipped recomputes it) */
+} np_hatch_set;
+enum { NP_HATCH_SETS = 4 };
+extern const np_hatch_set np_hatch_sets[NP_HATCH_SETS];
+
+/* The configuration: every field a key of the registry entry (src/units/unit_hatch.c). */
 typedef struct np_hatch_cfg {
-    unsigned n;                          /* seeds per layer N: 4, 16 or 64 */
-    unsigned layers;                     /* 1..4 */
-    uint64_t bu[NP_HATCH_LAYERS_MAX], bv[NP_HATCH_LAYERS_MAX];
-    int16_t r[NP_HATCH_LAYERS_MAX][2][2]; /* s16 Q1.14 */
-    uint16_t inv_u, inv_v;               /* u16 Q8.8 */
-    unsigned fade;                       /* NP_HATCH_FADE_* (tone and level alike) */
-    unsigned guard;                      /* colour register F = 8 + guard */
-    unsigned lanes;                      /* P seeds per pipeline stage (cycle model); divides N */
+    unsigned set;     /* index into np_hatch_sets */
+    unsigned layers;  /* 1..4 */
+    unsigned fade;    /* NP_HATCH_FADE_* (tone and level alike) */
+    unsigned guard;   /* colour register F = 8 + guard */
+    unsigned lanes;   /* P seeds per pipeline stage (cycle model); divides N */
+    unsigned rot;     /* NP_HATCH_ROT_* */
+    unsigned inv_u;   /* u16 Q8.8 1/(F e) along the stroke (every layer) */
+    unsigned inv_v;   /* u16 Q8.8 1/(F e) across */
 } np_hatch_cfg;
 
 /* NULL when cfg is valid, else a static message naming the bad field. */
 const char *np_hatch_cfg_check(const np_hatch_cfg *cfg);
 
+/* Seeds per layer N. */
+static inline unsigned np_hatch_n(const np_hatch_cfg *cfg) { return np_hatch_sets[cfg->set].n; }
+
 /*
- * The PIN layers from one seed set: layer l uses (b_u, b_v) with u
- * complemented when l & 1 and v when l & 2 (reflections of the seed square:
- * de Bruijn and spacing are kept, each layer has its own pattern), angles
- * 45, -45, 0, 90 degrees (R rounded to Q1.14).
+ * Layer l's pattern (PIN): the set's (b_u, b_v) with u complemented when
+ * l & 1 and v when l & 2 (reflections of the seed square: de Bruijn and
+ * spacing are kept, each layer has a pattern of its own).
  */
-void np_hatch_cfg_layers(np_hatch_cfg *cfg, unsigned n, uint64_t bu, uint64_t bv);
+void np_hatch_layer_b(const np_hatch_cfg *cfg, unsigned l, uint64_t *bu, uint64_t *bv);
+/* Layer l's rotation R (s16 Q1.14): PIN angles 45, -45, 0, 90 degrees, or cfg->rot's for every layer. */
+void np_hatch_layer_r(const np_hatch_cfg *cfg, unsigned l, int16_t r[2][2]);
 
 /* One seed's datapath, for tests and traces (every signal of the table). */
 typedef struct np_hatch_seed_sig {
@@ -216,7 +238,11 @@ uint64_t np_hatch_xs(np_u128 x_uv, int level);
 /* Cycle model: stages A, S0..S(G-1) (P = lanes seeds each, G = layers N / P; the last also rounds the output). */
 int np_hatch_pipe_init(np_pipe *p, const np_hatch_cfg *cfg);
 unsigned np_hatch_depth(const np_hatch_cfg *cfg);
-/* Datapath declaration for the gate report (np_datapath.h). */
+/* Declared widths that follow the configuration: k (u), q (s), Q (s). */
+unsigned np_hatch_k_bits(const np_hatch_cfg *cfg);
+unsigned np_hatch_q_bits(const np_hatch_cfg *cfg);
+unsigned np_hatch_bigq_bits(const np_hatch_cfg *cfg);
+/* Datapath declaration for the gate report (np_datapath.h): stages A and S (the G seed stages as one row). */
 size_t np_hatch_datapath(const np_hatch_cfg *cfg, np_op *ops, size_t max);
 
 #ifdef __cplusplus

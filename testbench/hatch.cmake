@@ -4,7 +4,10 @@
 np_test_program(test_hatch test_hatch.c)
 np_add_cases(test_hatch hatch
   seeds_fkm16 seeds_fkm64 seeds_all16 seeds_shipped seeds_random
-  tone_exact alpha_error model_vs_ref guard_bits nesting)
+  tone_exact alpha_error model_vs_ref guard_bits nesting kat
+  cover_identical16 cover_identical64 cover_rotations cover_table1
+  zoom_identical zoom_sequence stiff_deep_zoom stiff_level_seam stiff_256_blends stiff_tile_corner
+  stiff_frac_half stiff_tone_0_1)
 # The command prints the figures of the design (worst / median / best over all B(4,2)).
 add_test(NAME hatch.cli_seeds_all COMMAND noisepipe seeds --order 2 --all)
 set_tests_properties(hatch.cli_seeds_all PROPERTIES

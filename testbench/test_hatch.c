@@ -122,15 +122,16 @@ static int t_seeds_all16(void)
 /* The shipped sets: de Bruijn, one seed per cell, spacing as recorded; best64 beats the design's 0.0573. */
 static int t_seeds_shipped(void)
 {
-    for (unsigned k = 0; k < NP_SEEDS_SHIPPED; k++) {
-        const np_seedset_named *ns = &np_seeds_shipped[k];
+    for (unsigned k = 0; k < NP_HATCH_SETS; k++) {
+        const np_hatch_set *ns = &np_hatch_sets[k];
+        np_seedset ss = np_seeds_of(ns);
         uint8_t d[NP_SEEDS_NMAX];
-        np_seeds_to_digits(&ns->s, d);
-        double sp = np_seeds_spacing(&ns->s, NULL, NULL, NULL);
-        printf("%-7s N=%2u spacing %.4f (recorded %.4f) %s\n", ns->name, ns->s.n, sp, ns->spacing, ns->origin);
-        NP_CHECK(ns->s.n == np_seeds_n(ns->s.K), "%s N", ns->name);
-        NP_CHECK(np_seeds_is_debruijn(ns->s.K, d), "%s de Bruijn", ns->name);
-        NP_CHECK(np_seeds_cells(&ns->s, NULL) == 0, "%s cells", ns->name);
+        np_seeds_to_digits(&ss, d);
+        double sp = np_seeds_spacing(&ss, NULL, NULL, NULL);
+        printf("%-7s N=%2u spacing %.4f (recorded %.4f) %s\n", ns->name, ns->n, sp, ns->spacing, ns->origin);
+        NP_CHECK(ns->n == np_seeds_n(ns->K), "%s N", ns->name);
+        NP_CHECK(np_seeds_is_debruijn(ns->K, d), "%s de Bruijn", ns->name);
+        NP_CHECK(np_seeds_cells(&ss, NULL) == 0, "%s cells", ns->name);
         NP_CHECK(round4(sp) == ns->spacing, "%s spacing %.6f", ns->name, sp);
         NP_CHECK(np_seeds_find(ns->name) == ns, "%s by name", ns->name);
     }
@@ -184,15 +185,16 @@ static np_hatch_cfg cfg_of(const char *set, unsigned fade, unsigned guard)
 {
     np_hatch_cfg c;
     memset(&c, 0, sizeof c);
-    const np_seedset_named *ns = np_seeds_find(set);
-    np_hatch_cfg_layers(&c, ns->s.n, ns->s.bu, ns->s.bv);
+    const np_hatch_set *ns = np_seeds_find(set);
+    c.set = (unsigned)(ns - np_hatch_sets);
+    c.rot = NP_HATCH_ROT_PIN;
     c.layers = 4;
     c.fade = fade;
     c.guard = guard;
     c.lanes = 1;
     /* Stroke length 4 / sqrt N and width 0.48 / sqrt N of a seed tile at m = 0 (Q8.8 inverses). */
-    c.inv_u = ns->s.n == 64u ? 2048u : 1024u;
-    c.inv_v = ns->s.n == 64u ? 17067u : 8533u;
+    c.inv_u = ns->n == 64u ? 2048u : 1024u;
+    c.inv_v = ns->n == 64u ? 17067u : 8533u;
     return c;
 }
 
@@ -284,10 +286,10 @@ static int t_alpha_error(void)
                 s.om = p.om;
                 np_hatch_setup(&c, &s);
                 for (unsigned l = 0; l < c.layers; l++)
-                    for (unsigned i = 0; i < c.n; i++) {
+                    for (unsigned i = 0; i < np_hatch_n(&c); i++) {
                         np_hatch_seed_sig z;
                         np_hatch_seed(&c, &s, l, i, &z);
-                        double e = fabs(z.alpha / 1073741824.0 - ra[l * c.n + i]);
+                        double e = fabs(z.alpha / 1073741824.0 - ra[l * np_hatch_n(&c) + i]);
                         worst = e > worst ? e : worst;
                         nz += z.alpha != 0;
                     }
@@ -400,22 +402,24 @@ static int t_nesting(void)
     np_rng g;
     np_rng_seed(&g, 5);
     unsigned checked = 0;
-    for (unsigned k = 0; k < NP_SEEDS_SHIPPED; k++) {
-        const np_seedset_named *ns = &np_seeds_shipped[k];
+    for (unsigned k = 0; k < NP_HATCH_SETS; k++) {
+        const np_hatch_set *ns = &np_hatch_sets[k];
         np_hatch_cfg c = cfg_of(ns->name, 0, 9);
-        unsigned n = c.n;
+        unsigned n = np_hatch_n(&c);
         np_u128 D = n == 64 ? (np_u128)~(uint64_t)0 : (((np_u128)1 << n) - 1u);
         for (unsigned l = 0; l < 4; l++) {
             unsigned per_tile[4] = { 0, 0, 0, 0 };
+            uint64_t lbu, lbv;
+            np_hatch_layer_b(&c, l, &lbu, &lbv);
             for (unsigned i = 0; i < n; i++) {
-                uint64_t wu = np_seed_rotl(c.bu[l], i, n), wv = np_seed_rotl(c.bv[l], i, n);
+                uint64_t wu = np_seed_rotl(lbu, i, n), wv = np_seed_rotl(lbv, i, n);
                 for (unsigned w = 0; w < 4; w++) {
                     unsigned wx = w & 1u, wy = w >> 1;
                     np_u128 pu = (np_u128)wu + wx * D, pv = (np_u128)wv + wy * D; /* s_i + w, over D */
                     int coincide = 0;
                     for (unsigned j = 0; j < n && !coincide; j++) {
-                        np_u128 su = 2 * (np_u128)np_seed_rotl(c.bu[l], j, n) % (2 * D);
-                        np_u128 sv = 2 * (np_u128)np_seed_rotl(c.bv[l], j, n) % (2 * D);
+                        np_u128 su = 2 * (np_u128)np_seed_rotl(lbu, j, n) % (2 * D);
+                        np_u128 sv = 2 * (np_u128)np_seed_rotl(lbv, j, n) % (2 * D);
                         coincide = su == pu && sv == pv;
                     }
                     /* Points of the instance's cell: floor(x - s_i + 1/2) = w; the instance itself first. */
@@ -444,11 +448,472 @@ static int t_nesting(void)
                 NP_CHECK(per_tile[w] == n / 4u, "%s layer %u tile %u: %u survivors", ns->name, l, w, per_tile[w]);
         }
         printf("%s: survival iff coincidence for every seed, tile and layer; N/4 = %u survivors per tile\n", ns->name,
-               c.n / 4u);
+               n / 4u);
         if (np_test_failures)
             return 1;
     }
     printf("%u points checked\n", checked);
+    return 0;
+}
+
+/* Pinned outputs (testbench/hatch_kat.inc; conformance.hatch.kat regenerates it): any change to a bit shows here. */
+static int t_kat(void)
+{
+    static const struct {
+        uint64_t xu, xv;
+        uint32_t tone, pm, om;
+        unsigned c0, c1, c2, c3;
+    } k[] = {
+#include "hatch_kat.inc"
+    };
+    np_hatch_cfg cf[4] = { cfg_of("best16", 0, 9), cfg_of("best64", 0, 9), cfg_of("fkm16", 1, 9), cfg_of("fkm64", 0, 9) };
+    cf[3].layers = 1;
+    cf[3].rot = NP_HATCH_ROT_90;
+    unsigned n = sizeof k / sizeof k[0];
+    for (unsigned i = 0; i < n; i++)
+        for (unsigned j = 0; j < 4; j++) {
+            const unsigned want[4] = { k[i].c0, k[i].c1, k[i].c2, k[i].c3 };
+            uint32_t c = np_hatch_eval(&cf[j], k[i].xu, k[i].xv, k[i].tone, k[i].pm, k[i].om, NULL);
+            NP_CHECK(c == want[j], "row %u config %u: %u, want %u", i, j, c, want[j]);
+            double ref = np_ref_hatch(&cf[j], k[i].xu, k[i].xv, k[i].tone, k[i].pm, k[i].om, NULL);
+            NP_CHECK(fabs(c - ref) <= 1.0, "row %u config %u: ref %.4f", i, j, ref);
+        }
+    printf("%u rows x 4 configurations pinned\n", n);
+    return 0;
+}
+
+/* --- coverage lists (§6.1) --- */
+
+/* n random points with m in [0, 1) (2^-m >= 1/2): the coverage unit's outputs equal brute force's, bit for bit. */
+static unsigned cover_check(const np_hatch_cfg *c, unsigned n, uint64_t seed, const char *what)
+{
+    np_hatch_cover cv;
+    int rc = np_hatch_cover_build(c, &cv);
+    NP_CHECK(rc == 0, "%s: a list over %d entries", what, NP_HATCH_COVER_MAX);
+    if (rc != 0) {
+        np_hatch_cover_free(&cv);
+        return 1;
+    }
+    np_rng g;
+    np_rng_seed(&g, seed);
+    unsigned bad = 0, nz_max = 0;
+    for (unsigned k = 0; k < n; k++) {
+        pt p = rand_pt(&g);
+        np_hatch_sig s;
+        uint32_t b = np_hatch_eval(c, p.xu, p.xv, p.tone, p.pm, p.om, &s);
+        uint32_t v = np_hatch_eval_cover(c, &cv, p.xu, p.xv, p.tone, p.pm, p.om, NULL);
+        nz_max = s.nz > nz_max ? s.nz : nz_max;
+        if (b != v && ++bad <= 5)
+            fprintf(stderr, "%s: xu=%09llx xv=%09llx tone=%u pm=%05x om=%05x => coverage %u brute force %u\n", what,
+                    (unsigned long long)p.xu, (unsigned long long)p.xv, p.tone, p.pm, p.om, v, b);
+    }
+    printf("%s: %u points, coverage = brute force on %u; lists %u x %u texels, mean %.3f, max %u entries; at most %u nonzero alphas at a point\n",
+           what, n, n - bad, cv.t, cv.t, cv.mean_len, cv.max_len, nz_max);
+    NP_CHECK(bad == 0, "%s: %u differ", what, bad);
+    np_hatch_cover_free(&cv);
+    return bad;
+}
+
+static int t_cover_identical16(void)
+{
+    np_hatch_cfg c = cfg_of("best16", 0, 9);
+    cover_check(&c, 1000000u, 21, "best16 4 x 16");
+    return 0;
+}
+
+static int t_cover_identical64(void)
+{
+    np_hatch_cfg c = cfg_of("best64", 0, 9);
+    cover_check(&c, 1000000u, 22, "best64 4 x 64");
+    return 0;
+}
+
+/* Every layer at 0, 45, 90 degrees and 1e-4 rad (R = [[16384, 2], [-2, 16384]]): the lists stay conservative. */
+static int t_cover_rotations(void)
+{
+    static const unsigned rots[] = { NP_HATCH_ROT_0, NP_HATCH_ROT_45, NP_HATCH_ROT_90, NP_HATCH_ROT_1E4 };
+    static const char *const names[] = { "0 deg", "45 deg", "90 deg", "1e-4 rad" };
+    for (unsigned k = 0; k < 4; k++)
+        for (unsigned si = 0; si < 2; si++) {
+            np_hatch_cfg c = cfg_of(si ? "best64" : "best16", si, 9);
+            c.rot = rots[k];
+            char what[64];
+            snprintf(what, sizeof what, "%s %s fade=%u", si ? "best64" : "best16", names[k], si);
+            cover_check(&c, 100000u, 30u + k, what);
+        }
+    return 0;
+}
+
+/*
+ * Cycles per point for brute force (B: layers N / P) and coverage lists
+ * (C: sum over layers of ceil(len / P), at least 1; the mean over seed space
+ * is the mean over texels) beside the paper's Table 1 (GeForce 780, 1920 x
+ * 1200, ms per frame), and the units x clock an iterative unit needs to
+ * draw C64 in 1.81 ms.
+ */
+static double mean_cycles(const np_hatch_cfg *c, const np_hatch_cover *cv, unsigned *maxc)
+{
+    double sum = 0;
+    *maxc = 0;
+    for (unsigned tv = 0; tv < cv->t; tv++)
+        for (unsigned tu = 0; tu < cv->t; tu++) {
+            unsigned cyc = 0;
+            for (unsigned l = 0; l < c->layers; l++) {
+                unsigned len = cv->len[((size_t)l * cv->t + tv) * cv->t + tu];
+                cyc += (len + c->lanes - 1u) / c->lanes;
+            }
+            cyc = cyc ? cyc : 1u;
+            *maxc = cyc > *maxc ? cyc : *maxc;
+            sum += cyc;
+        }
+    return sum / ((double)cv->t * cv->t);
+}
+
+static int t_cover_table1(void)
+{
+    static const double paper_b[2] = { 4.80, 16.6 }, paper_c[2] = { 1.66, 1.81 };
+    const double pixels = 1920.0 * 1200.0;
+    printf("| set | B cycles/point | C cycles/point mean (max) | list mean (max) | B/C ours | paper B, C ms | paper B/C |\n");
+    double c64 = 0;
+    for (unsigned si = 0; si < 2; si++) {
+        np_hatch_cfg c = cfg_of(si ? "best64" : "best16", 0, 9);
+        np_hatch_cover cv;
+        NP_CHECK(np_hatch_cover_build(&c, &cv) == 0, "lists");
+        unsigned maxc;
+        double b = (double)(c.layers * np_hatch_n(&c)), mc = mean_cycles(&c, &cv, &maxc);
+        printf("| %s | %.0f | %.2f (%u) | %.3f (%u) | %.2fx | %.2f, %.2f | %.2fx |\n", si ? "4 x 64" : "4 x 16", b, mc,
+               maxc, cv.mean_len, cv.max_len, b / mc, paper_b[si], paper_c[si], paper_b[si] / paper_c[si]);
+        NP_CHECK(mc < b && cv.max_len <= NP_HATCH_COVER_MAX, "coverage cheaper");
+        if (si)
+            c64 = mc;
+        np_hatch_cover_free(&cv);
+    }
+    /* C64 at 1.81 ms: pixels x mean cycles / (units x clock) = 1.81e-3 s. */
+    double rate = pixels * c64 / 1.81e-3;
+    printf("C64 in 1.81 ms at 1920x1200: %.3g point-cycles/s, e.g. %.1f units at 1 GHz or %.0f units at 500 MHz (P = 1)\n",
+           rate, rate / 1e9, rate / 5e8 + 0.5);
+    for (unsigned p = 2; p <= 16; p *= 2) {
+        np_hatch_cfg c = cfg_of("best64", 0, 9);
+        c.lanes = p;
+        np_hatch_cover cv;
+        np_hatch_cover_build(&c, &cv);
+        unsigned maxc;
+        double mc = mean_cycles(&c, &cv, &maxc);
+        printf("  P = %2u lanes: B64 %u, C64 %.2f (max %u) cycles/point\n", p, c.layers * 64u / p, mc, maxc);
+        np_hatch_cover_free(&cv);
+    }
+    return 0;
+}
+
+/* --- zoom and the stiff cases --- */
+
+/*
+ * A UV point in [0, 2) whose bits from the units bit down to 2^-96 repeat a
+ * 20-bit pattern (truncated): 2^z P mod 2 has the same 33 bits at the binary
+ * point as P for z = 20, 40, 60.
+ */
+static np_u128 periodic_uv(uint32_t pattern20)
+{
+    np_u128 v = 0;
+    for (unsigned k = 0; k <= 96u; k++) /* k: the bit of weight 2^-k */
+        if ((pattern20 >> (19u - k % 20u)) & 1u)
+            v |= (np_u128)1 << (96u - k);
+    return v;
+}
+
+/*
+ * Zoom in by 2^z toward a point P of UV: the window's pixels are
+ * P + i 2^-12 2^-z and the level floor(M) drops by z. The host's x_s
+ * (np_hatch_xs, 128-bit) is then the same word for every z (P chosen with a
+ * 20-bit period), so the image is bit-identical at 2^0, 2^20, 2^40, 2^60.
+ * A double x_uv (what a float pipeline holds) keeps 53 bits of P: the
+ * seed-space position is wrong from some zoom on, and the image breaks.
+ */
+static int t_zoom_identical(void)
+{
+    np_hatch_cfg c = cfg_of("best64", 0, 9);
+    enum { W = 64 };
+    static uint8_t img[4][W * W];
+    np_u128 pu = periodic_uv(0xB7E15u), pv = periodic_uv(0x4C3A9u);
+    np_u128 dx = (np_u128)1 << (96 - 8); /* 2^-8 UV per pixel at zoom 2^0: the window is a quarter tile */
+    static const unsigned zooms[4] = { 0, 20, 40, 60 };
+    unsigned double_bad[4] = { 0, 0, 0, 0 };
+    /* P as a double: its top 53 bits (P < 2: bits 2^0 .. 2^-52). */
+    double pud = ldexp((double)(uint64_t)(pu >> 44), -52), pvd = ldexp((double)(uint64_t)(pv >> 44), -52);
+    for (unsigned zi = 0; zi < 4; zi++) {
+        unsigned z = zooms[zi];
+        int level = -(int)z;
+        for (unsigned j = 0; j < W; j++)
+            for (unsigned i = 0; i < W; i++) {
+                np_u128 xu = pu + (np_u128)i * (dx >> z), xv = pv + (np_u128)j * (dx >> z);
+                uint64_t su = np_hatch_xs(xu, level), sv = np_hatch_xs(xv, level);
+                img[zi][j * W + i] = (uint8_t)np_hatch_eval(&c, su, sv, 120, 0xB505, 0x8000, NULL);
+                /* The double pipeline: x_uv in double, x_s = 2^-level x_uv mod 2, truncated to Q1.32. */
+                double xd = pud + (double)i * ldexp(1.0, -8 - (int)z), yd = pvd + (double)j * ldexp(1.0, -8 - (int)z);
+                uint64_t du = (uint64_t)(fmod(ldexp(xd, (int)z), 2.0) * 4294967296.0) & NP_MASK(33);
+                uint64_t dv = (uint64_t)(fmod(ldexp(yd, (int)z), 2.0) * 4294967296.0) & NP_MASK(33);
+                double_bad[zi] += du != su || dv != sv;
+            }
+        unsigned diff = 0;
+        for (unsigned k = 0; k < W * W; k++)
+            diff += img[zi][k] != img[0][k];
+        printf("zoom 2^%-2u (floor(M) = %3d): %u of %u pixels differ from zoom 2^0; a double x_uv gets x_s wrong at %u\n",
+               z, level, diff, W * W, double_bad[zi]);
+        NP_CHECK(diff == 0, "zoom 2^%u: %u pixels differ", z, diff);
+    }
+    NP_CHECK(double_bad[0] == 0 && double_bad[3] > W * W / 2, "the double path breaks only at deep zoom");
+    unsigned ink = 0;
+    for (unsigned k = 0; k < W * W; k++)
+        ink += img[0][k] < 255;
+    printf("%u of %u pixels carry ink\n", ink, W * W);
+    NP_CHECK(ink > 0 && ink < W * W, "a window with strokes and paper");
+    return 0;
+}
+
+/* Deep zoom: floor(M) = -60 and -64 (the host's limit); x_s is the exact truncation of 2^60 x_uv mod 2. */
+static int t_stiff_deep_zoom(void)
+{
+    np_rng g;
+    np_rng_seed(&g, 60);
+    for (unsigned k = 0; k < 100000u; k++) {
+        np_u128 x = ((np_u128)np_rng_next(&g) << 64) | np_rng_next(&g);
+        for (int level = -64; level <= 31; level += 19) {
+            /* The exact value: floor(x 2^-96 2^-level 2^32) mod 2^33 = bits [64 + level, 97 + level) of x. */
+            uint64_t want = 0;
+            for (unsigned b = 0; b < 33u; b++) {
+                unsigned src = (unsigned)(64 + level) + b;
+                if (src < 128u && ((x >> src) & 1u))
+                    want |= (uint64_t)1 << b;
+            }
+            NP_CHECK(np_hatch_xs(x, level) == want, "level %d", level);
+        }
+        if (np_test_failures)
+            return 1;
+    }
+    printf("x_s at floor(M) = -64 .. 31: the 33 bits of 2^-floor(M) x_uv at the binary point, 100,000 x_uv each\n");
+    return 0;
+}
+
+/*
+ * The level seam: zooming out, level L at m = 1 - 2^-16 (strokes twice their
+ * size, the strokes that do not survive at alpha 2^-16) meets level L + 1 at
+ * m = 0. The same UV points: within 1 LSB of each other.
+ */
+static int t_stiff_level_seam(void)
+{
+    np_rng g;
+    np_rng_seed(&g, 77);
+    unsigned same = 0, n = 20000, worst = 0;
+    for (unsigned si = 0; si < 2; si++) {
+        np_hatch_cfg c = cfg_of(si ? "best64" : "best16", 0, 9);
+        for (unsigned k = 0; k < n; k++) {
+            np_u128 x = ((np_u128)np_rng_next(&g) << 64) | np_rng_next(&g);
+            np_u128 y = ((np_u128)np_rng_next(&g) << 64) | np_rng_next(&g);
+            uint32_t tone = (uint32_t)np_rng_below(&g, 256);
+            uint32_t pm, om;
+            m_words(65535u, &pm, &om);
+            uint32_t a = np_hatch_eval(&c, np_hatch_xs(x, 0), np_hatch_xs(y, 0), tone, pm, om, NULL);
+            uint32_t b = np_hatch_eval(&c, np_hatch_xs(x, 1), np_hatch_xs(y, 1), tone, 0x10000, 0x10000, NULL);
+            unsigned d = a > b ? a - b : b - a;
+            worst = d > worst ? d : worst;
+            same += a == b;
+        }
+    }
+    printf("level seam (m = 1 - 2^-16 at L vs m = 0 at L + 1): max difference %u LSB, %u of %u identical\n", worst, same,
+           2 * n);
+    NP_CHECK(worst <= 1u, "seam %u LSB", worst);
+    return 0;
+}
+
+/*
+ * 256 serial blends (64 seeds x 4 layers). Through the seed stages with
+ * small layer tones (blend256: c stays near 1/2, so every blend's rounding
+ * counts): at the default 9 guard bits no output is over 1 LSB from the exact
+ * product of the alphas. Through the whole unit with strokes as large as the
+ * tile and every layer on: all 256 alphas nonzero, within 1 LSB of the
+ * reference (there c goes to black: the PIN tone ranges put layers 0-2 at
+ * full tone before layer 3 starts).
+ */
+static int t_stiff_256_blends(void)
+{
+    np_rng g;
+    np_rng_seed(&g, 2560);
+    unsigned fails;
+    double wc = 0, w = blend256(9, &g, 10000u, &fails, &wc);
+    printf("seed stages, guard 9: max |out - exact| %.4f LSB over 10,000 x 256 blends (c = %.3f there), %u over 1 LSB\n",
+           w, wc, fails);
+    NP_CHECK(fails == 0 && w <= 0.5 + 255.0 * 256.0 * ldexp(1.0, -17), "within the bound");
+    np_hatch_cfg c = cfg_of("best64", 0, 9);
+    c.inv_u = c.inv_v = 128;
+    double worst = 0;
+    unsigned all = 0;
+    for (unsigned k = 0; k < 4000u; k++) {
+        pt p = rand_pt(&g);
+        p.tone = 193u + (uint32_t)np_rng_below(&g, 63); /* every layer on */
+        np_hatch_sig s;
+        uint32_t out = np_hatch_eval(&c, p.xu, p.xv, p.tone, p.pm, p.om, &s);
+        double ref = np_ref_hatch(&c, p.xu, p.xv, p.tone, p.pm, p.om, NULL);
+        worst = fabs(out - ref) > worst ? fabs(out - ref) : worst;
+        all += s.nz == 256u;
+    }
+    printf("whole unit: max |out - ref| %.4f LSB over 4,000 points, all 256 alphas nonzero at %u\n", worst, all);
+    NP_CHECK(worst <= 1.0 && all == 4000u, "256 blends");
+    return 0;
+}
+
+/*
+ * A seed at a tile corner: FKM 16-seed set (b_u = 0x0A5F, b_v = 0x23B3),
+ * s_0 = (0.041, 0.139). Its stroke crosses x_u = 0, where x_s wraps mod 2:
+ * the alpha at s_0 - t and s_0 + t along u (one layer at 0 degrees, so the
+ * profile is even) agree to the datapath's rounding, and every point of a
+ * grid around the corner is within 1 LSB of the reference.
+ */
+static int t_stiff_tile_corner(void)
+{
+    np_hatch_cfg c = cfg_of("fkm16", 0, 9);
+    c.layers = 1;
+    c.rot = NP_HATCH_ROT_0;
+    uint64_t wu = 0x0A5F, wv = 0x23B3;
+    uint64_t su = (((uint64_t)wu << 16 | wu) + 1u), sv = (((uint64_t)wv << 16 | wv) + 1u); /* ceil of the seeds */
+    printf("s_0 = (%.4f, %.4f)\n", (double)(uint32_t)su / 4294967296.0, (double)(uint32_t)sv / 4294967296.0);
+    double worst_sym = 0;
+    for (unsigned k = 1; k < 400u; k++) {
+        uint64_t t = (uint64_t)k << 21; /* up to 0.195 of a tile: across x_u = 0 */
+        np_hatch_seed_sig za, zb;
+        np_hatch_sig s;
+        memset(&s, 0, sizeof s);
+        s.tone = 255;
+        s.pm = s.om = 65536;
+        s.xu = (su - t) & NP_MASK(33);
+        s.xv = sv;
+        np_hatch_setup(&c, &s);
+        np_hatch_seed(&c, &s, 0, 0, &za);
+        memset(&s, 0, sizeof s);
+        s.tone = 255;
+        s.pm = s.om = 65536;
+        s.xu = (su + t) & NP_MASK(33);
+        s.xv = sv;
+        np_hatch_setup(&c, &s);
+        np_hatch_seed(&c, &s, 0, 0, &zb);
+        double d = fabs((double)za.alpha - (double)zb.alpha) / 1073741824.0;
+        worst_sym = d > worst_sym ? d : worst_sym;
+        NP_CHECK(za.surv == zb.surv, "same instance on both sides of x_u = 0");
+    }
+    printf("alpha(s_0 - t) vs alpha(s_0 + t) across x_u = 0: max difference %.3g\n", worst_sym);
+    NP_CHECK(worst_sym <= np_hatch_alpha_bound(&c, 65536u), "symmetry");
+    double worst = 0;
+    for (int j = -20; j <= 20; j++)
+        for (int i = -20; i <= 20; i++) {
+            uint64_t xu = (uint64_t)((int64_t)su + (int64_t)i * (1 << 22)) & NP_MASK(33);
+            uint64_t xv = (uint64_t)((int64_t)sv + (int64_t)j * (1 << 22)) & NP_MASK(33);
+            uint32_t out = np_hatch_eval(&c, xu, xv, 255, 0xB505, 0x8000, NULL);
+            double ref = np_ref_hatch(&c, xu, xv, 255, 0xB505, 0x8000, NULL);
+            worst = fabs(out - ref) > worst ? fabs(out - ref) : worst;
+        }
+    printf("41 x 41 points around the corner seed: max |out - ref| %.4f LSB\n", worst);
+    NP_CHECK(worst <= 1.0, "corner");
+    return 0;
+}
+
+/* frac(x_s - s_i + eta) = 1/2 exactly in the datapath (r = 0, the seed itself): Q = 0, profile 1, alpha = tone part. */
+static int t_stiff_frac_half(void)
+{
+    for (unsigned si = 0; si < NP_HATCH_SETS; si++) {
+        np_hatch_cfg c = cfg_of(np_hatch_sets[si].name, 0, 9);
+        uint64_t bu, bv;
+        np_hatch_layer_b(&c, 0, &bu, &bv);
+        unsigned n = np_hatch_n(&c);
+        for (unsigned i = 0; i < n; i++) {
+            uint64_t wu = np_seed_rotl(bu, i, n), wv = np_seed_rotl(bv, i, n), stu = 0, stv = 0;
+            for (unsigned k = 0; k < 32u; k += (n < 32u ? n : 32u)) {
+                stu = n >= 32u ? wu >> (n - 32u) : (stu << n) | wu;
+                stv = n >= 32u ? wv >> (n - 32u) : (stv << n) | wv;
+            }
+            np_hatch_sig s;
+            memset(&s, 0, sizeof s);
+            s.xu = (stu + 1u) & NP_MASK(33);
+            s.xv = (stv + 1u) & NP_MASK(33);
+            s.tone = 255;
+            s.pm = s.om = 65536;
+            np_hatch_setup(&c, &s);
+            np_hatch_seed_sig z;
+            np_hatch_seed(&c, &s, 0, i, &z);
+            NP_CHECK((z.du & NP_MASK(32)) == 0x80000000u && z.ru == 0 && z.Qu == 0 && z.Qv == 0, "%s seed %u: r = 0",
+                     np_hatch_sets[si].name, i);
+            NP_CHECK(z.profile == 1u << 30 && z.alpha == 1u << 30, "%s seed %u: alpha 1", np_hatch_sets[si].name, i);
+            NP_CHECK(s.c == 0, "black");
+        }
+    }
+    printf("every seed of every set: frac = 1/2 exactly, r = 0, Q = 0, profile = alpha = 1, c = 0\n");
+    return 0;
+}
+
+/* Tone 0: white whatever the point and level (exact); tone 1: within 1 LSB of the reference, black at the seeds. */
+static int t_stiff_tone_0_1(void)
+{
+    np_rng g;
+    np_rng_seed(&g, 1);
+    double worst = 0;
+    for (unsigned si = 0; si < NP_HATCH_SETS; si++) {
+        np_hatch_cfg c = cfg_of(np_hatch_sets[si].name, si & 1u, 9);
+        for (unsigned k = 0; k < 5000u; k++) {
+            pt p = rand_pt(&g);
+            NP_CHECK(np_hatch_eval(&c, p.xu, p.xv, 0, p.pm, p.om, NULL) == 255u, "tone 0 is paper");
+            uint32_t out = np_hatch_eval(&c, p.xu, p.xv, 255, p.pm, p.om, NULL);
+            double ref = np_ref_hatch(&c, p.xu, p.xv, 255, p.pm, p.om, NULL);
+            worst = fabs(out - ref) > worst ? fabs(out - ref) : worst;
+        }
+    }
+    printf("tone 0: 255 at 20,000 points; tone 1: max |out - ref| %.4f LSB\n", worst);
+    NP_CHECK(worst <= 1.0, "tone 1");
+    return 0;
+}
+
+/*
+ * A 64-frame zoom across 8 levels (M = 8 - f/8): every stroke centre of the
+ * coarsest level, 2^8 (s_i + w), stays a stroke centre at every finer level
+ * (seed i + 8 - floor(M) there, r = 0 at the same UV point: fixed in UV), and
+ * its level alpha never drops while zooming in (counted).
+ */
+static int t_zoom_sequence(void)
+{
+    np_hatch_cfg c = cfg_of("best16", 0, 9);
+    unsigned n = np_hatch_n(&c);
+    uint64_t bu, bv;
+    np_hatch_layer_b(&c, 0, &bu, &bv);
+    np_u128 D = ((np_u128)1 << n) - 1u;
+    unsigned strokes = 0, drops = 0, moved = 0;
+    for (unsigned i = 0; i < n; i++)
+        for (unsigned w = 0; w < 4; w++) {
+            /* The centre in UV, Q32.96, rounded down: 2^8 (W_i / D + w). */
+            np_u128 cu = (((np_u128)np_seed_rotl(bu, i, n) << 96) / D + ((np_u128)(w & 1u) << 96)) << 8;
+            np_u128 cv = (((np_u128)np_seed_rotl(bv, i, n) << 96) / D + ((np_u128)(w >> 1) << 96)) << 8;
+            uint32_t prev = 0;
+            for (unsigned f = 0; f < 64; f++) {
+                unsigned mq = 8u * 8u - f; /* M in eighths */
+                int level = (int)(mq / 8u);
+                uint32_t m16 = (mq % 8u) * 8192u, pm, om;
+                m_words(m16, &pm, &om);
+                unsigned idx = (i + 8u - (unsigned)level) % n;
+                np_hatch_sig s;
+                memset(&s, 0, sizeof s);
+                s.xu = np_hatch_xs(cu, level);
+                s.xv = np_hatch_xs(cv, level);
+                s.tone = 255;
+                s.pm = pm;
+                s.om = om;
+                np_hatch_setup(&c, &s);
+                np_hatch_seed_sig z;
+                np_hatch_seed(&c, &s, 0, idx, &z);
+                moved += z.ru < -2 || z.ru > 2 || z.rv < -2 || z.rv > 2;
+                drops += z.am < prev;
+                prev = z.am;
+            }
+            strokes++;
+        }
+    printf("%u strokes over 64 frames (8 levels): %u frames with a centre off its UV point, %u alpha drops\n", strokes,
+           moved, drops);
+    NP_CHECK(moved == 0 && drops == 0, "fixed strokes, no drop");
     return 0;
 }
 
@@ -463,6 +928,19 @@ static const np_test_case cases[] = {
     { "model_vs_ref", t_model_vs_ref },
     { "guard_bits", t_guard_bits },
     { "nesting", t_nesting },
+    { "kat", t_kat },
+    { "cover_identical16", t_cover_identical16 },
+    { "cover_identical64", t_cover_identical64 },
+    { "cover_rotations", t_cover_rotations },
+    { "cover_table1", t_cover_table1 },
+    { "zoom_identical", t_zoom_identical },
+    { "zoom_sequence", t_zoom_sequence },
+    { "stiff_deep_zoom", t_stiff_deep_zoom },
+    { "stiff_level_seam", t_stiff_level_seam },
+    { "stiff_256_blends", t_stiff_256_blends },
+    { "stiff_tile_corner", t_stiff_tile_corner },
+    { "stiff_frac_half", t_stiff_frac_half },
+    { "stiff_tone_0_1", t_stiff_tone_0_1 },
     { NULL, NULL },
 };
 

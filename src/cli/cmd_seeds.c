@@ -233,13 +233,14 @@ int np_cmd_seeds(int argc, char **argv)
         }
     }
     if (setname) {
-        const np_seedset_named *ns = np_seeds_find(setname);
+        const np_hatch_set *ns = np_seeds_find(setname);
         if (!ns) {
             np_err(cmd, "--set '%s': expected fkm16, best16, fkm64 or best64", setname);
             return NP_EXIT_USAGE;
         }
         printf("shipped set %s (%s), recorded spacing %.4f\n", ns->name, ns->origin, ns->spacing);
-        return report_set(ns->name, &ns->s, list) ? NP_EXIT_FAIL : NP_EXIT_OK;
+        np_seedset s = np_seeds_of(ns);
+        return report_set(ns->name, &s, list) ? NP_EXIT_FAIL : NP_EXIT_OK;
     }
     if (K == 0) {
         np_err(cmd, "--order K is required (1, 2 or 3)");

@@ -35,7 +35,7 @@ static uint64_t rotl_ref(uint64_t b, unsigned i, unsigned n)
 double np_ref_hatch(const struct np_hatch_cfg *cfg, uint64_t xu, uint64_t xv, uint32_t tone, uint32_t pm, uint32_t om,
                     double *alpha)
 {
-    unsigned n = cfg->n;
+    unsigned n = np_hatch_n(cfg);
     double a = (double)(tone & 0xFFu) / 255.0;
     double oms = (double)(om > 65536u ? 65536u : om) / 65536.0, m = 1.0 - oms;
     double p = (double)pm / 65536.0;
@@ -43,10 +43,14 @@ double np_ref_hatch(const struct np_hatch_cfg *cfg, uint64_t xu, uint64_t xv, ui
     double c = 1.0;
     for (unsigned l = 0; l < cfg->layers; l++) {
         double al = clamp01(4.0 * a - (double)l);
-        double r00 = cfg->r[l][0][0] / 16384.0, r01 = cfg->r[l][0][1] / 16384.0;
-        double r10 = cfg->r[l][1][0] / 16384.0, r11 = cfg->r[l][1][1] / 16384.0;
+        int16_t r[2][2];
+        uint64_t bu, bv;
+        np_hatch_layer_r(cfg, l, r);
+        np_hatch_layer_b(cfg, l, &bu, &bv);
+        double r00 = r[0][0] / 16384.0, r01 = r[0][1] / 16384.0;
+        double r10 = r[1][0] / 16384.0, r11 = r[1][1] / 16384.0;
         for (unsigned i = 0; i < n; i++) {
-            uint64_t wu = rotl_ref(cfg->bu[l], i, n), wv = rotl_ref(cfg->bv[l], i, n);
+            uint64_t wu = rotl_ref(bu, i, n), wv = rotl_ref(bv, i, n);
             unsigned pu, pv;
             double ru = exact_frac(xu, wu, n, &pu) - 0.5, rv = exact_frac(xv, wv, n, &pv) - 0.5;
             int surv = pu == (wu & 1u) && pv == (wv & 1u);

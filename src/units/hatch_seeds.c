@@ -249,25 +249,16 @@ void np_seeds_random(unsigned K, np_rng *rng, uint8_t *digits)
     }
 }
 
-/*
- * The shipped sets. fkm16/fkm64: np_seeds_fkm. best16: one of the 8 best of
- * all 20,736 B(4,2) sequences (`noisepipe seeds --order 2 --all`), the digits
- * of design/scene-pipeline.md. best64: the best of a random Eulerian-circuit
- * search (`noisepipe seeds --order 3 --search`, command in origin).
- * test_hatch seeds.shipped recomputes every spacing and the cell proof.
- */
-const np_seedset_named np_seeds_shipped[NP_SEEDS_SHIPPED] = {
-    { "fkm16", "noisepipe seeds --order 2 (FKM)", { 2, 16, 0x0A5Fu, 0x23B3u }, 0.1154 },
-    { "best16", "noisepipe seeds --order 2 --all (digits 0011331230210322)", { 2, 16, 0x0DA7u, 0x3E94u }, 0.1668 },
-    { "fkm64", "noisepipe seeds --order 3 (FKM)", { 3, 64, 0x024129B4D896DBFFu, 0x105A64169F797717u }, 0.0291 },
-    { "best64", "noisepipe seeds --order 3 --search --count 3688960 --seed 1 (a 60 s run)",
-      { 3, 64, 0x1FB34B5AD1F8C844u, 0x6EA31EBC148D2E3Cu }, 0.0678 },
-};
-
-const np_seedset_named *np_seeds_find(const char *name)
+const np_hatch_set *np_seeds_find(const char *name)
 {
-    for (unsigned i = 0; i < NP_SEEDS_SHIPPED; i++)
-        if (strcmp(np_seeds_shipped[i].name, name) == 0)
-            return &np_seeds_shipped[i];
+    for (unsigned i = 0; i < NP_HATCH_SETS; i++)
+        if (strcmp(np_hatch_sets[i].name, name) == 0)
+            return &np_hatch_sets[i];
     return NULL;
+}
+
+np_seedset np_seeds_of(const np_hatch_set *hs)
+{
+    np_seedset s = { hs->K, hs->n, hs->bu, hs->bv };
+    return s;
 }

@@ -28,6 +28,7 @@
 #include <stdint.h>
 
 #include "np_fixed.h"
+#include "np_hatch.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -105,18 +106,10 @@ uint64_t np_seeds_enumerate(unsigned K, int (*fn)(const uint8_t *digits, void *u
  */
 void np_seeds_random(unsigned K, struct np_rng *rng, uint8_t *digits);
 
-/* The shipped sets (the unit's `set` key). */
-typedef struct np_seedset_named {
-    const char *name;    /* "fkm16", "best16", "fkm64", "best64" */
-    const char *origin;  /* how it was found (the command that reproduces it) */
-    np_seedset s;
-    double spacing;      /* its minimum toroidal spacing, to 4 decimals (checked by a test) */
-} np_seedset_named;
-
-enum { NP_SEEDS_SHIPPED = 4 };
-extern const np_seedset_named np_seeds_shipped[NP_SEEDS_SHIPPED];
-/* The shipped set called name, or NULL. */
-const np_seedset_named *np_seeds_find(const char *name);
+/* The shipped set called name (np_hatch_sets, rtl_model/np_hatch.h: the unit's `set` key), or NULL. */
+const np_hatch_set *np_seeds_find(const char *name);
+/* A shipped set's patterns as an np_seedset. */
+np_seedset np_seeds_of(const np_hatch_set *hs);
 
 #ifdef __cplusplus
 } /* extern "C" */

@@ -9,8 +9,10 @@ extern const np_unit np_unit_classic3;
 extern const np_unit np_unit_simplex3;
 
 extern const np_unit np_unit_fdiff, np_unit_texel;
+extern const np_unit np_unit_hatch;
 
-const np_unit *const np_units[] = { &np_unit_classic3, &np_unit_simplex3, &np_unit_fdiff, &np_unit_texel, NULL };
+const np_unit *const np_units[] = { &np_unit_classic3, &np_unit_simplex3, &np_unit_fdiff, &np_unit_texel, &np_unit_hatch,
+                                     NULL };
 
 /* Units added by np_unit_register (see np_unit.h: filled before threads start, read-only after). */
 static const np_unit *registered[NP_UNIT_MAX_REGISTERED];
