@@ -41,12 +41,6 @@ const char *np_hatch_cfg_check(const np_hatch_cfg *cfg)
 
 static uint64_t nmask(unsigned n) { return n >= 64u ? ~(uint64_t)0 : NP_MASK(n); }
 
-static uint64_t rotl_n(uint64_t b, unsigned i, unsigned n)
-{
-    uint64_t m = nmask(n);
-    i %= n;
-    return i == 0 ? b & m : ((b << i) | ((b & m) >> (n - i))) & m;
-}
 
 void np_hatch_layer_b(const np_hatch_cfg *cfg, unsigned l, uint64_t *bu, uint64_t *bv)
 {
@@ -72,17 +66,6 @@ void np_hatch_layer_r(const np_hatch_cfg *cfg, unsigned l, int16_t r[2][2])
     static const unsigned pin[NP_HATCH_LAYERS_MAX] = { 1, 4, 0, 2 }; /* 45, -45, 0, 90 */
     unsigned k = cfg->rot == NP_HATCH_ROT_PIN ? pin[l] : cfg->rot - 1u;
     memcpy(r, rot[k], sizeof rot[k]);
-}
-
-/* The first 32 bits of the periodic binary fraction 0.WWW... of an N-bit word (wiring). */
-static uint32_t seed_st(uint64_t w, unsigned n)
-{
-    if (n >= 32u)
-        return (uint32_t)(w >> (n - 32u));
-    uint64_t acc = 0;
-    for (unsigned k = 0; k < 32u; k += n)
-        acc = (acc << n) | w;
-    return (uint32_t)acc;
 }
 
 /* x * y rounded half up to Q1.30, both Q1.30 in [0, 1]. */
@@ -144,10 +127,10 @@ void np_hatch_seed(const np_hatch_cfg *cfg, np_hatch_sig *s, unsigned l, unsigne
     int16_t R[2][2];
     np_hatch_layer_b(cfg, l, &bu, &bv);
     np_hatch_layer_r(cfg, l, R);
-    uint64_t wu = rotl_n(bu, i, n), wv = rotl_n(bv, i, n);
+    uint64_t wu = np_hatch_rotl(bu, i, n), wv = np_hatch_rotl(bv, i, n);
     uint64_t m33 = NP_MASK(NP_HATCH_X_BITS), half = (uint64_t)1 << 31;
-    z.du = (s->xu + (m33 ^ seed_st(wu, n)) + half) & m33;
-    z.dv = (s->xv + (m33 ^ seed_st(wv, n)) + half) & m33;
+    z.du = (s->xu + (m33 ^ np_hatch_seed_st(wu, n)) + half) & m33;
+    z.dv = (s->xv + (m33 ^ np_hatch_seed_st(wv, n)) + half) & m33;
     z.surv = ((z.du >> 32) & 1u) == (wu & 1u) && ((z.dv >> 32) & 1u) == (wv & 1u);
     z.ru = (int64_t)(z.du & NP_MASK(32)) - (int64_t)half;
     z.rv = (int64_t)(z.dv & NP_MASK(32)) - (int64_t)half;
@@ -297,7 +280,7 @@ int np_hatch_cover_build(const np_hatch_cfg *cfg, np_hatch_cover *cv)
         double a = 256.0 / (rho * (double)cfg->inv_u) + margin, b = 256.0 / (rho * (double)cfg->inv_v) + margin;
         for (unsigned i = 0; i < n; i++) {
             double dn = n == 64u ? 18446744073709551615.0 : (double)nmask(n);
-            double su = (double)rotl_n(bu, i, n) / dn, sv = (double)rotl_n(bv, i, n) / dn;
+            double su = (double)np_hatch_rotl(bu, i, n) / dn, sv = (double)np_hatch_rotl(bv, i, n) / dn;
             for (unsigned tv = 0; tv < t; tv++)
                 for (unsigned tu = 0; tu < t; tu++) {
                     if (!rect_meets_texel(su, sv, eu, ev, a, b, tu * w, tv * w, w))

@@ -135,6 +135,25 @@ typedef struct np_hatch_cfg {
 /* NULL when cfg is valid, else a static message naming the bad field. */
 const char *np_hatch_cfg_check(const np_hatch_cfg *cfg);
 
+/* rotl of an n-bit word by i mod n (1 <= n <= 64): seed i's pattern, wiring. */
+static inline uint64_t np_hatch_rotl(uint64_t b, unsigned i, unsigned n)
+{
+    uint64_t m = n >= 64u ? ~(uint64_t)0 : NP_MASK(n);
+    i %= n;
+    return i == 0 ? b & m : ((b << i) | ((b & m) >> (n - i))) & m;
+}
+
+/* st: the first 32 bits of the periodic binary fraction 0.WWW... of an n-bit word (n = 4, 16, 64: wiring). */
+static inline uint32_t np_hatch_seed_st(uint64_t w, unsigned n)
+{
+    if (n >= 32u)
+        return (uint32_t)(w >> (n - 32u));
+    uint64_t acc = 0;
+    for (unsigned k = 0; k < 32u; k += n)
+        acc = (acc << n) | w;
+    return (uint32_t)acc;
+}
+
 /* Seeds per layer N. */
 static inline unsigned np_hatch_n(const np_hatch_cfg *cfg) { return np_hatch_sets[cfg->set].n; }
 

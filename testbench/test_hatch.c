@@ -773,8 +773,7 @@ static int t_stiff_tile_corner(void)
     np_hatch_cfg c = cfg_of("fkm16", 0, 9);
     c.layers = 1;
     c.rot = NP_HATCH_ROT_0;
-    uint64_t wu = 0x0A5F, wv = 0x23B3;
-    uint64_t su = (((uint64_t)wu << 16 | wu) + 1u), sv = (((uint64_t)wv << 16 | wv) + 1u); /* ceil of the seeds */
+    uint64_t su = np_hatch_seed_st(0x0A5F, 16) + 1u, sv = np_hatch_seed_st(0x23B3, 16) + 1u; /* ceil of s_0 */
     printf("s_0 = (%.4f, %.4f)\n", (double)(uint32_t)su / 4294967296.0, (double)(uint32_t)sv / 4294967296.0);
     double worst_sym = 0;
     for (unsigned k = 1; k < 400u; k++) {
@@ -824,11 +823,7 @@ static int t_stiff_frac_half(void)
         np_hatch_layer_b(&c, 0, &bu, &bv);
         unsigned n = np_hatch_n(&c);
         for (unsigned i = 0; i < n; i++) {
-            uint64_t wu = np_seed_rotl(bu, i, n), wv = np_seed_rotl(bv, i, n), stu = 0, stv = 0;
-            for (unsigned k = 0; k < 32u; k += (n < 32u ? n : 32u)) {
-                stu = n >= 32u ? wu >> (n - 32u) : (stu << n) | wu;
-                stv = n >= 32u ? wv >> (n - 32u) : (stv << n) | wv;
-            }
+            uint64_t stu = np_hatch_seed_st(np_seed_rotl(bu, i, n), n), stv = np_hatch_seed_st(np_seed_rotl(bv, i, n), n);
             np_hatch_sig s;
             memset(&s, 0, sizeof s);
             s.xu = (stu + 1u) & NP_MASK(33);

@@ -25,13 +25,6 @@ static double exact_frac(uint64_t xw, uint64_t w, unsigned n, unsigned *parity)
 static double clamp01(double v) { return v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v); }
 static double smooth(double t) { return t * t * (3.0 - 2.0 * t); }
 
-static uint64_t rotl_ref(uint64_t b, unsigned i, unsigned n)
-{
-    uint64_t m = n >= 64u ? ~(uint64_t)0 : (((uint64_t)1 << n) - 1u);
-    i %= n;
-    return i == 0 ? b & m : ((b << i) | ((b & m) >> (n - i))) & m;
-}
-
 double np_ref_hatch(const struct np_hatch_cfg *cfg, uint64_t xu, uint64_t xv, uint32_t tone, uint32_t pm, uint32_t om,
                     double *alpha)
 {
@@ -50,7 +43,7 @@ double np_ref_hatch(const struct np_hatch_cfg *cfg, uint64_t xu, uint64_t xv, ui
         double r00 = r[0][0] / 16384.0, r01 = r[0][1] / 16384.0;
         double r10 = r[1][0] / 16384.0, r11 = r[1][1] / 16384.0;
         for (unsigned i = 0; i < n; i++) {
-            uint64_t wu = rotl_ref(bu, i, n), wv = rotl_ref(bv, i, n);
+            uint64_t wu = np_hatch_rotl(bu, i, n), wv = np_hatch_rotl(bv, i, n);
             unsigned pu, pv;
             double ru = exact_frac(xu, wu, n, &pu) - 0.5, rv = exact_frac(xv, wv, n, &pv) - 0.5;
             int surv = pu == (wu & 1u) && pv == (wv & 1u);

@@ -44,14 +44,8 @@ typedef struct np_seedset {
     uint64_t bu, bv;     /* the N-bit patterns (bit N-1 first after the point) */
 } np_seedset;
 
-/* rotl of an n-bit word by i (0 <= i < n, 1 <= n <= 64). */
-static inline uint64_t np_seed_rotl(uint64_t b, unsigned i, unsigned n)
-{
-    uint64_t m = n == 64 ? ~(uint64_t)0 : NP_MASK(n);
-    if (i == 0)
-        return b & m;
-    return ((b << i) | ((b & m) >> (n - i))) & m;
-}
+/* rotl of an n-bit word by i (the unit's np_hatch_rotl). */
+static inline uint64_t np_seed_rotl(uint64_t b, unsigned i, unsigned n) { return np_hatch_rotl(b, i, n); }
 
 /* N = 4^K. */
 unsigned np_seeds_n(unsigned K);

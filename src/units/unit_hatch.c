@@ -119,14 +119,7 @@ static uint64_t seed_word(const np_hatch_cfg *cfg, int v, unsigned i)
     uint64_t bu, bv;
     unsigned n = np_hatch_n(cfg);
     np_hatch_layer_b(cfg, 0, &bu, &bv);
-    uint64_t b = v ? bv : bu, m = n >= 64u ? ~(uint64_t)0 : NP_MASK(n);
-    uint64_t w = i ? ((b << i) | ((b & m) >> (n - i))) & m : b & m;
-    uint64_t st = 0;
-    if (n >= 32u)
-        st = w >> (n - 32u);
-    else
-        for (unsigned k = 0; k < 32u; k += n)
-            st = (st << n) | w;
+    uint64_t st = np_hatch_seed_st(np_hatch_rotl(v ? bv : bu, i, n), n);
     return st + 1u; /* ceil: the exact seed is above the truncation */
 }
 
