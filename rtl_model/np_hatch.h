@@ -65,12 +65,15 @@
  * ulp, and only when alpha != 0). The output rounds once more (1/2 LSB), so
  *   |out - 255 c| <= 1/2 + 255 (n 2^-F + sum da_k)   LSB,
  * n the number of strokes with a nonzero alpha at the point. Faithful (<= 1
- * LSB) when n 2^-F + sum da <= 1/510. The worst case n = 256 (64 seeds x 4
- * layers, all covering the point) needs 2^-F <= 1/510/256 - da, i.e. F >= 17
- * (guard = 9) with da <= 2^-26, which the Q1.30 alpha chain gives for strokes
- * with k <= 4 (large strokes: the only ones that can all cover one point). The
- * guard search (test_hatch guard_bits) shows 9 holds and 8 fails there. With
- * the coverage lists' <= 8 strokes per layer (n <= 32) the margin is large.
+ * LSB) when n (2^-F + da) <= 1/510. The blends alone, n = 256 (64 seeds x 4
+ * layers all covering the point): 1/2 + 255 256 2^-F <= 1 needs F >= 17, i.e.
+ * guard = 9, the default; test_hatch guard_bits drives 256 blends through the
+ * seed stages against the exact product of the unit's own alphas and shows 9
+ * holds (max 0.78 LSB) and 8 fails (1.16 LSB). The alpha error da
+ * (np_hatch_alpha_bound, below; 2^-23 .. 2^-21 for the shipped sets) adds
+ * 255 n da: with the default stroke sizes at most 4 strokes per layer can
+ * reach a point (the coverage lists' longest), n <= 16, so the bound is
+ * 1/2 + 255 16 (2^-17 + da) <= 0.532 LSB (`noisepipe units` prints it).
  */
 #ifndef NP_HATCH_H
 #define NP_HATCH_H
