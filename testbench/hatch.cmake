@@ -15,3 +15,6 @@ set_tests_properties(hatch.cli_seeds_all PROPERTIES
 add_test(NAME hatch.cli_seeds_bad COMMAND noisepipe seeds --order 2 --digits 0000111122223333)
 set_tests_properties(hatch.cli_seeds_bad PROPERTIES
   PASS_REGULAR_EXPRESSION "de Bruijn: NO; one seed per cell of the 4x4 grid: NO")
+add_test(NAME hatch.cli_seeds_usage COMMAND noisepipe seeds --order 4)
+set_tests_properties(hatch.cli_seeds_usage PROPERTIES
+  PASS_REGULAR_EXPRESSION "noisepipe seeds: --order '4': expected a decimal number in 1\\.\\.3")
