@@ -22,6 +22,7 @@ static const np_cmd commands[] = {
     { "report", np_cmd_report, "write reports: gate and latency estimates, error against run time" },
     { "stream", np_cmd_stream, "stream vectors over USB to an FPGA board and verify the results" },
     { "wave", np_cmd_wave, "the Gerstner wave unit on a scene: frames, the check against the reference, the benchmark" },
+    { "seeds", np_cmd_seeds, "de Bruijn seed sets of the hatching unit: cell proof, spacing, search" },
     { "help", cmd_help, "this list, or `noisepipe help COMMAND`" },
 };
 enum { N_COMMANDS = sizeof commands / sizeof commands[0] };

@@ -23,5 +23,6 @@ int np_cmd_render(int argc, char **argv);
 int np_cmd_report(int argc, char **argv);
 int np_cmd_stream(int argc, char **argv);
 int np_cmd_wave(int argc, char **argv);
+int np_cmd_seeds(int argc, char **argv);
 
 #endif /* NP_CMD_H */

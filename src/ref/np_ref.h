@@ -129,6 +129,19 @@ typedef struct np_ref_aacount_counts {
 } np_ref_aacount_counts;
 void np_ref_aacount(const struct np_aacount_cfg *cfg, const struct np_aacount_win *w, np_ref_aacount_counts *out);
 
+/*
+ * The hatching unit (ref_hatch.c, docs/hatch.md): 255 c for the point whose
+ * input words are xu, xv (Q1.32), tone (unorm8), pm, om (Q1.16), with the
+ * configuration's patterns, rotations and stroke sizes as their exact values.
+ * Seeds are the exact rationals rotl(b, i) / (2^N - 1) and x_s - s_i is
+ * formed exactly in 128-bit integers (parity and fraction), so no input is
+ * rounded before the double arithmetic. alpha (may be NULL) receives each
+ * seed's alpha, layer-major ([l * N + i]). cfg is an np_hatch_cfg.
+ */
+struct np_hatch_cfg;
+double np_ref_hatch(const struct np_hatch_cfg *cfg, uint64_t xu, uint64_t xv, uint32_t tone, uint32_t pm, uint32_t om,
+                    double *alpha);
+
 #ifdef __cplusplus
 } /* extern "C" */
 #endif

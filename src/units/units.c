@@ -11,6 +11,8 @@ extern const np_unit np_unit_simplex3;
 extern const np_unit np_unit_wave;
 
 extern const np_unit np_unit_fdiff, np_unit_texel;
+extern const np_unit np_unit_hatch;
+
 /* Noise in n = 2..5 dimensions (docs/noise-nd.md); n = 3 is classic3 and simplex3. */
 extern const np_unit np_unit_classic2, np_unit_classic4, np_unit_classic5;
 extern const np_unit np_unit_simplex2, np_unit_simplex4, np_unit_simplex5;
@@ -18,7 +20,7 @@ extern const np_unit np_unit_simplex2, np_unit_simplex4, np_unit_simplex5;
 const np_unit *const np_units[] = { &np_unit_classic3, &np_unit_simplex3, &np_unit_fdiff, &np_unit_texel,
                                     &np_unit_aacount,  &np_unit_wave,
                                     &np_unit_classic2, &np_unit_classic4, &np_unit_classic5,
-                                    &np_unit_simplex2, &np_unit_simplex4, &np_unit_simplex5, NULL };
+                                    &np_unit_simplex2, &np_unit_simplex4, &np_unit_simplex5, &np_unit_hatch, NULL };
 
 /* Units added by np_unit_register (see np_unit.h: filled before threads start, read-only after). */
 static const np_unit *registered[NP_UNIT_MAX_REGISTERED];

@@ -1,0 +1,255 @@
+/* SPDX-License-Identifier: MIT */
+/* The hatching unit (rtl_model/np_hatch.h, docs/hatch.md) in the unit registry. */
+#include <stdio.h>
+#include <string.h>
+
+#include "np_hatch.h"
+#include "np_ref.h"
+#include "np_unit.h"
+
+_Static_assert(sizeof(np_hatch_cfg) <= NP_UNIT_CFG_MAX, "configuration block too large");
+
+static const char *set_word(unsigned v) { return v < NP_HATCH_SETS ? np_hatch_sets[v].name : NULL; }
+static const char *fade_word(unsigned v)
+{
+    static const char *const w[] = { "smooth", "onebyone" };
+    return v < 2u ? w[v] : NULL;
+}
+static const char *rot_word(unsigned v)
+{
+    static const char *const w[] = { "pin", "0", "45", "90", "1e-4" };
+    return v < NP_HATCH_ROTS ? w[v] : NULL;
+}
+
+/* Stroke length 4/sqrt(N) and width 0.48/sqrt(N) of a seed tile at m = 0, as Q8.8 inverses 1/(F e). */
+static unsigned inv_len_default(const void *cfg)
+{
+    return np_hatch_n(cfg) == 64u ? 2048u : 1024u;
+}
+static unsigned inv_wid_default(const void *cfg)
+{
+    return np_hatch_n(cfg) == 64u ? 17067u : 8533u;
+}
+
+static const np_unit_key keys[] = {
+    NP_UNIT_KEY_WORDS("set", np_hatch_cfg, set, 0, NP_HATCH_SETS - 1, 1,
+                      "seed set: de Bruijn patterns (noisepipe seeds --set NAME)", set_word, 0u),
+    NP_UNIT_KEY("layers", np_hatch_cfg, layers, 1, NP_HATCH_LAYERS_MAX, 4,
+                "cross-hatching layers l, tone range [l/4, (l+1)/4] each (PIN)"),
+    NP_UNIT_KEY_WORDS("fade", np_hatch_cfg, fade, 0, 1, 0,
+                      "strokes fade all at once (smooth) or one by one (smoothstep, no divide)", fade_word, 0u),
+    NP_UNIT_KEY("guard", np_hatch_cfg, guard, 0, NP_HATCH_GUARD_MAX, 9,
+                "colour register guard bits: F = 8 + guard (9: proven for 256 blends)"),
+    NP_UNIT_KEY("lanes", np_hatch_cfg, lanes, 1, NP_HATCH_LANES_MAX, 1,
+                "P: seeds per pipeline stage (a power of two dividing N)"),
+    NP_UNIT_KEY_WORDS("rot", np_hatch_cfg, rot, 0, NP_HATCH_ROTS - 1, 0,
+                      "stroke angles: pin (45, -45, 0, 90 degrees by layer) or one for all", rot_word, 0u),
+    NP_UNIT_KEY_DERIVED("inv_len", np_hatch_cfg, inv_u, 1, 65535, inv_len_default,
+                        "1/(F e) along the stroke, u16 Q8.8 (default 4.0 at N=16, 8.0 at N=64)"),
+    NP_UNIT_KEY_DERIVED("inv_wid", np_hatch_cfg, inv_v, 1, 65535, inv_wid_default,
+                        "1/(F e) across the stroke, u16 Q8.8 (default 33.3 at N=16, 66.7 at N=64)"),
+    NP_UNIT_KEY_END,
+};
+
+static const char *cfg_check(const void *cfg) { return np_hatch_cfg_check(cfg); }
+
+static void fields(const void *cfg, np_unit_fields *f)
+{
+    (void)cfg;
+    memset(f, 0, sizeof *f);
+    f->n_in = 5;
+    f->n_out = 1;
+    np_unit_set_field(&f->in[0], "xu", NP_HATCH_X_BITS, 0, NP_HATCH_X_FRAC, "u33 Q1.32 seed space");
+    np_unit_set_field(&f->in[1], "xv", NP_HATCH_X_BITS, 0, NP_HATCH_X_FRAC, "u33 Q1.32 seed space");
+    np_unit_set_field(&f->in[2], "tone", 8, 0, 0, "u8 unorm8 a = tone/255");
+    np_unit_set_field(&f->in[3], "pm", NP_HATCH_M_BITS, 0, NP_HATCH_M_FRAC, "u17 Q1.16 2^-m");
+    np_unit_set_field(&f->in[4], "om", NP_HATCH_M_BITS, 0, NP_HATCH_M_FRAC, "u17 Q1.16 1-m");
+    /* frac 0: the value is the word, 255 c; the reference returns 255 c. */
+    np_unit_set_field(&f->out[0], "c", 8, 0, 0, "u8 unorm8 c = word/255");
+}
+
+static void eval(const void *cfg, const uint64_t *in, uint64_t *out)
+{
+    out[0] = np_hatch_eval(cfg, in[0], in[1], (uint32_t)in[2], (uint32_t)in[3], (uint32_t)in[4], NULL);
+}
+
+static void ref(const void *cfg, const uint64_t *in, double *out)
+{
+    out[0] = np_ref_hatch(cfg, in[0], in[1], (uint32_t)in[2], (uint32_t)in[3], (uint32_t)in[4], NULL);
+}
+
+/*
+ * 1/2 + 255 n (2^-F + da), n the strokes that can have a nonzero alpha at one
+ * point: the coverage lists' longest per layer (conservative, test_hatch
+ * cover_identical), or every seed when the lists overflow.
+ */
+static double error_bound(const void *cfgv)
+{
+    const np_hatch_cfg *cfg = cfgv;
+    np_hatch_cover cv;
+    unsigned n = cfg->layers * np_hatch_n(cfg);
+    if (np_hatch_cover_build(cfg, &cv) == 0)
+        n = cfg->layers * cv.max_len;
+    np_hatch_cover_free(&cv);
+    return np_hatch_error_bound_lsb(cfg, n, 65536u);
+}
+
+static int pipe_init(np_pipe *p, const void *cfg) { return np_hatch_pipe_init(p, cfg); }
+
+static void sig_set_in(void *sig, const uint64_t *in)
+{
+    np_hatch_sig *s = sig;
+    memset(s, 0, sizeof *s);
+    s->xu = in[0] & NP_MASK(NP_HATCH_X_BITS);
+    s->xv = in[1] & NP_MASK(NP_HATCH_X_BITS);
+    s->tone = (uint32_t)in[2] & 0xFFu;
+    s->pm = (uint32_t)in[3] & (uint32_t)NP_MASK(NP_HATCH_M_BITS);
+    s->om = (uint32_t)in[4] & (uint32_t)NP_MASK(NP_HATCH_M_BITS);
+}
+
+static void sig_get_out(const void *cfg, const void *sig, uint64_t *out)
+{
+    (void)cfg;
+    out[0] = ((const np_hatch_sig *)sig)->out;
+}
+
+/* The first 32 bits of seed i of layer 0 (a point at the seed: r = 0, frac(d) = 1/2 exactly up to 2^-32). */
+static uint64_t seed_word(const np_hatch_cfg *cfg, int v, unsigned i)
+{
+    uint64_t bu, bv;
+    unsigned n = np_hatch_n(cfg);
+    np_hatch_layer_b(cfg, 0, &bu, &bv);
+    uint64_t st = np_hatch_seed_st(np_hatch_rotl(v ? bv : bu, i, n), n);
+    return st + 1u; /* ceil: the exact seed is above the truncation */
+}
+
+/*
+ * Hand-annotated boundary cases: inputs xu, xv, tone, pm, om, each with the
+ * reason it is there.
+ */
+static size_t boundary(const void *cfgv, uint64_t (*in)[NP_UNIT_MAX_FIELDS], size_t max)
+{
+    const np_hatch_cfg *cfg = cfgv;
+    uint64_t s0u = seed_word(cfg, 0, 0), s0v = seed_word(cfg, 1, 0);
+    uint64_t s1u = seed_word(cfg, 0, 1), s1v = seed_word(cfg, 1, 1);
+    const uint64_t t[][5] = {
+        { 0, 0, 0, 0x10000, 0x10000 },                 /* tone 0: white paper whatever the strokes */
+        { 0, 0, 255, 0x10000, 0x10000 },               /* tone 1 at the origin, level m = 0 */
+        { s0u, s0v, 255, 0x10000, 0x10000 },           /* at seed 0: frac(x - s + 1/2) = 1/2, r = 0, profile 1 */
+        { s0u, s0v, 255, 0, 0x10000 },                 /* 2^-m = 0: k = 0, Q = 0, every stroke covers the point */
+        { s0u | (1ull << 32), s0v, 255, 0x10000, 0x10000 }, /* the same seed one tile over (w parity flips on u) */
+        { s1u, s1v, 255, 0x8001, 0x0001 },             /* at seed 1, level seam: m = 1 - 2^-16, 2^-m just over 1/2 */
+        { s1u, s1v, 255, 0x10000, 0x10000 },           /* the next level's side of the seam: m = 0 */
+        { s1u, s1v, 128, 0xB505, 0x8000 },             /* m = 1/2 (2^-1/2 = 0xB505), tone 128 */
+        { 0, 0, 1, 0x10000, 0x10000 },                 /* smallest tone: layer 0 at 4/255 */
+        { 0x80000000, 0x80000000, 63, 0x10000, 0x10000 },   /* tone just below 1/4: layer 1 off */
+        { 0x80000000, 0x80000000, 64, 0x10000, 0x10000 },   /* just above 1/4: layer 1 on */
+        { 0x80000000, 0x80000000, 127, 0x10000, 0x10000 },  /* layer 2's edge */
+        { 0x80000000, 0x80000000, 128, 0x10000, 0x10000 },
+        { 0x80000000, 0x80000000, 191, 0x10000, 0x10000 },  /* layer 3's edge */
+        { 0x80000000, 0x80000000, 192, 0x10000, 0x10000 },
+        { 0x1FFFFFFFF, 0x1FFFFFFFF, 255, 0x10000, 0x10000 }, /* the largest x: wraps to 0 mod 2 */
+        { 0xFFFFFFFF, 0xFFFFFFFF, 255, 0x10000, 0x10000 },  /* just below 1: the tile edge */
+        { 0x100000000, 0x100000000, 255, 0x10000, 0x10000 }, /* exactly 1: odd tile, both parities */
+        { 0x0AAAAAAAA, 0x155555555, 200, 0x10000, 0x10000 }, /* alternating bits */
+        { 0x12345678, 0x87654321, 255, 0x1FFFF, 0x1FFFF },  /* pm and om at their largest: om saturates to 1 */
+        { 0x12345678, 0x87654321, 255, 0x8000, 0 },       /* om = 0: non-surviving strokes vanish */
+        { s0u - 0x7FFFFFFF, s0v, 255, 0x10000, 0x10000 }, /* r near -1/2: the seed's tile edge on u */
+        { s0u + 0x7FFFFFFF, s0v, 255, 0x10000, 0x10000 }, /* r near +1/2 */
+        { 0, 0, 255, 0x8000, 0x10000 },                 /* largest strokes (2^-m = 1/2) at the origin */
+    };
+    size_t n = sizeof t / sizeof t[0];
+    for (size_t k = 0; k < n && k < max; k++)
+        for (unsigned f = 0; f < 5; f++)
+            in[k][f] = t[k][f] & (f < 2 ? NP_MASK(33) : f == 2 ? 0xFFu : NP_MASK(17));
+    return n;
+}
+
+static size_t datapath(const void *cfg, np_op *ops, size_t max) { return np_hatch_datapath(cfg, ops, max); }
+
+/*
+ * The pipe is A then G = layers N / P identical seed stages (the last also
+ * rounds the output): one point per clock, latency 1 + G. The declaration
+ * shows the G seed stages as one row S (np_hatch_datapath).
+ */
+static int timing(const void *cfgv, np_unit_timing *t, char *err, size_t errlen)
+{
+    (void)err;
+    (void)errlen;
+    const np_hatch_cfg *cfg = cfgv;
+    memset(t, 0, sizeof *t);
+    t->latency = np_hatch_depth(cfg);
+    t->throughput = 1.0;
+    snprintf(t->throughput_note, sizeof t->throughput_note, "unrolled: %u seed stages of %u lanes, one point a clock",
+             np_hatch_depth(cfg) - 1u, cfg->lanes);
+    return 0;
+}
+
+/* Traces: stage A's signals, S0's (every S stage is the same datapath), the output. */
+static void trace(const void *cfgv, unsigned k, const void *sigv, np_trace *t, size_t n)
+{
+    const np_hatch_cfg *cfg = cfgv;
+    const np_hatch_sig *s = sigv;
+    unsigned last = np_hatch_depth(cfg) - 1u;
+    for (size_t j = 0; j < n; j++) {
+        const char *g = t[j].signal;
+        if (k == 0u) {
+            if (strcmp(g, "A") == 0)
+                np_trace_add(&t[j], s->A);
+            else if (strcmp(g, "al") == 0)
+                for (unsigned l = 0; l < cfg->layers; l++)
+                    np_trace_add(&t[j], s->al[l]);
+            else if (strcmp(g, "oms") == 0)
+                np_trace_add(&t[j], s->oms);
+            else if (strcmp(g, "k") == 0) {
+                np_trace_add(&t[j], (int64_t)s->ku);
+                np_trace_add(&t[j], (int64_t)s->kv);
+            }
+        }
+        if (k == 1u) {
+            const np_hatch_seed_sig *z = &s->last;
+            if (strcmp(g, "d") == 0) {
+                np_trace_add(&t[j], (int64_t)z->du);
+                np_trace_add(&t[j], (int64_t)z->dv);
+            } else if (strcmp(g, "q") == 0) {
+                np_trace_add(&t[j], z->qu);
+                np_trace_add(&t[j], z->qv);
+            } else if (strcmp(g, "Q") == 0) {
+                np_trace_add(&t[j], z->Qu);
+                np_trace_add(&t[j], z->Qv);
+            } else if (strcmp(g, "profile") == 0)
+                np_trace_add(&t[j], z->profile);
+            else if (strcmp(g, "alpha") == 0)
+                np_trace_add(&t[j], z->alpha);
+            else if (strcmp(g, "c") == 0)
+                np_trace_add(&t[j], s->c);
+        }
+        if (k == last && strcmp(g, "out") == 0)
+            np_trace_add(&t[j], s->out);
+    }
+}
+
+/* Besides the default: both 64-seed sets, one-by-one fading, lanes, one layer, a single angle, other guards. */
+static const char *const conformance_configs[] = { "set=fkm64,fade=onebyone,lanes=4",
+                                                   "set=fkm16,layers=1,rot=1e-4,guard=12,lanes=16",
+                                                   "set=best64,layers=2,rot=0,guard=6,lanes=8", NULL };
+
+const np_unit np_unit_hatch = {
+    .name = "hatch",
+    .summary = "procedural hatching, de Bruijn seeds, 4 layers (Szecsi & Sziranyi, RPTAM)",
+    .keys = keys,
+    .cfg_check = cfg_check,
+    .fields = fields,
+    .eval = eval,
+    .ref = ref,
+    .tolerance_lsb = 1.0,
+    .error_bound_lsb = error_bound,
+    .pipe_init = pipe_init,
+    .sig_set_in = sig_set_in,
+    .sig_get_out = sig_get_out,
+    .boundary = boundary,
+    .datapath = datapath,
+    .trace = trace,
+    .timing = timing,
+    .conformance_configs = conformance_configs,
+};

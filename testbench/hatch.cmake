@@ -1,0 +1,20 @@
+# SPDX-License-Identifier: MIT
+# The hatching unit (seed 003, docs/hatch.md): seed sets, the bit-exact model
+# against the float reference, nesting, coverage lists, zoom, stiff cases.
+np_test_program(test_hatch test_hatch.c)
+np_add_cases(test_hatch hatch
+  seeds_fkm16 seeds_fkm64 seeds_all16 seeds_shipped seeds_random
+  tone_exact alpha_error model_vs_ref guard_bits nesting kat
+  cover_identical16 cover_identical64 cover_rotations cover_table1
+  zoom_identical zoom_sequence stiff_deep_zoom stiff_level_seam stiff_256_blends stiff_tile_corner
+  stiff_frac_half stiff_tone_0_1)
+# The command prints the figures of the design (worst / median / best over all B(4,2)).
+add_test(NAME hatch.cli_seeds_all COMMAND noisepipe seeds --order 2 --all)
+set_tests_properties(hatch.cli_seeds_all PROPERTIES
+  PASS_REGULAR_EXPRESSION "20736 cyclic sequences enumerated.*equal, every one de Bruijn.*worst 0\\.0138, median 0\\.0810, best 0\\.1668 \\(8 sequences at the best\\)")
+add_test(NAME hatch.cli_seeds_bad COMMAND noisepipe seeds --order 2 --digits 0000111122223333)
+set_tests_properties(hatch.cli_seeds_bad PROPERTIES
+  PASS_REGULAR_EXPRESSION "de Bruijn: NO; one seed per cell of the 4x4 grid: NO")
+add_test(NAME hatch.cli_seeds_usage COMMAND noisepipe seeds --order 4)
+set_tests_properties(hatch.cli_seeds_usage PROPERTIES
+  PASS_REGULAR_EXPRESSION "noisepipe seeds: --order '4': expected a decimal number in 1\\.\\.3")
