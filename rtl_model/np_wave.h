@@ -209,9 +209,14 @@ void np_wave_trace(const np_wave_unit *u, unsigned k, const np_wave_sig *s, np_t
 
 /*
  * A test register set drawn from seed (splitmix64): n trains with random
- * wave vectors, phases, frequencies and directions, amplitudes that fill the
- * output range to between 1/2 and 1 of its proven bound, airr <= amp / 4.
+ * wave vectors, phases, frequencies and directions (c drawn independently of
+ * k, 0.75 <= |c| <= 1; train 0's c = (1, 0)), amplitudes that fill the
+ * output range to between 1/2 and 1 of its proven bound, airr =
+ * floor(m (amp + airr) / 16), m in 0..3, so airr <= 3 (amp + airr) / 16
+ * (airr <= 3 amp / 13), width 2^15 .. 2^16 - 1, mlog2 = 3, gcap = 21299.
  * Always accepted by np_wave_regs_check for a configuration with >= n lanes.
+ * docs/wave.md gives the draws bit for bit; the vector files carry the set
+ * as '# reg' header lines (np_unit.regs), which are its specification.
  */
 void np_wave_regs_test(uint64_t seed, unsigned n, np_wave_regs *r);
 
