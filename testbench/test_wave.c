@@ -40,7 +40,24 @@ static int rom(void)
             bad++;
         }
     NP_CHECK(np_wave_rom(0) == 0 && np_wave_rom(1024) == 131072u, "ends");
-    printf("1025 ROM words regenerated from np_math, %u differ\n", bad);
+    /*
+     * The read edge (docs/wave.md): 1/4 and 3/4 turn mirror to x' = 2^30, a = 2^L, f = 0: exactly
+     * +-R[2^L] = +-2^17 (no R[2^L + 1]); 0 and 1/2 turn read R[0] = 0; one LSB either side of a
+     * quarter mirror onto the same x' = 2^30 - 1, so both sides are equal, within 1 LSB of 2^17.
+     */
+    for (unsigned L = NP_WAVE_ROM_MIN; L <= NP_WAVE_ROM_MAX; L++) {
+        const uint32_t q1 = UINT32_C(1) << 30, q3 = UINT32_C(3) << 30;
+        NP_CHECK(np_wave_sin(0, L) == 0 && np_wave_sin(UINT32_C(1) << 31, L) == 0, "L=%u: sin 0, 1/2 turn", L);
+        NP_CHECK(np_wave_sin(q1, L) == 131072 && np_wave_sin(q3, L) == -131072, "L=%u: sin 1/4 = %d, 3/4 = %d", L,
+                 np_wave_sin(q1, L), np_wave_sin(q3, L));
+        NP_CHECK(np_wave_sin(q1 - 1u, L) == np_wave_sin(q1 + 1u, L) && np_wave_sin(q3 - 1u, L) == np_wave_sin(q3 + 1u, L) &&
+                     np_wave_sin(q1 + 1u, L) >= 131071 && np_wave_sin(q3 + 1u, L) <= -131071,
+                 "L=%u: a quarter turn +-1 LSB: %d %d, %d %d", L, np_wave_sin(q1 - 1u, L), np_wave_sin(q1 + 1u, L),
+                 np_wave_sin(q3 - 1u, L), np_wave_sin(q3 + 1u, L));
+        NP_CHECK(np_wave_cos(0, L) == 131072 && np_wave_cos(UINT32_C(1) << 31, L) == -131072, "L=%u: cos 0, 1/2", L);
+    }
+    printf("1025 ROM words regenerated from np_math, %u differ; the read edge: sin(1/4 turn) = R[2^L] = 2^17, "
+           "sin(3/4) = -2^17 for L = 6..10\n", bad);
     return 0;
 }
 
