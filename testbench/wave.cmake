@@ -21,3 +21,8 @@ add_test(NAME wave.cli_render_lit COMMAND sh -c
   $<TARGET_FILE:noisepipe> ${PROJECT_SOURCE_DIR}/vectors/scenes/wave_scenario1.json
   ${PROJECT_SOURCE_DIR}/vectors/scenes/wave_render.json ${CMAKE_CURRENT_BINARY_DIR}/wave_render_lit)
 set_tests_properties(wave.cli_render_lit PROPERTIES PASS_REGULAR_EXPRESSION "lit: .*lit: ")
+# The lit renders pinned: every lit image's SHA-256 against vectors/images/wave_hashes.txt.
+add_test(NAME wave.lit_hashes COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/wave_lit_hashes.sh $<TARGET_FILE:noisepipe>
+  ${PROJECT_SOURCE_DIR}/vectors/scenes ${PROJECT_SOURCE_DIR}/vectors/images/wave_hashes.txt
+  ${CMAKE_CURRENT_BINARY_DIR}/wave_lit_hashes)
+set_tests_properties(wave.lit_hashes PROPERTIES PASS_REGULAR_EXPRESSION "5 lit images identical")
