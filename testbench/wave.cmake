@@ -26,3 +26,19 @@ add_test(NAME wave.lit_hashes COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/wave_lit_ha
   ${PROJECT_SOURCE_DIR}/vectors/scenes ${PROJECT_SOURCE_DIR}/vectors/images/wave_hashes.txt
   ${CMAKE_CURRENT_BINARY_DIR}/wave_lit_hashes)
 set_tests_properties(wave.lit_hashes PROPERTIES PASS_REGULAR_EXPRESSION "5 lit images identical")
+# The gate report of a wave scene: the effects it does not use and its culled boxes left out. Scenario 2
+# as it is (no irregular height, no noise: irr=0 cap=0; 7 boxes visible), with its camera turned away
+# (every box culled: the frame is the 42 plane tests), and with both effects on (nothing left out).
+add_test(NAME wave.report_scene COMMAND sh -c "
+  set -e; np=\"$0\"; sc=\"$1\"; d=\"$2\"; mkdir -p \"$d\"
+  \"$np\" report gates --scene \"$sc\" >\"$d/r.md\"
+  grep -q 'wave. trains=1 irr=0 cap=0 ' \"$d/r.md\"; grep -q '7 visible, 0 culled' \"$d/r.md\"
+  grep -q 'Frame:\\*\\* 36306 cycles' \"$d/r.md\"
+  sed 's/\"target\": \\[512, 0, 520\\]/\"target\": [512, 1800, -1500]/' \"$sc\" >\"$d/away.json\"
+  \"$np\" report gates --scene \"$d/away.json\" >\"$d/a.md\"
+  grep -q '0 visible, 7 culled' \"$d/a.md\"; grep -q 'Frame:\\*\\* 42 cycles' \"$d/a.md\"
+  sed 's/\"irregular\": false, \"noise\": false/\"irregular\": true, \"noise\": true/' \"$sc\" >\"$d/fx.json\"
+  \"$np\" report gates --scene \"$d/fx.json\" >\"$d/f.md\"
+  grep -q 'wave. trains=1 irr=1 cap=1 ' \"$d/f.md\"; grep -q ': 0 left out' \"$d/f.md\"
+  grep -h 'boxes:\\|gates:\\|Frame:' \"$d/r.md\" \"$d/a.md\" \"$d/f.md\""
+  $<TARGET_FILE:noisepipe> ${PROJECT_SOURCE_DIR}/vectors/scenes/wave_scenario2.json ${CMAKE_CURRENT_BINARY_DIR}/wave_report_scene)
