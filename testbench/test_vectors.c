@@ -703,6 +703,16 @@ static int reg_lines(void)
     NP_CHECK(np("device -o '%s' '%s'", at("dev.vec"), WAVE_SET ".vec") == 0, "device on the wave set");
     NP_CHECK(file_has(at("dev.vec"), "\n# reg gcap 5333 u15 Q1.14\n"), "device's file carries them");
     NP_CHECK(np("verify --no-stalls '%s'", at("dev.vec")) == 0, "verify of the device's answers");
+    /* A results file's '// reg' lines must be the vectors' registers too. */
+    NP_CHECK(np("device --format results -o '%s' '%s'", at("r.hex"), WAVE_SET ".vec") == 0, "device --format results");
+    NP_CHECK(file_has(at("r.hex"), "\n// reg tr1.om 094af269 u32 Q0.32\n"), "results header carries the registers");
+    NP_CHECK(np("verify --results '%s' '%s'", at("r.hex"), WAVE_SET ".vec") == 0, "verify --results of the wave set");
+    NP_CHECK(sh("sed 's|^// reg tr1.om 094af269|// reg tr1.om 094af26a|' '%s' >'%s'", at("r.hex"), at("r2.hex")) == 0,
+             "sed");
+    NP_CHECK(np("verify --results '%s' '%s'", at("r2.hex"), WAVE_SET ".vec") == 2, "results of other registers: exit 2");
+    NP_CHECK(file_has(at("err.txt"), "register tr1.om: the results are for 'tr1.om 094af26a u32 Q0.32', the vectors "
+                                     "for 'tr1.om 094af269 u32 Q0.32'"),
+             "names the register");
     reg_case("-e 's/^# reg tr0.kx 86ac1284/# reg tr0.kx 86ac1384/'", WAVE_SET ".vec",
              "bad.vec:5: register tr0.kx: header says 'tr0.kx 86ac1384 s32 Q0.32', but unit wave (trains=2 irr=1 "
              "cap=1 rom_log2=8 regs=1) holds 'tr0.kx 86ac1284 s32 Q0.32'");

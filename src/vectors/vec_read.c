@@ -523,7 +523,7 @@ static int results_packed(np_vec_results *rr, const char *s, np_vec_rec *rec)
 /*
  * A comment line of a results file. The header that `device --format
  * results` writes ("// unit U", "// config ...", "// seed S", "// level L",
- * "// count N") must describe the vectors being checked: results of another
+ * "// count N", "// reg NAME HEX FORMAT") must describe the vectors being checked: results of another
  * unit, configuration or vector set are refused, naming the line. Other
  * comments, and results files without a header, are accepted.
  */
@@ -540,6 +540,21 @@ static int results_header_line(np_vec_results *rr, const char *s)
             key = keys[k];
             val = s + strlen(keys[k]);
         }
+    if (!key && strncmp(s, "reg ", 4) == 0) {
+        /* A register line (np_unit.regs): the register of that name must hold that value and format. */
+        char regs[NP_UNIT_MAX_REGS][96], got[96];
+        unsigned n = np__vec_reg_lines(h, regs, NP_UNIT_MAX_REGS);
+        normalize(got, sizeof got, s + 4);
+        size_t nl = strcspn(got, " ");
+        for (unsigned k = 0; k < n; k++)
+            if (strncmp(regs[k], got, nl) == 0 && regs[k][nl] == ' ') {
+                if (strcmp(regs[k], got) == 0)
+                    return 0;
+                return lerr(&rr->L, "register %.*s: the results are for '%s', the vectors for '%s': results of "
+                            "other registers", (int)nl, got, got, regs[k]);
+            }
+        return lerr(&rr->L, "reg: '%s' is not a register of unit %s (%s)", got, h->unit->name, h->cfg_text);
+    }
     if (!key)
         return 0;
     if (strcmp(key, "unit ") == 0)
