@@ -598,7 +598,7 @@ void np_wave_regs_test(uint64_t seed, unsigned n, np_wave_regs *r)
     int64_t sum_lsb = (room << NP_WAVE_GAIN_FRAC) / r->gcap;        /* sum (amp + airr) */
     for (unsigned k = 0; k < n; k++) {
         np_wave_train *t = &r->tr[k];
-        int64_t share = sum_lsb * (int64_t)wt[k] / (int64_t)wsum; /* amp + airr, airr = amp / 4 at most */
+        int64_t share = sum_lsb * (int64_t)wt[k] / (int64_t)wsum; /* amp + airr; airr <= 3/16 of it (3 amp / 13) */
         int64_t airr = (int64_t)(splitmix(&x) >> 62) * share / 16;  /* 0 .. 3/16 of the share */
         t->amp = (uint16_t)(share - airr);
         t->airr = (uint16_t)airr;
@@ -608,7 +608,7 @@ void np_wave_regs_test(uint64_t seed, unsigned n, np_wave_regs *r)
         t->om = (uint32_t)splitmix(&x);
         direction(&x, &t->cx, &t->cz);
     }
-    /* One train points along an axis, so that sa cx reaches its bound. */
+    /* Train 0 points along x, c = (1, 0), so that sa cx reaches its bound. */
     r->tr[0].cx = (int16_t)(1 << NP_WAVE_DIR_FRAC);
     r->tr[0].cz = 0;
 }

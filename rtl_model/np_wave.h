@@ -28,9 +28,11 @@
  *   om       u32 Q0.32    angular frequency in turns per frame (omega * dt / 2pi mod 1)
  *   amp      u15 Q5.10    amplitude A, metres
  *   airr     u15 Q5.10    irregular height amplitude a_k (eq. (8)); airr <= amp (refused otherwise)
- *   cx, cz   s16 Q1.14    direction k/|k| (the horizontal displacement's), |c| <= 1
+ *   cx, cz   s16 Q1.14    direction of the horizontal displacement, any c with |c| <= 1: a
+ *                         scene's host sets k/|k|; the test sets (np_wave_regs_test) draw c
+ *                         independently of k (0.75 <= |c| <= 1; train 0's c = (1, 0))
  * and for the box:
- *   width    u16          V, rays across the box
+ *   width    u16          V, rays across the box (the test sets: 2^15 .. 2^16 - 1)
  *   mlog2    u3           smoothing margin M = 2^mlog2 rays (PIN 8: mlog2 = 3)
  *   pu,pv,pt u32 Q0.32    eq. (8)'s phases: sin(pu u + pt t) sin(pv v), turns per step / frame
  *   omc      u32 Q0.32    eq. (9)'s rate: phase r * omc * t, turns
@@ -56,10 +58,14 @@
  *
  * sin from the ROM (np_wave_sin). The ROM holds R[a] = round(2^17 sin(2 pi a / 2^(L+2))),
  * a = 0 .. 2^L - 1 (L = rom_log2, default 8: 2^8 x 18 bits), R[2^L] = 2^17 is a constant.
- * For a phase th: quadrant q = th[31:30], x = th[29:0]; quadrants 1 and 3 read
- * the mirror 2^30 - x (exact); a = x' >> (30 - L), f = the next NP_WAVE_IFRAC
- * bits of x' (the bits below are dropped), value R[a] + round((R[a+1] - R[a]) f / 2^IFRAC),
- * negated in quadrants 2 and 3. cos th = sin(th + 2^30).
+ * For a phase th: quadrant q = th[31:30], x = th[29:0]; quadrants 0 and 2
+ * read x' = x, quadrants 1 and 3 the mirror x' = 2^30 - x (exact, x' in
+ * [0, 2^30]); a = x' >> (30 - L), f = the next NP_WAVE_IFRAC bits of x' (the
+ * bits below are dropped), value R[a] + round((R[a+1] - R[a]) f / 2^IFRAC),
+ * negated in quadrants 2 and 3. cos th = sin(th + 2^30). The read edge:
+ * x' = 2^30 (quadrants 1 and 3 with x = 0: th = 1/4 or 3/4 turn) gives
+ * a = 2^L, f = 0 and exactly R[2^L] = 2^17; R[2^L + 1] is never read (a's
+ * successor is a itself there).
  *
  * Error of sin (np_wave_sin_bound, asserted by wave.sincos_bound over every
  * ROM interval's worst points and 2^24 phases): ROM rounding 2^-18, the
@@ -209,9 +215,14 @@ void np_wave_trace(const np_wave_unit *u, unsigned k, const np_wave_sig *s, np_t
 
 /*
  * A test register set drawn from seed (splitmix64): n trains with random
- * wave vectors, phases, frequencies and directions, amplitudes that fill the
- * output range to between 1/2 and 1 of its proven bound, airr <= amp / 4.
+ * wave vectors, phases, frequencies and directions (c drawn independently of
+ * k, 0.75 <= |c| <= 1; train 0's c = (1, 0)), amplitudes that fill the
+ * output range to between 1/2 and 1 of its proven bound, airr =
+ * floor(m (amp + airr) / 16), m in 0..3, so airr <= 3 (amp + airr) / 16
+ * (airr <= 3 amp / 13), width 2^15 .. 2^16 - 1, mlog2 = 3, gcap = 21299.
  * Always accepted by np_wave_regs_check for a configuration with >= n lanes.
+ * docs/wave.md gives the draws bit for bit; the vector files carry the set
+ * as '# reg' header lines (np_unit.regs), which are its specification.
  */
 void np_wave_regs_test(uint64_t seed, unsigned n, np_wave_regs *r);
 

@@ -672,6 +672,64 @@ BAD_CASE(bad_missing_file)
 BAD_CASE(bad_empty_file)
 BAD_CASE(bad_truncated_file)
 
+/*
+ * The '# reg' header lines (a unit with a register block: wave): the
+ * checked-in set carries them, and a value edited, a line dropped, or a line
+ * in a unit without registers is bad input (exit 2) naming the line and the
+ * register, in verify and device alike.
+ */
+#define WAVE_SET NP_VEC_DIR "/wave/wave-l1-seed1"
+static int reg_case(const char *sed, const char *src, const char *want)
+{
+    NP_CHECK(sh("sed %s '%s' >'%s'", sed, src, at("bad.vec")) == 0, "sed failed");
+    int rc = np("verify '%s'", at("bad.vec"));
+    NP_CHECK(rc == 2, "verify (sed %s): exit %d, expected 2", sed, rc);
+    NP_CHECK(file_has(at("err.txt"), want), "verify's message");
+    NP_CHECK(file_lacks(at("out.txt"), "In "), "no verdict on bad input");
+    rc = np("device '%s'", at("bad.vec"));
+    NP_CHECK(rc == 2, "device (sed %s): exit %d, expected 2", sed, rc);
+    NP_CHECK(file_has(at("err.txt"), want), "device's message");
+    printf("sed %s: exit 2 with '%s'\n", sed, want);
+    return 0;
+}
+
+static int reg_lines(void)
+{
+    case_dir("reg_lines");
+    NP_CHECK(file_has(WAVE_SET ".vec", "\n# reg tr0.kx 86ac1284 s32 Q0.32\n"), "the text set carries the registers");
+    NP_CHECK(file_has(WAVE_SET ".memh", "\n// reg tr0.kx 86ac1284 s32 Q0.32\n"), "the $readmemh set carries them");
+    NP_CHECK(file_has(WAVE_SET ".memh", "\n// reg gcap 5333 u15 Q1.14\n"), "down to the last");
+    /* The device's output keeps them, and verify reads it back. */
+    NP_CHECK(np("device -o '%s' '%s'", at("dev.vec"), WAVE_SET ".vec") == 0, "device on the wave set");
+    NP_CHECK(file_has(at("dev.vec"), "\n# reg gcap 5333 u15 Q1.14\n"), "device's file carries them");
+    NP_CHECK(np("verify --no-stalls '%s'", at("dev.vec")) == 0, "verify of the device's answers");
+    /* A results file's '// reg' lines must be the vectors' registers too. */
+    NP_CHECK(np("device --format results -o '%s' '%s'", at("r.hex"), WAVE_SET ".vec") == 0, "device --format results");
+    NP_CHECK(file_has(at("r.hex"), "\n// reg tr1.om 094af269 u32 Q0.32\n"), "results header carries the registers");
+    NP_CHECK(np("verify --results '%s' '%s'", at("r.hex"), WAVE_SET ".vec") == 0, "verify --results of the wave set");
+    NP_CHECK(sh("sed 's|^// reg tr1.om 094af269|// reg tr1.om 094af26a|' '%s' >'%s'", at("r.hex"), at("r2.hex")) == 0,
+             "sed");
+    NP_CHECK(np("verify --results '%s' '%s'", at("r2.hex"), WAVE_SET ".vec") == 2, "results of other registers: exit 2");
+    NP_CHECK(file_has(at("err.txt"), "register tr1.om: the results are for 'tr1.om 094af26a u32 Q0.32', the vectors "
+                                     "for 'tr1.om 094af269 u32 Q0.32'"),
+             "names the register");
+    reg_case("-e 's/^# reg tr0.kx 86ac1284/# reg tr0.kx 86ac1384/'", WAVE_SET ".vec",
+             "bad.vec:5: register tr0.kx: header says 'tr0.kx 86ac1384 s32 Q0.32', but unit wave (trains=2 irr=1 "
+             "cap=1 rom_log2=8 regs=1) holds 'tr0.kx 86ac1284 s32 Q0.32'");
+    reg_case("-e 's/^# reg tr1.cz 37c3 s16 Q1.14/# reg tr1.cz 37c3 s16 Q2.13/'", WAVE_SET ".vec",
+             "bad.vec:20: register tr1.cz: header says 'tr1.cz 37c3 s16 Q2.13'");
+    reg_case("-e '/^# reg gcap/d'", WAVE_SET ".vec",
+             "bad.vec:27: missing header line '# reg gcap 5333 u15 Q1.14' (unit wave (trains=2 irr=1 cap=1 rom_log2=8 "
+             "regs=1) has 25 registers; the file gives 24)");
+    reg_case("-e '/^# reg/d'", WAVE_SET ".vec", "bad.vec:3: missing header line '# reg n 2 u3'");
+    reg_case("-e 's/^# reg n 2 u3/# reg n 2 u3\\n# reg n 2 u3/'", WAVE_SET ".vec",
+             "bad.vec:5: register tr0.kx: header says 'n 2 u3'");
+    reg_case("-e 's/^# seed 1/# reg k 1 u1/'", CHECKED_IN ".vec",
+             "bad.vec:4: reg: 'k 1 u1' is not a register of unit classic3 (out_bits=8 s_frac=12 lerp_frac=11), which "
+             "has no register block");
+    return 0;
+}
+
 /* A failed or refused write leaves no file behind. */
 static int atomic_output(void)
 {
@@ -746,6 +804,7 @@ static const np_test_case cases[] = {
     { "bad_missing_file", bad_missing_file },
     { "bad_empty_file", bad_empty_file },
     { "bad_truncated_file", bad_truncated_file },
+    { "reg_lines", reg_lines },
     { "atomic_output", atomic_output },
     { "level2_million_stalls", level2_million_stalls },
     { NULL, NULL },

@@ -40,7 +40,24 @@ static int rom(void)
             bad++;
         }
     NP_CHECK(np_wave_rom(0) == 0 && np_wave_rom(1024) == 131072u, "ends");
-    printf("1025 ROM words regenerated from np_math, %u differ\n", bad);
+    /*
+     * The read edge (docs/wave.md): 1/4 and 3/4 turn mirror to x' = 2^30, a = 2^L, f = 0: exactly
+     * +-R[2^L] = +-2^17 (no R[2^L + 1]); 0 and 1/2 turn read R[0] = 0; one LSB either side of a
+     * quarter mirror onto the same x' = 2^30 - 1, so both sides are equal, within 1 LSB of 2^17.
+     */
+    for (unsigned L = NP_WAVE_ROM_MIN; L <= NP_WAVE_ROM_MAX; L++) {
+        const uint32_t q1 = UINT32_C(1) << 30, q3 = UINT32_C(3) << 30;
+        NP_CHECK(np_wave_sin(0, L) == 0 && np_wave_sin(UINT32_C(1) << 31, L) == 0, "L=%u: sin 0, 1/2 turn", L);
+        NP_CHECK(np_wave_sin(q1, L) == 131072 && np_wave_sin(q3, L) == -131072, "L=%u: sin 1/4 = %d, 3/4 = %d", L,
+                 np_wave_sin(q1, L), np_wave_sin(q3, L));
+        NP_CHECK(np_wave_sin(q1 - 1u, L) == np_wave_sin(q1 + 1u, L) && np_wave_sin(q3 - 1u, L) == np_wave_sin(q3 + 1u, L) &&
+                     np_wave_sin(q1 + 1u, L) >= 131071 && np_wave_sin(q3 + 1u, L) <= -131071,
+                 "L=%u: a quarter turn +-1 LSB: %d %d, %d %d", L, np_wave_sin(q1 - 1u, L), np_wave_sin(q1 + 1u, L),
+                 np_wave_sin(q3 - 1u, L), np_wave_sin(q3 + 1u, L));
+        NP_CHECK(np_wave_cos(0, L) == 131072 && np_wave_cos(UINT32_C(1) << 31, L) == -131072, "L=%u: cos 0, 1/2", L);
+    }
+    printf("1025 ROM words regenerated from np_math, %u differ; the read edge: sin(1/4 turn) = R[2^L] = 2^17, "
+           "sin(3/4) = -2^17 for L = 6..10\n", bad);
     return 0;
 }
 
@@ -957,6 +974,104 @@ static int scene_refusals(void)
     return 0;
 }
 
+/*
+ * The checked-in level-1 set's '# reg' header lines are the register set:
+ * read as an RTL testbench would (names, hex of the declared width, signed
+ * fields sign-extended), they equal np_wave_regs_test(1, 2) register for
+ * register, and the model loaded from them alone gives every vector's
+ * expected outputs.
+ */
+static int vector_regs(void)
+{
+    const char *path = NP_WAVE_VECTORS "/wave-l1-seed1.vec";
+    FILE *f = fopen(path, "r");
+    NP_CHECK(f != NULL, "cannot open %s", path);
+    if (!f)
+        return 0;
+    np_wave_unit u;
+    memset(&u, 0, sizeof u);
+    u.c = np_wave_cfg_default();
+    char line[512];
+    unsigned n_regs = 0, n_vec = 0, bad = 0, cfg_seen = 0;
+    while (fgets(line, sizeof line, f)) {
+        char name[32], fmt1[16];
+        unsigned long long v;
+        if (strncmp(line, "# config ", 9) == 0) {
+            cfg_seen = 1;
+            NP_CHECK(strcmp(line, "# config trains=2 irr=1 cap=1 rom_log2=8 regs=1\n") == 0, "config: %s", line);
+            continue;
+        }
+        if (sscanf(line, "# reg %31s %llx %15s", name, &v, fmt1) == 3) {
+            /* The format's sign and width: sN sign-extends. */
+            unsigned bits = (unsigned)atoi(fmt1 + 1);
+            int64_t x = (int64_t)v;
+            if (fmt1[0] == 's' && bits < 64 && (v >> (bits - 1u)) & 1u)
+                x -= (int64_t)1 << bits;
+            unsigned k = 0;
+            const char *fld = name;
+            if (name[0] == 't' && name[1] == 'r' && name[3] == '.') {
+                k = (unsigned)(name[2] - '0');
+                fld = name + 4;
+            }
+            np_wave_train *t = &u.r.tr[k < NP_WAVE_MAX_TRAINS ? k : 0];
+            if (!strcmp(fld, "kx")) t->kx = (int32_t)x;
+            else if (!strcmp(fld, "kz")) t->kz = (int32_t)x;
+            else if (!strcmp(fld, "phi")) t->phi = (uint32_t)x;
+            else if (!strcmp(fld, "om")) t->om = (uint32_t)x;
+            else if (!strcmp(fld, "amp")) t->amp = (uint16_t)x;
+            else if (!strcmp(fld, "airr")) t->airr = (uint16_t)x;
+            else if (!strcmp(fld, "cx")) t->cx = (int16_t)x;
+            else if (!strcmp(fld, "cz")) t->cz = (int16_t)x;
+            else if (!strcmp(name, "n")) u.r.n = (unsigned)x;
+            else if (!strcmp(name, "width")) u.r.width = (uint16_t)x;
+            else if (!strcmp(name, "mlog2")) u.r.mlog2 = (unsigned)x;
+            else if (!strcmp(name, "pu")) u.r.pu = (uint32_t)x;
+            else if (!strcmp(name, "pv")) u.r.pv = (uint32_t)x;
+            else if (!strcmp(name, "pt")) u.r.pt = (uint32_t)x;
+            else if (!strcmp(name, "omc")) u.r.omc = (uint32_t)x;
+            else if (!strcmp(name, "b")) u.r.b = (uint16_t)x;
+            else if (!strcmp(name, "gcap")) u.r.gcap = (uint16_t)x;
+            else
+                NP_CHECK(0, "unknown register %s", name);
+            n_regs++;
+            continue;
+        }
+        if (line[0] == '#')
+            continue;
+        unsigned i, j, uu, vv, r, g, y, dx, dz;
+        unsigned long t, ph;
+        if (sscanf(line, "%x %x %lx %lx %x %x %x %x %x %x %x", &i, &j, &t, &ph, &uu, &vv, &r, &g, &y, &dx, &dz) != 11) {
+            NP_CHECK(0, "bad vector line %s", line);
+            continue;
+        }
+        np_wave_in in = { (uint16_t)i, (uint16_t)j, (uint32_t)t, (uint32_t)ph, (uint16_t)uu, (uint16_t)vv, (uint8_t)r,
+                          (uint16_t)g };
+        np_wave_out o;
+        np_wave_eval(&u, &in, &o);
+        if ((uint16_t)o.y != y || (uint16_t)o.dx != dx || (uint16_t)o.dz != dz)
+            bad++;
+        n_vec++;
+    }
+    fclose(f);
+    np_wave_regs w;
+    np_wave_regs_test(1, 2, &w);
+    NP_CHECK(cfg_seen && n_regs == 1u + 8u * 2u + 8u, "%u register lines, expected 25", n_regs);
+    NP_CHECK(u.r.n == w.n && u.r.width == w.width && u.r.mlog2 == w.mlog2 && u.r.pu == w.pu && u.r.pv == w.pv &&
+                 u.r.pt == w.pt && u.r.omc == w.omc && u.r.b == w.b && u.r.gcap == w.gcap,
+             "the box's registers differ from np_wave_regs_test(1, 2)");
+    for (unsigned k = 0; k < 2; k++) {
+        const np_wave_train *a = &u.r.tr[k], *b = &w.tr[k];
+        NP_CHECK(a->kx == b->kx && a->kz == b->kz && a->phi == b->phi && a->om == b->om && a->amp == b->amp &&
+                     a->airr == b->airr && a->cx == b->cx && a->cz == b->cz,
+                 "train %u's registers differ from np_wave_regs_test(1, 2)", k);
+    }
+    NP_CHECK(np_wave_regs_check(&u.c, &u.r) == NULL, "the header's registers are refused");
+    NP_CHECK(n_vec == 2472 && bad == 0, "%u of %u vectors differ from the model loaded from the header", bad, n_vec);
+    printf("%s: %u registers from the header = np_wave_regs_test(1, 2); the model on them gives %u of %u vectors' "
+           "outputs\n", path, n_regs, n_vec - bad, n_vec);
+    return 0;
+}
+
 static const np_test_case cases[] = {
     { "rom", rom },
     { "sincos_bound", sincos_bound },
@@ -979,6 +1094,7 @@ static const np_test_case cases[] = {
     { "overlap", overlap },
     { "land", land },
     { "scene_refusals", scene_refusals },
+    { "vector_regs", vector_regs },
     { NULL, NULL },
 };
 NP_TEST_MAIN(cases)

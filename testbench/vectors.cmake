@@ -16,7 +16,7 @@ set(NP_VECTORS_CASES
   determinism accuracy_tolerance_fails errors_limit model_mismatch_caught
   bad_truncated_line bad_field_width bad_non_hex bad_too_many_fields bad_value_range
   bad_unknown_unit bad_config bad_config_missing_key bad_config_key_twice bad_config_hex bad_field_decl bad_missing_header bad_missing_file
-  bad_empty_file bad_truncated_file atomic_output
+  bad_empty_file bad_truncated_file reg_lines atomic_output
   level2_million_stalls)
 np_add_cases(test_vectors vectors ${NP_VECTORS_CASES})
 set_tests_properties(vectors.level2_million_stalls PROPERTIES TIMEOUT 120)

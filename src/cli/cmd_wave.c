@@ -286,9 +286,13 @@ static int render_lit(const char *tpl, const char *dir, const char *name, uint32
         rc = np_image_write_png(path, sc.width, sc.height, rgb, err, sizeof err);
         if (rc != 0)
             np_err("wave", "%s", err);
-        else
-            printf("    lit: %s (%u triangles, %llu shading cycles on texel)\n", path, sc.n_prims,
-                   (unsigned long long)cost.cycles);
+        else {
+            /* The image's SHA-256 as a binary PPM (np_image_hash, as vectors/images/ keeps them): wave.lit_hashes. */
+            char hex[65];
+            np_image_hash(sc.width, sc.height, rgb, hex);
+            printf("    lit: %s (%u triangles, %llu shading cycles on texel) sha256 %s\n", path, sc.n_prims,
+                   (unsigned long long)cost.cycles, hex);
+        }
     }
     free(rgb);
     np_gbuf_free(&g);

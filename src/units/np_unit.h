@@ -32,6 +32,7 @@ struct np_unit_timing;
 struct np_span_engine;
 struct np_tex_regs;
 struct np_rng;
+struct np_unit_reg;
 
 /*
  * A span unit's engine (rtl_model/np_span.h) as the registry shows it: the
@@ -266,7 +267,29 @@ typedef struct np_unit {
      * runs its checks besides the default (narrow, wide, parts left out).
      */
     const char *const *conformance_configs;
+    /*
+     * Optional (NULL: the unit has no register block beyond its keys): the
+     * registers configuration cfg holds (a unit whose keys select a register
+     * set, e.g. wave's `regs`), in the unit's order: writes up to max, returns
+     * the full count. A vector file carries them as '# reg NAME HEX FORMAT'
+     * header lines (docs/vectors.md), which the reader checks against cfg, so
+     * an RTL testbench can load the registers from the file.
+     */
+    size_t (*regs)(const void *cfg, struct np_unit_reg *r, size_t max);
 } np_unit;
+
+/* One register of a unit's register block (np_unit.regs). */
+typedef struct np_unit_reg {
+    char name[16];   /* "tr0.kx" */
+    unsigned bits;   /* 1..64 */
+    uint64_t value;  /* the register's bits, masked to its width (two's complement if signed) */
+    char format[24]; /* "s32 Q0.32" */
+} np_unit_reg;
+
+enum { NP_UNIT_MAX_REGS = 64 };
+
+/* Fill one register description (value masked to bits). */
+void np_unit_set_reg(np_unit_reg *r, const char *name, unsigned bits, uint64_t value, const char *fmt);
 
 /* A set-up the unit stalls for (np_unit_timing). */
 typedef struct np_unit_setup {

@@ -196,6 +196,43 @@ static size_t boundary(const void *cfg, uint64_t (*in)[NP_UNIT_MAX_FIELDS], size
     return n;
 }
 
+/*
+ * The register set the block holds, as the vector files' '# reg' lines carry
+ * it (np_unit.regs): n, then per train k < n tr<k>.kx kz phi om amp airr cx
+ * cz, then the box's width mlog2 pu pv pt omc b gcap (formats of np_wave.h).
+ */
+static size_t regs(const void *cfg, np_unit_reg *out, size_t max)
+{
+    const np_wave_regs *r = &((const wave_block *)cfg)->u.r;
+    np_unit_reg g[NP_UNIT_MAX_REGS];
+    size_t n = 0;
+    char name[16];
+    np_unit_set_reg(&g[n++], "n", 3, r->n, "u3");
+    for (unsigned k = 0; k < r->n && k < NP_WAVE_MAX_TRAINS; k++) {
+        const np_wave_train *t = &r->tr[k];
+        static const char *const nm[] = { "kx", "kz", "phi", "om", "amp", "airr", "cx", "cz" };
+        const uint64_t v[] = { (uint64_t)(int64_t)t->kx, (uint64_t)(int64_t)t->kz, t->phi, t->om, t->amp,
+                               t->airr, (uint64_t)(int64_t)t->cx, (uint64_t)(int64_t)t->cz };
+        static const unsigned bits[] = { 32, 32, 32, 32, 15, 15, 16, 16 };
+        static const char *const fmt[] = { "s32 Q0.32", "s32 Q0.32", "u32 Q0.32", "u32 Q0.32",
+                                           "u15 Q5.10", "u15 Q5.10", "s16 Q1.14", "s16 Q1.14" };
+        for (unsigned m = 0; m < 8; m++) {
+            snprintf(name, sizeof name, "tr%u.%s", k, nm[m]);
+            np_unit_set_reg(&g[n++], name, bits[m], v[m], fmt[m]);
+        }
+    }
+    np_unit_set_reg(&g[n++], "width", 16, r->width, "u16");
+    np_unit_set_reg(&g[n++], "mlog2", 3, r->mlog2, "u3");
+    np_unit_set_reg(&g[n++], "pu", 32, r->pu, "u32 Q0.32");
+    np_unit_set_reg(&g[n++], "pv", 32, r->pv, "u32 Q0.32");
+    np_unit_set_reg(&g[n++], "pt", 32, r->pt, "u32 Q0.32");
+    np_unit_set_reg(&g[n++], "omc", 32, r->omc, "u32 Q0.32");
+    np_unit_set_reg(&g[n++], "b", 15, r->b, "u15 Q5.10");
+    np_unit_set_reg(&g[n++], "gcap", 15, r->gcap, "u15 Q1.14");
+    memcpy(out, g, (n < max ? n : max) * sizeof *out);
+    return n;
+}
+
 static const char *const conformance_configs[] = { "trains=1,irr=0,cap=0", "trains=4,regs=7", "rom_log2=6",
                                                    "rom_log2=10,trains=3,regs=2", NULL };
 
@@ -217,4 +254,5 @@ const np_unit np_unit_wave = {
     .datapath = datapath,
     .trace = trace,
     .conformance_configs = conformance_configs,
+    .regs = regs,
 };

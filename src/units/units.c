@@ -317,3 +317,11 @@ void np_unit_set_field(np_field *f, const char *name, unsigned bits, int sgn, un
     f->frac = frac;
     snprintf(f->format, sizeof f->format, "%s", fmt);
 }
+
+void np_unit_set_reg(np_unit_reg *r, const char *name, unsigned bits, uint64_t value, const char *fmt)
+{
+    snprintf(r->name, sizeof r->name, "%s", name);
+    r->bits = bits;
+    r->value = bits >= 64u ? value : value & ((UINT64_C(1) << bits) - 1u);
+    snprintf(r->format, sizeof r->format, "%s", fmt);
+}

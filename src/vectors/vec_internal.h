@@ -20,6 +20,12 @@ extern const char np__vec_hexdigit[16];
 unsigned np__vec_hex_digits(unsigned bits);
 /* "NAME KIND BITS FORMAT": a column as a "# field" header line declares it. */
 void np__vec_col_decl(const np_vec_col *c, char *buf, size_t len);
+/*
+ * The unit's registers for the header's configuration (np_unit.regs) as
+ * '# reg' lines declare them, "NAME HEX FORMAT", into lines[0..max) of
+ * len bytes each; returns the count (0: no register block).
+ */
+unsigned np__vec_reg_lines(const np_vec_header *h, char (*lines)[96], unsigned max);
 unsigned np__vec_sum_bits(const unsigned *bits, unsigned n);
 /*
  * Packed words: {vals[0], ..., vals[n-1]} (vals[k] is bits[k] wide, vals[0]

@@ -97,6 +97,22 @@ void np__vec_col_decl(const np_vec_col *c, char *buf, size_t len)
     snprintf(buf, len, "%.23s %s %u %.31s", c->name, kind_name[c->kind], c->bits, c->format);
 }
 
+unsigned np__vec_reg_lines(const np_vec_header *h, char (*lines)[96], unsigned max)
+{
+    np_unit_reg regs[NP_UNIT_MAX_REGS];
+    if (!h->unit->regs)
+        return 0;
+    size_t n = h->unit->regs(&h->cfg, regs, NP_UNIT_MAX_REGS);
+    if (n > NP_UNIT_MAX_REGS)
+        n = NP_UNIT_MAX_REGS;
+    if (n > max)
+        n = max;
+    for (size_t k = 0; k < n; k++)
+        snprintf(lines[k], 96, "%.15s %0*llx %.23s", regs[k].name, (int)np__vec_hex_digits(regs[k].bits),
+                 (unsigned long long)regs[k].value, regs[k].format);
+    return (unsigned)n;
+}
+
 /* ------------------------------------------------------------------------- */
 /* Packed words: fields concatenated MSB-first, as $readmemh and .coe hold them. */
 

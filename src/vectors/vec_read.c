@@ -246,6 +246,8 @@ typedef struct hdr_state {
     hdr_line version, unit, config, seed, level, count;
     hdr_line field[NP_VEC_MAX_COLS + 1];
     unsigned n_field;
+    hdr_line reg[NP_UNIT_MAX_REGS + 1];
+    unsigned n_reg;
     uint64_t first_line; /* first non-blank line */
     int first_slashes;   /* it starts with "//": a $readmemh or results file */
     int first_coe;       /* it starts with "memory_initialization_radix" or a ";" comment: a Xilinx .coe file */
@@ -296,6 +298,14 @@ static int header_line(np_vec_reader *r, hdr_state *hs, const char *s)
         hdr_line *f = &hs->field[hs->n_field++];
         f->line = r->L.lineno;
         normalize(f->text, sizeof f->text, rest);
+        return 0;
+    }
+    if (strcmp(key, "reg") == 0) {
+        if (hs->n_reg == NP_UNIT_MAX_REGS + 1)
+            return lerr(&r->L, "too many '# reg' lines (at most %u)", NP_UNIT_MAX_REGS);
+        hdr_line *g = &hs->reg[hs->n_reg++];
+        g->line = r->L.lineno;
+        normalize(g->text, sizeof g->text, rest);
         return 0;
     }
     for (unsigned k = 0; k < sizeof keys / sizeof keys[0]; k++) {
@@ -351,6 +361,33 @@ static int header_fields(np_vec_reader *r, const hdr_state *hs, uint64_t at)
     return 0;
 }
 
+/*
+ * Check the '# reg' lines against the registers the configuration holds
+ * (np_unit.regs): each one, in order, exactly as the writer prints it, and
+ * none missing or extra, so the registers a testbench loads from the file are
+ * the ones the expected outputs were computed with.
+ */
+static int header_regs(np_vec_reader *r, const hdr_state *hs)
+{
+    char want[NP_UNIT_MAX_REGS][96];
+    unsigned n = np__vec_reg_lines(&r->h, want, NP_UNIT_MAX_REGS);
+    for (unsigned k = 0; k < n && k < hs->n_reg; k++)
+        if (strcmp(hs->reg[k].text, want[k]) != 0) {
+            const char *sp = strchr(want[k], ' ');
+            return hdr_err(r, hs->reg[k].line, "register %.*s: header says '%s', but unit %s (%s) holds '%s'",
+                           (int)(sp ? sp - want[k] : (ptrdiff_t)strlen(want[k])), want[k], hs->reg[k].text,
+                           r->h.unit->name, r->h.cfg_text, want[k]);
+        }
+    if (hs->n_reg > n)
+        return hdr_err(r, hs->reg[n].line, "reg: '%s' is not a register of unit %s (%s)%s", hs->reg[n].text,
+                       r->h.unit->name, r->h.cfg_text, n ? "" : ", which has no register block");
+    if (hs->n_reg < n)
+        return hdr_err(r, hs->n_reg ? hs->reg[hs->n_reg - 1].line : hs->config.line,
+                       "missing header line '# reg %s' (unit %s (%s) has %u registers; the file gives %u)",
+                       want[hs->n_reg], r->h.unit->name, r->h.cfg_text, n, hs->n_reg);
+    return 0;
+}
+
 /* Resolve what the header lines say: unit, configuration, count, seed, level, fields. */
 static int header_finish(np_vec_reader *r, const hdr_state *hs, uint64_t at)
 {
@@ -397,6 +434,8 @@ static int header_finish(np_vec_reader *r, const hdr_state *hs, uint64_t at)
             return hdr_err(r, hs->level.line, "bad level '%s' (1 or 2)", hs->level.text);
         r->h.level = (unsigned)lv;
     }
+    if (header_regs(r, hs) != 0)
+        return -1;
     return header_fields(r, hs, at);
 }
 
@@ -519,7 +558,7 @@ static int results_packed(np_vec_results *rr, const char *s, np_vec_rec *rec)
 /*
  * A comment line of a results file. The header that `device --format
  * results` writes ("// unit U", "// config ...", "// seed S", "// level L",
- * "// count N") must describe the vectors being checked: results of another
+ * "// count N", "// reg NAME HEX FORMAT") must describe the vectors being checked: results of another
  * unit, configuration or vector set are refused, naming the line. Other
  * comments, and results files without a header, are accepted.
  */
@@ -536,6 +575,21 @@ static int results_header_line(np_vec_results *rr, const char *s)
             key = keys[k];
             val = s + strlen(keys[k]);
         }
+    if (!key && strncmp(s, "reg ", 4) == 0) {
+        /* A register line (np_unit.regs): the register of that name must hold that value and format. */
+        char regs[NP_UNIT_MAX_REGS][96], got[96];
+        unsigned n = np__vec_reg_lines(h, regs, NP_UNIT_MAX_REGS);
+        normalize(got, sizeof got, s + 4);
+        size_t nl = strcspn(got, " ");
+        for (unsigned k = 0; k < n; k++)
+            if (strncmp(regs[k], got, nl) == 0 && regs[k][nl] == ' ') {
+                if (strcmp(regs[k], got) == 0)
+                    return 0;
+                return lerr(&rr->L, "register %.*s: the results are for '%s', the vectors for '%s': results of "
+                            "other registers", (int)nl, got, got, regs[k]);
+            }
+        return lerr(&rr->L, "reg: '%s' is not a register of unit %s (%s)", got, h->unit->name, h->cfg_text);
+    }
     if (!key)
         return 0;
     if (strcmp(key, "unit ") == 0)

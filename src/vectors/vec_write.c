@@ -60,6 +60,10 @@ static void write_header(np_vec_writer *w)
     fprintf(f, "%s noisepipe %s %d\n", c, w->fmt == NP_VEC_RESULTS ? "results" : "vectors",
             NP_VEC_VERSION);
     fprintf(f, "%s unit %s\n%s config %s\n", c, h->unit->name, c, h->cfg_text);
+    char regs[NP_UNIT_MAX_REGS][96];
+    unsigned n_regs = np__vec_reg_lines(h, regs, NP_UNIT_MAX_REGS);
+    for (unsigned k = 0; k < n_regs; k++)
+        fprintf(f, "%s reg %s\n", c, regs[k]);
     if (h->has_seed)
         fprintf(f, "%s seed %llu\n", c, (unsigned long long)h->seed);
     if (h->level)

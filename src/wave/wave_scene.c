@@ -560,7 +560,10 @@ uint64_t np_wave_frame(const np_wave_scene *s, const np_wave_plan *p, uint32_t t
         }
     }
     if (p->noise) {
-        /* Eq. (9) over every water point: the unit's capillary term, round(b sin(2 pi r omc t) / 2^17). */
+        /*
+         * Eq. (9) over every water point: the unit's transaction with no train in effect (Y G = 0),
+         * y = round(b sc / 2^17), sc the ROM's sin of pc = r omc t (np_wave.h, stage G).
+         */
         double bq = floor(s->noise_amp * 1024.0 + 0.5);
         int64_t b = (int64_t)(bq > 32767.0 ? 32767.0 : bq);
         uint32_t omc = turns_u32(s->noise_rate * s->dt / TWO_PI / 256.0);
