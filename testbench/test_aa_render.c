@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "np_golden.h"
 #include "np_image.h"
 #include "np_render_aa.h"
 #include "np_test.h"
@@ -95,25 +96,10 @@ static int thresholds_zero_full(void)
     return 0;
 }
 
-/* The golden hash of scene image (vectors/images/hashes.txt). */
+/* The golden hash of scene image (vectors/images/hashes.txt, np_golden_hash). */
 static int golden(const char *scene, const char *image, char hex[65])
 {
-    char path[1024], line[1024];
-    snprintf(path, sizeof path, "%s/vectors/images/hashes.txt", NP_SOURCE_DIR);
-    FILE *f = fopen(path, "r");
-    if (!f)
-        return -1;
-    int found = 0;
-    while (fgets(line, sizeof line, f)) {
-        char sc[64], im[16], h[65];
-        if (line[0] != '#' && sscanf(line, "%63s %15s %64s", sc, im, h) == 3 && strcmp(sc, scene) == 0 &&
-            strcmp(im, image) == 0) {
-            memcpy(hex, h, 65);
-            found = 1;
-        }
-    }
-    fclose(f);
-    return found ? 0 : -1;
+    return np_golden_hash(NP_SOURCE_DIR, "hashes.txt", scene, image, hex) == 0 ? 0 : -1;
 }
 
 /* c_d = c_n = c_s = 0: s = 1 everywhere, the image is S; for m = 3 S is today's golden texel image. */
@@ -331,32 +317,6 @@ static int host_conversion(void)
 }
 
 /*
- * The unit (rtl_model/np_aacount.h) and the G-buffer renderer (np_gbuf.h)
- * each carry the paper's matrices and the resolve; they must agree
- * everywhere: every B_m entry, every first-s mask, every ROM word and every
- * (s, sum) resolve.
- */
-static int matches_gbuf(void)
-{
-    unsigned entries = 0, pairs = 0;
-    for (unsigned m = 1; m <= 4; m++) {
-        for (unsigned b = 0; b < m; b++)
-            for (unsigned a = 0; a < m; a++, entries++)
-                NP_CHECK(np_aacount_bayer(m, a, b) == np_gbuf_order(m, a, b), "B%u[%u][%u]", m, b, a);
-        for (unsigned s = 1; s <= m * m; s++)
-            NP_CHECK(np_aacount_mask(m, s) == np_gbuf_mask_first(m, s), "mask m=%u s=%u", m, s);
-    }
-    for (unsigned s = 1; s <= NP_AAC_N_MAX; s++) {
-        NP_CHECK(np_aacount_rom(s) == NP_GBUF_RECIP[s], "rom[%u] %u, gbuf %u", s, np_aacount_rom(s), NP_GBUF_RECIP[s]);
-        for (uint32_t sum = 0; sum <= 255u * s; sum++, pairs++)
-            NP_CHECK(np_aacount_resolve(sum, s) == np_gbuf_resolve8(sum, s), "resolve s=%u sum=%u", s, sum);
-    }
-    printf("the unit and the G-buffer renderer agree: %u matrix entries, every mask, 16 ROM words, %u resolves\n",
-           entries, pairs);
-    return 0;
-}
-
-/*
  * Image borders: a neighbour outside the image is the pixel itself (the
  * host's clamp), so a corner has two lumas equal to its own; inside, the
  * four neighbours are the adjacent pixels of S. The window's samples are the
@@ -408,7 +368,6 @@ static int borders(void)
 
 static const np_test_case cases[] = {
     { "borders", borders },
-    { "matches_gbuf", matches_gbuf },
     { "thresholds_zero_full", thresholds_zero_full },
     { "c_zero_one_sample", c_zero_one_sample },
     { "cycle_model", cycle_model },

@@ -55,25 +55,6 @@ void np_aa_frame_free(np_aa_frame *f)
     memset(f, 0, sizeof *f);
 }
 
-/* Resolve every pixel by the unit's resolve over the samples of masks[p] (all n when masks is NULL). */
-static void resolve(const np_gbuf *g, const uint16_t *masks, const uint8_t *rgb, uint8_t *out)
-{
-    const size_t npx = (size_t)g->w * g->h;
-    for (size_t p = 0; p < npx; p++) {
-        unsigned mk = masks ? (unsigned)masks[p] : (1u << g->n) - 1u;
-        unsigned s = 0;
-        uint32_t sum[3] = { 0, 0, 0 };
-        for (unsigned j = 0; j < g->n; j++)
-            if (mk >> j & 1u) {
-                s++;
-                for (unsigned ch = 0; ch < 3; ch++)
-                    sum[ch] += rgb[3 * (p * g->n + j) + ch];
-            }
-        for (unsigned ch = 0; ch < 3; ch++)
-            out[3 * p + ch] = s ? np_aacount_resolve(sum[ch], s) : 0u;
-    }
-}
-
 int np_aa_frame_build(const np_scene *sc, unsigned m, const np_render_unit_cfg *tex, const double *gt,
                       np_aa_frame *f, char *err, size_t errlen)
 {
@@ -102,7 +83,7 @@ int np_aa_frame_build(const np_scene *sc, unsigned m, const np_render_unit_cfg *
         np_aa_frame_free(f);
         return -1;
     }
-    resolve(g, NULL, f->rgb_full, f->img_full);
+    np_gbuf_resolve(g, NULL, f->rgb_full, f->img_full);
     f->resolve_full_cycles = (uint64_t)npx * g->n + 2u; /* a sample a clock; the product and the add */
     for (size_t i = 0; i < npx * 3; i++)
         f->img_full_d[i] = f->img_full[i];
@@ -256,9 +237,9 @@ int np_aa_run(const np_aa_frame *f, const np_aacount_cfg *c, const np_aacount_re
             return -1;
         }
         r->shade_cycles = f->cost_s.cycles + r->shade_extra.cycles;
-        resolve(g, masks, rgb, r->img);
+        np_gbuf_resolve(g, masks, rgb, r->img);
     } else {
-        resolve(g, masks, f->rgb_full, r->img);
+        np_gbuf_resolve(g, masks, f->rgb_full, r->img);
     }
     r->resolve_cycles = 2u;
     for (size_t p = 0; p < npx; p++)
