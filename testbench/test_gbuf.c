@@ -339,28 +339,6 @@ static int shade_cycles(void)
     return 0;
 }
 
-/* The paper's matrices: permutations of 0..n-1, B3's 0 at the centre, the first-s masks nested. */
-static int index_matrices(void)
-{
-    for (unsigned m = 1; m <= 4; m++) {
-        unsigned seen = 0;
-        for (unsigned b = 0; b < m; b++)
-            for (unsigned a = 0; a < m; a++)
-                seen |= 1u << np_aacount_bayer(m, a, b);
-        NP_CHECK(seen == (1u << (m * m)) - 1u, "B%u is not a permutation", m);
-        for (unsigned s = 0; s <= m * m; s++) {
-            uint16_t k = np_aacount_mask(m, s);
-            NP_CHECK((unsigned)__builtin_popcount(k) == s, "B%u: first %u has %d samples", m, s, __builtin_popcount(k));
-            if (s > 0)
-                NP_CHECK((np_aacount_mask(m, s - 1) & ~k) == 0, "B%u: masks not nested at %u", m, s);
-        }
-    }
-    NP_CHECK(np_aacount_bayer(3, 1, 1) == 0, "B3's centre is %u", np_aacount_bayer(3, 1, 1));
-    NP_CHECK(np_aacount_bayer(4, 2, 2) == 0 && np_aacount_bayer(4, 0, 0) == 1, "B4 as printed (0 and 1 swapped from Bayer)");
-    NP_CHECK(np_aacount_bayer(2, 1, 0) == 2 && np_aacount_bayer(2, 0, 1) == 3, "B2 = [[0,2],[3,1]]");
-    return 0;
-}
-
 /*
  * The renderer's pixel resolve (np_gbuf_resolve, which sums a pixel's masked
  * samples and calls the unit's np_aacount_resolve) over every (s, sum): one
@@ -931,7 +909,6 @@ static int perspective_depth(void)
 }
 
 static const np_test_case cases[] = {
-    { "index_matrices", index_matrices },
     { "resolve_exhaustive", resolve_exhaustive },
     { "centre_golden", centre_golden },
     { "full_ssaa", full_ssaa },
