@@ -13,3 +13,9 @@ add_test(NAME report.docs_fresh COMMAND ${CMAKE_COMMAND}
 add_test(NAME report.scene_wood_vs_marble COMMAND ${CMAKE_COMMAND}
   -DNOISEPIPE=$<TARGET_FILE:noisepipe> -DSCENES=${PROJECT_SOURCE_DIR}/vectors/scenes
   -P ${CMAKE_CURRENT_SOURCE_DIR}/report_scene.cmake)
+# --scene with an "aa" section: aacount priced from it (parallel and serial), the normal metric left out
+# when the scene does not enable it.
+file(MAKE_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}/report_scene_aa)
+add_test(NAME report.scene_aacount COMMAND ${CMAKE_COMMAND}
+  -DNOISEPIPE=$<TARGET_FILE:noisepipe> -DSCENES=${PROJECT_SOURCE_DIR}/vectors/scenes
+  -DOUT=${CMAKE_CURRENT_BINARY_DIR}/report_scene_aa -P ${CMAKE_CURRENT_SOURCE_DIR}/report_scene_aa.cmake)

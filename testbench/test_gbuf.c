@@ -383,7 +383,7 @@ static int resolve_exhaustive(void)
                 for (unsigned j = 0; j < 16; j++) {
                     /* samples outside the mask carry 255: they must not count */
                     uint8_t v = 255;
-                    if ((mask[p] >> j) & 1u) {
+                    if (((unsigned)mask[p] >> j) & 1u) {
                         v = (uint8_t)(left > 255u ? 255u : left);
                         left -= v;
                     }

@@ -21,6 +21,7 @@
 #include "np_aacount.h"
 #include "np_gbuf.h"
 #include "np_render.h"
+#include "unit_aacount.h"
 
 /* What does not change with the unit's constants: built once per scene and m. */
 typedef struct np_aa_frame {

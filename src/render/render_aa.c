@@ -13,34 +13,9 @@ static uint8_t luma_of(const uint8_t *rgb)
     return (uint8_t)((77u * rgb[0] + 150u * rgb[1] + 29u * rgb[2] + 128u) >> 8);
 }
 
-static uint32_t sat_key(double v, double hi)
-{
-    if (!(v > 0.0))
-        return 0;
-    double r = floor(v + 0.5);
-    return (uint32_t)(r > hi ? hi : r);
-}
-
 void np_aa_cfg_from_scene(const np_scene *sc, unsigned m, double z_near, double z_far, np_aacount_cfg *c)
 {
-    const np_scene_aa *a = &sc->aa;
-    *c = np_aacount_cfg_default();
-    c->m = (uint8_t)m;
-    c->depth = (uint8_t)(a->have_cd != 0);
-    c->normal = (uint8_t)(a->have_cn != 0);
-    c->luma = (uint8_t)(a->have_cs != 0);
-    c->luma_taps = (uint8_t)(a->luma_taps ? a->luma_taps : 4u);
-    c->tile = (uint8_t)a->tile;
-    double range = z_far - z_near, code = 16777215.0;
-    /* k_d = c_d Var(z) = c_d Var(d) (range / (2^24 - 1))^2 = key Var(d / 2^24) */
-    c->c_d = a->have_cd ? sat_key(a->c_d * range * range * (16777216.0 / code) * (16777216.0 / code), 4294967295.0)
-                        : 0u;
-    c->c_n = (uint8_t)(a->have_cn ? sat_key(4.0 * a->c_n, 255.0) : 0u);
-    c->c_s = (uint16_t)(a->have_cs ? sat_key(16.0 * a->c_s, 65535.0) : 0u);
-    /* r / 255 < t_min iff r < ceil(255 t_min) for integer r (the 1e-9 absorbs 16/255 * 255 = 16.000...04) */
-    double tm = ceil(255.0 * a->t_min - 1e-9);
-    c->t_min = (uint8_t)(tm < 0.0 ? 0.0 : tm > 255.0 ? 255.0 : tm);
-    c->t_edge = (uint8_t)sat_key(256.0 * a->t_edge, 255.0);
+    np_aacount_cfg_scene(sc, m, z_far - z_near, c);
 }
 
 void np_aa_frame_free(np_aa_frame *f)
