@@ -225,3 +225,65 @@ int np_aa_run(const np_aa_frame *f, const np_aacount_cfg *c, const np_aacount_re
     free(rgb);
     return 0;
 }
+
+int np_aa_colour_oracle(const np_aa_frame *f, double budget_spp, double *mse_gt, double *spp)
+{
+    const unsigned n = f->g.n;
+    const size_t npx = (size_t)f->g.w * f->g.h;
+    *mse_gt = (double)NAN;
+    *spp = 0;
+    if (!f->gt)
+        return -1;
+    double *e = malloc(npx * (n + 1) * sizeof *e), *ef = malloc(npx * (n + 1) * sizeof *ef);
+    if (!e || !ef) {
+        free(e);
+        free(ef);
+        return -1;
+    }
+    uint64_t cov = 0;
+    for (size_t p = 0; p < npx; p++) {
+        if (!f->covered[p])
+            continue;
+        cov++;
+        for (unsigned s = 1; s <= n; s++) {
+            const uint16_t mk = np_aacount_mask(f->g.m, s);
+            double eg = 0, eo = 0;
+            for (unsigned ch = 0; ch < 3; ch++) {
+                uint32_t sum = 0;
+                for (unsigned j = 0; j < n; j++)
+                    if (((unsigned)mk >> j) & 1u)
+                        sum += f->rgb_full[3 * (p * n + j) + ch];
+                const double v = (double)np_aacount_resolve(sum, s);
+                const double dg = (v - f->gt[3 * p + ch]) / 255.0, dfull = (v - (double)f->img_full[3 * p + ch]) / 255.0;
+                eg += dg * dg;
+                eo += dfull * dfull;
+            }
+            e[p * (n + 1) + s] = eg;
+            ef[p * (n + 1) + s] = eo;
+        }
+    }
+    for (int k = 0; cov && k <= 400; k++) {
+        const double lambda = k == 0 ? 0.0 : 1e-7 * pow(10.0, (double)k / 50.0); /* 0, 1e-7 .. 1 */
+        double sum_g = 0;
+        uint64_t ssum = 0;
+        for (size_t p = 0; p < npx; p++) {
+            if (!f->covered[p])
+                continue;
+            const double *ep = ef + p * (n + 1);
+            unsigned bs = 1;
+            for (unsigned s = 2; s <= n; s++)
+                if (ep[s] + lambda * s < ep[bs] + lambda * bs)
+                    bs = s;
+            sum_g += e[p * (n + 1) + bs];
+            ssum += bs;
+        }
+        const double mse = sum_g / (3.0 * (double)cov), per = (double)ssum / (double)cov;
+        if (per <= budget_spp && (*spp == 0 || mse < *mse_gt)) {
+            *mse_gt = mse;
+            *spp = per;
+        }
+    }
+    free(e);
+    free(ef);
+    return *spp > 0 ? 0 : -1;
+}
