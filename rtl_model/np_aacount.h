@@ -84,8 +84,9 @@
  * 0 <= e < s, so sum * rom / 2^17 = sum / s + sum e / (s 2^17), and the added
  * term (< 255 * 15 / 2^17 < 1/32) never carries sum / s + 1/2 across an
  * integer: sum / s + 1/2 is a multiple of 1 / (2 s) and so at least 1 / (2 s)
- * below the next integer unless it is one. The G-buffer renderer's
- * np_gbuf_resolve8 (src/render/np_gbuf.h) is the same formula and ROM.
+ * below the next integer unless it is one. The G-buffer renderer
+ * (src/render/np_gbuf.h) calls this resolve and np_aacount_mask: the one
+ * definition of the matrices and the ROM.
  *
  * Tile option (the paper's Fig. 6c): tile = 6 replaces every s of a 6 x 6 block
  * of pixels by the block's maximum (np_aacount_tile_max), after the unit.

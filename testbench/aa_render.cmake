@@ -1,11 +1,11 @@
 # SPDX-License-Identifier: MIT
 # The adaptive supersampling pipeline on the G-buffer (src/render/np_render_aa.h,
 # docs/aacount.md): issue 15's acceptance checks on the seed scenes.
-np_test_program(test_aa_render test_aa_render.c)
+np_test_program(test_aa_render test_aa_render.c np_golden.c)
 target_link_libraries(test_aa_render PRIVATE np_render)
 target_compile_definitions(test_aa_render PRIVATE NP_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 np_add_cases(test_aa_render aa_render
-  matches_gbuf borders thresholds_zero_full c_zero_one_sample cycle_model mse_budget beats_full_3x3 host_conversion)
+  borders thresholds_zero_full c_zero_one_sample cycle_model mse_budget beats_full_3x3 host_conversion boxes_knobs)
 # The command's bad usage: exit 2 and a message naming what is wrong.
 set(np_aa_scene ${PROJECT_SOURCE_DIR}/vectors/scenes/marble.json)
 foreach(case "m5|m=5|--aa m=5: expected 2, 3 or 4" "key|m=3,c_x=1|--aa c_x=1: unknown key or not a number"

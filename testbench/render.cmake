@@ -16,7 +16,7 @@ np_test_program(test_texture test_texture.c span_test.c)
 np_add_cases(test_texture fdiff colour_stage front_end_rounding lattice_distribution cfg_validation
   register_bound)
 
-np_test_program(test_render test_render.c)
+np_test_program(test_render test_render.c np_golden.c)
 target_link_libraries(test_render PRIVATE np_render)
 target_compile_definitions(test_render PRIVATE NP_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 np_add_cases(test_render render

@@ -32,3 +32,9 @@ add_test(NAME report.tradeoff_refused COMMAND ${CMAKE_COMMAND}
   -DCMD=$<TARGET_FILE:noisepipe> -DARGS=report\;tradeoff\;--scene\;${CMAKE_CURRENT_SOURCE_DIR}/scenes/reg_scale1e6.json
   -DWANT_RC=2 "-DWANT=scene reg_scale1e6: field texture.octaves[0] transform entry [0][0]"
   -P ${CMAKE_CURRENT_SOURCE_DIR}/render_expect.cmake)
+# --scene with an "aa" section: aacount priced from it (parallel and serial), the normal metric left out
+# when the scene does not enable it.
+file(MAKE_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}/report_scene_aa)
+add_test(NAME report.scene_aacount COMMAND ${CMAKE_COMMAND}
+  -DNOISEPIPE=$<TARGET_FILE:noisepipe> -DSCENES=${PROJECT_SOURCE_DIR}/vectors/scenes
+  -DOUT=${CMAKE_CURRENT_BINARY_DIR}/report_scene_aa -P ${CMAKE_CURRENT_SOURCE_DIR}/report_scene_aa.cmake)

@@ -623,15 +623,19 @@ static int bayer_matrices(void)
         for (unsigned s = 1; s <= m * m; s++) {
             uint16_t mk = np_aacount_mask(m, s);
             NP_CHECK((unsigned)__builtin_popcount(mk) == s, "B%u mask of %u has %d bits", m, s, __builtin_popcount(mk));
+            NP_CHECK((np_aacount_mask(m, s - 1) & ~mk) == 0, "B%u: masks not nested at %u", m, s);
         }
     }
+    NP_CHECK(np_aacount_bayer(1, 0, 0) == 0 && np_aacount_mask(1, 1) == 1, "B1 = [[0]]");
+    NP_CHECK(np_aacount_bayer(2, 1, 0) == 2 && np_aacount_bayer(2, 0, 1) == 3, "B2 = [[0,2],[3,1]]");
     NP_CHECK(np_aacount_bayer(3, 1, 1) == 0, "B3's 0 is not the centre");
     unsigned diff = 0;
     for (unsigned b = 0; b < 4; b++)
         for (unsigned a = 0; a < 4; a++)
             diff += np_aacount_bayer(4, a, b) != bayer4_std[b][a];
     NP_CHECK(diff == 2, "B4 differs from Bayer's standard matrix in %u places, want 2 (0 and 1 swapped)", diff);
-    printf("B2, B3, B4 are permutations; B3[1][1] = 0 (centre); B4 = Bayer's with 0 and 1 swapped; mask(s) has s bits\n");
+    printf("B2, B3, B4 are permutations; B3[1][1] = 0 (centre); B4 = Bayer's with 0 and 1 swapped; mask(s) has s bits, "
+           "the masks nested\n");
     return 0;
 }
 

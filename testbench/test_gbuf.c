@@ -5,8 +5,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "np_aacount.h"
 #include "np_cli.h"
 #include "np_gbuf.h"
+#include "np_golden.h"
 #include "np_image.h"
 #include "np_render.h"
 #include "np_test.h"
@@ -45,27 +47,13 @@ static const np_render_unit_cfg *unit_named(const np_render_unit_cfg *us, int n,
     return NULL;
 }
 
-/* The hash of scene image in the checked-in list vectors/images/FILE. */
+/* The hash of scene image in the checked-in list vectors/images/FILE (np_golden_hash); a missing one fails. */
 static int golden_in(const char *file, const char *scene, const char *image, char hex[65])
 {
-    char path[1024], line[1024];
-    snprintf(path, sizeof path, "%s/vectors/images/%s", NP_SOURCE_DIR, file);
-    FILE *f = fopen(path, "r");
-    NP_CHECK(f != NULL, "cannot open %s", path);
-    if (!f)
-        return -1;
-    int found = 0;
-    while (fgets(line, sizeof line, f)) {
-        char sc[64], im[16], h[65];
-        if (line[0] != '#' && sscanf(line, "%63s %15s %64s", sc, im, h) == 3 && strcmp(sc, scene) == 0 &&
-            strcmp(im, image) == 0) {
-            memcpy(hex, h, 65);
-            found = 1;
-        }
-    }
-    fclose(f);
-    NP_CHECK(found, "no golden hash for %s %s in %s", scene, image, path);
-    return found ? 0 : -1;
+    int rc = np_golden_hash(NP_SOURCE_DIR, file, scene, image, hex);
+    NP_CHECK(rc == 0, "%s for %s %s in %s/vectors/images/%s", rc == -1 ? "cannot open the list" : "no golden hash",
+             scene, image, NP_SOURCE_DIR, file);
+    return rc == 0 ? 0 : -1;
 }
 
 /* The golden hash of scene image (vectors/images/hashes.txt). */
@@ -332,7 +320,7 @@ static int shade_cycles(void)
         const size_t npx = (size_t)g.w * g.h;
         uint16_t *mask = malloc(npx * sizeof *mask);
         for (size_t p = 0; p < npx; p++)
-            mask[p] = np_gbuf_mask_first(m, (unsigned)(p % g.n) + 1u);
+            mask[p] = np_aacount_mask(m, (unsigned)(p % g.n) + 1u);
         const np_render_unit_cfg *tx = unit_named(us, nu, "texel"), *fd = unit_named(us, nu, "fdiff");
         np_gbuf_cost ct, cf;
         np_gbuf_shade(&g, tx->u, tx->cfg.bytes, mask, rgb, &ct);
@@ -351,59 +339,80 @@ static int shade_cycles(void)
     return 0;
 }
 
-/* The paper's matrices: permutations of 0..n-1, B3's 0 at the centre, the first-s masks nested. */
-static int index_matrices(void)
-{
-    for (unsigned m = 1; m <= 4; m++) {
-        unsigned seen = 0;
-        for (unsigned b = 0; b < m; b++)
-            for (unsigned a = 0; a < m; a++)
-                seen |= 1u << np_gbuf_order(m, a, b);
-        NP_CHECK(seen == (1u << (m * m)) - 1u, "B%u is not a permutation", m);
-        for (unsigned s = 0; s <= m * m; s++) {
-            uint16_t k = np_gbuf_mask_first(m, s);
-            NP_CHECK((unsigned)__builtin_popcount(k) == s, "B%u: first %u has %d samples", m, s, __builtin_popcount(k));
-            if (s > 0)
-                NP_CHECK((np_gbuf_mask_first(m, s - 1) & ~k) == 0, "B%u: masks not nested at %u", m, s);
-        }
-    }
-    NP_CHECK(np_gbuf_order(3, 1, 1) == 0, "B3's centre is %u", np_gbuf_order(3, 1, 1));
-    NP_CHECK(np_gbuf_order(4, 2, 2) == 0 && np_gbuf_order(4, 0, 0) == 1, "B4 as printed (0 and 1 swapped from Bayer)");
-    NP_CHECK(np_gbuf_order(2, 1, 0) == 2 && np_gbuf_order(2, 0, 1) == 3, "B2 = [[0,2],[3,1]]");
-    return 0;
-}
-
-/* The resolve over every (s, sum): the ROM's result is round_half_up(sum / s), and the ROM is ceil(2^17 / s). */
+/*
+ * The renderer's pixel resolve (np_gbuf_resolve, which sums a pixel's masked
+ * samples and calls the unit's np_aacount_resolve) over every (s, sum): one
+ * pixel of m = 4 per pair, mask = the first s of B4, the sum spread over the s
+ * samples (each <= 255), each channel a different sum; the result is
+ * round_half_up(sum / s). Background (s = 0) is the scene's colour, rounded.
+ */
 static int resolve_exhaustive(void)
 {
-    uint64_t checked = 0;
-    for (unsigned s = 1; s <= NP_GBUF_N_MAX; s++) {
-        uint32_t want_rom = (uint32_t)(((1u << NP_GBUF_RECIP_FRAC) + s - 1u) / s);
-        NP_CHECK(NP_GBUF_RECIP[s] == want_rom, "ROM[%u] = %u, want %u", s, NP_GBUF_RECIP[s], want_rom);
-        for (uint32_t sum = 0; sum <= 255u * s; sum++) {
-            unsigned want = (2u * sum + s) / (2u * s); /* floor(sum / s + 1/2) */
-            unsigned got = np_gbuf_resolve8(sum, s);
-            if (got != want) {
-                NP_CHECK(0, "resolve s=%u sum=%u: %u, want %u", s, sum, got, want);
-                return 1;
+    size_t npx = 0;
+    for (unsigned s = 1; s <= NP_GBUF_N_MAX; s++)
+        npx += 255u * s + 1u;
+    npx++; /* one uncovered pixel */
+    np_scene sc;
+    memset(&sc, 0, sizeof sc);
+    sc.background[0] = 63.5; /* 0..255: round half up 64, 128, 255 */
+    sc.background[1] = 128.4;
+    sc.background[2] = 255.0;
+    np_gbuf g;
+    memset(&g, 0, sizeof g);
+    g.sc = &sc;
+    g.m = 4;
+    g.n = 16;
+    g.w = (unsigned)npx;
+    g.h = 1;
+    uint16_t *mask = calloc(npx, sizeof *mask);
+    uint8_t *rgb = calloc(npx * 16 * 3, 1), *out = calloc(npx * 3, 1);
+    uint32_t *want_sum = calloc(npx, sizeof *want_sum);
+    uint8_t *want_s = calloc(npx, 1);
+    NP_CHECK(mask && rgb && out && want_sum && want_s, "out of memory");
+    if (!mask || !rgb || !out || !want_sum || !want_s)
+        return 1;
+    size_t p = 0;
+    for (unsigned s = 1; s <= NP_GBUF_N_MAX; s++)
+        for (uint32_t sum = 0; sum <= 255u * s; sum++, p++) {
+            mask[p] = np_aacount_mask(4, s);
+            want_sum[p] = sum;
+            want_s[p] = (uint8_t)s;
+            for (unsigned ch = 0; ch < 3; ch++) {
+                /* channel ch carries sum, 255 s - sum, sum / 2: three sums a pixel */
+                uint32_t left = ch == 0 ? sum : ch == 1 ? 255u * s - sum : sum / 2u;
+                for (unsigned j = 0; j < 16; j++) {
+                    /* samples outside the mask carry 255: they must not count */
+                    uint8_t v = 255;
+                    if (((unsigned)mask[p] >> j) & 1u) {
+                        v = (uint8_t)(left > 255u ? 255u : left);
+                        left -= v;
+                    }
+                    rgb[3 * (p * 16 + j) + ch] = v;
+                }
             }
-            checked++;
         }
-    }
-    /* One fraction bit fewer does not suffice: the ROM's width is needed. */
-    unsigned bad = 0;
-    for (unsigned s = 1; s <= NP_GBUF_N_MAX && !bad; s++) {
-        uint64_t r = ((1u << (NP_GBUF_RECIP_FRAC - 1)) + s - 1u) / s;
-        for (uint32_t sum = 0; sum <= 255u * s; sum++)
-            if ((((uint64_t)sum * r + (1u << (NP_GBUF_RECIP_FRAC - 2))) >> (NP_GBUF_RECIP_FRAC - 1)) !=
-                (2u * sum + s) / (2u * s)) {
-                bad = 1;
+    np_gbuf_resolve(&g, mask, rgb, out);
+    uint64_t checked = 0;
+    for (p = 0; p + 1 < npx; p++) {
+        const unsigned s = want_s[p], sum = want_sum[p];
+        const unsigned sums[3] = { sum, 255u * s - sum, sum / 2u };
+        for (unsigned ch = 0; ch < 3; ch++, checked++) {
+            unsigned want = (2u * sums[ch] + s) / (2u * s); /* floor(sum / s + 1/2) */
+            if (out[3 * p + ch] != want) {
+                NP_CHECK(0, "resolve s=%u sum=%u: %u, want %u", s, sums[ch], out[3 * p + ch], want);
                 break;
             }
+        }
     }
-    NP_CHECK(bad, "a %d-bit ROM would do: the spec's width is not minimal", NP_GBUF_RECIP_FRAC - 1);
-    printf("resolve: %llu (s, sum) pairs exact with ceil(2^%d / s); 2^%d fails\n", (unsigned long long)checked,
-           NP_GBUF_RECIP_FRAC, NP_GBUF_RECIP_FRAC - 1);
+    NP_CHECK(out[3 * p] == 64 && out[3 * p + 1] == 128 && out[3 * p + 2] == 255, "background pixel %u %u %u",
+             out[3 * p], out[3 * p + 1], out[3 * p + 2]);
+    printf("renderer resolve: %llu (s, sum) channel values exact (round half up of the masked mean), background "
+           "rounded\n", (unsigned long long)checked);
+    free(mask);
+    free(rgb);
+    free(out);
+    free(want_sum);
+    free(want_s);
     return 0;
 }
 
@@ -444,7 +453,7 @@ static int centre_golden(void)
             char want[65], hex[65];
             double *ref = malloc((size_t)g.w * g.h * g.n * 3 * sizeof *ref);
             np_gbuf_reference_samples(&g, ref);
-            const unsigned j0 = (unsigned)__builtin_ctz(np_gbuf_mask_first(m, 1));
+            const unsigned j0 = (unsigned)__builtin_ctz(np_aacount_mask(m, 1));
             for (size_t p = 0; p < (size_t)g.w * g.h; p++)
                 for (int ch = 0; ch < 3; ch++)
                     rgb[3 * p + (size_t)ch] = (uint8_t)floor(ref[3 * (p * g.n + j0) + (size_t)ch] + 0.5);
@@ -489,7 +498,7 @@ static int full_ssaa(void)
         NP_CHECK(np_gbuf_shade(&g, tx->u, tx->cfg.bytes, NULL, a, &c) == 0, "shade");
         /* The same samples in two halves (B index < n/2, then the rest), from a second build. */
         memset(b, 0xA5, ns * 3);
-        uint16_t lo = np_gbuf_mask_first(m, g.n / 2), all = (uint16_t)((1u << g.n) - 1u);
+        uint16_t lo = np_aacount_mask(m, g.n / 2), all = (uint16_t)((1u << g.n) - 1u);
         for (size_t p = 0; p < npx; p++)
             mask[p] = lo;
         np_gbuf_shade(&g2, tx->u, tx->cfg.bytes, mask, b, &c2);
@@ -900,7 +909,6 @@ static int perspective_depth(void)
 }
 
 static const np_test_case cases[] = {
-    { "index_matrices", index_matrices },
     { "resolve_exhaustive", resolve_exhaustive },
     { "centre_golden", centre_golden },
     { "full_ssaa", full_ssaa },

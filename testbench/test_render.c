@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "np_golden.h"
 #include "np_image.h"
 #include "np_render.h"
 #include "np_stream.h"
@@ -719,22 +720,10 @@ static int error_rounded(void)
     return 0;
 }
 
-/* The golden hash of image `image` of scene `scene` in vectors/images/hashes.txt. */
+/* The golden hash of image `image` of scene `scene` in vectors/images/hashes.txt (np_golden_hash). */
 static int golden_hash(const char *scene, const char *image, char hex[65])
 {
-    char path[1024], line[1024], sc[64], im[16], h[65], cfg[256];
-    snprintf(path, sizeof path, "%s/vectors/images/hashes.txt", NP_SOURCE_DIR);
-    FILE *f = fopen(path, "r");
-    int found = 0;
-    while (f && fgets(line, sizeof line, f))
-        if (line[0] != '#' && sscanf(line, "%63s %15s %64s %255s", sc, im, h, cfg) == 4 && strcmp(sc, scene) == 0 &&
-            strcmp(im, image) == 0) {
-            snprintf(hex, 65, "%s", h);
-            found = 1;
-        }
-    if (f)
-        fclose(f);
-    return found ? 0 : -1;
+    return np_golden_hash(NP_SOURCE_DIR, "hashes.txt", scene, image, hex) == 0 ? 0 : -1;
 }
 
 /*

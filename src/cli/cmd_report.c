@@ -45,9 +45,10 @@ static const char usage_text[] =
     "  --scene: only what the scene needs: the units it uses (configured from it: its texture's\n"
     "  octaves, transforms and colour table), which outputs it reads, how many units and passes,\n"
     "  the cycles per frame from each unit's cycle-accurate model; the units it does not use are\n"
-    "  listed as left out. With -o, DIR/scene-NAME-gates.md and .json. A wave scene (a \"waves\"\n"
-    "  section): the wave unit with the effects the scene does not use left out, and the frame's\n"
-    "  cycles with the culled boxes left out (DIR/scene-NAME-gates.md).\n"
+    "  listed as left out. A scene with an \"aa\" section also prices aacount from it (m, the\n"
+    "  metrics it enables, luma_taps, tile), parallel and serial. With -o, DIR/scene-NAME-gates.md\n"
+    "  and .json. A wave scene (a \"waves\" section): the wave unit with the effects the scene does\n"
+    "  not use left out, and the frame's cycles with the culled boxes left out.\n"
     "  --synth: synthesise the reference RTL (rtl_model/verilog, or --rtl DIR) with Yosys + ABC\n"
     "  and print its NAND2 equivalents per stage beside the cost model's (classic3, simplex3;\n"
     "  docs/cost-model.md). Needs yosys (exit 2 without it); --tolerance PCT: exit 1 when a\n"
@@ -149,6 +150,7 @@ typedef struct scene_unit {
     const np_unit *u;
     np_unit_cfg cfg;
     int have_frame;
+    int renders;          /* 1: a span unit that renders the scene; 0: another unit it uses (aacount) */
     uint64_t cycles, setup_stalls, pixels, spans;
 } scene_unit;
 
@@ -248,8 +250,13 @@ static void scene_md(FILE *f, const np_scene *sc, const np_render_frame *fr, con
     fprintf(f, "- **frame:** %ux%u, %llu covered pixels in %zu spans (longest %u)\n", sc->width, sc->height,
             (unsigned long long)fr->pixels, fr->n_spans, fr->longest);
     fprintf(f, "- **units that can render it** (either one; both are priced here, configured from the scene):");
+    for (size_t i = 0, k = 0; i < n; i++)
+        if (su[i].renders)
+            fprintf(f, "%s `%s`", k++ ? "," : "", c[i].unit->name);
     for (size_t i = 0; i < n; i++)
-        fprintf(f, "%s `%s`", i ? "," : "", c[i].unit->name);
+        if (!su[i].renders)
+            fprintf(f, "\n- **also used:** `%s` `%s` (configured from the scene's section for it; "
+                       "c_d at a depth range of 1: the register's value, not the datapath)", c[i].unit->name, c[i].cfg);
     fprintf(f, "\n- **left out** (the scene does not use them):");
     for (size_t i = 0; i < nleft; i++)
         fprintf(f, "%s `%s`", i ? "," : "", left[i]->name);
@@ -257,6 +264,8 @@ static void scene_md(FILE *f, const np_scene *sc, const np_render_frame *fr, con
     fprintf(f, "| unit | octave lanes | gates | latency | throughput | cycles / frame (cycle model) | set-up stalls | cycles / pixel |\n");
     fprintf(f, "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
     for (size_t i = 0; i < n; i++) {
+        if (!su[i].renders)
+            continue;
         fprintf(f, "| %s | %u | %.0f | %u clocks | %g / clock | ", c[i].unit->name, t->n_oct, c[i].total, c[i].latency,
                 c[i].throughput);
         if (su[i].have_frame)
@@ -267,6 +276,19 @@ static void scene_md(FILE *f, const np_scene *sc, const np_render_frame *fr, con
             fprintf(f, "— | — | — |\n");
     }
     fprintf(f, "\n");
+    size_t others = 0;
+    for (size_t i = 0; i < n; i++)
+        others += !su[i].renders;
+    if (others) {
+        fprintf(f, "Other units the scene uses, each variant priced (a metric the scene does not enable is not "
+                   "built: no gates):\n\n| unit | configuration | gates | latency | throughput |\n"
+                   "| --- | --- | ---: | ---: | ---: |\n");
+        for (size_t i = 0; i < n; i++)
+            if (!su[i].renders)
+                fprintf(f, "| %s | `%s` | %.0f | %u clocks | %g / clock |\n", c[i].unit->name, c[i].cfg, c[i].total,
+                        c[i].latency, c[i].throughput);
+        fprintf(f, "\n");
+    }
     /* The per-unit tables (the same format as gates.md), without its title. */
     char *buf = NULL;
     size_t len = 0;
@@ -294,11 +316,17 @@ static void scene_json(FILE *f, const np_scene *sc, const np_render_frame *fr, c
     for (size_t i = 0; i < nleft; i++)
         fprintf(f, "%s\"%s\"", i ? ", " : "", left[i]->name);
     fprintf(f, "],\n  \"frame\": [");
-    for (size_t i = 0; i < n; i++)
-        fprintf(f, "%s\n    { \"unit\": \"%s\", \"octave_lanes\": %u, \"total_gates\": %.1f, \"cycles\": %llu, "
-                   "\"setup_stalls\": %llu, \"pixels\": %llu }",
-                i ? "," : "", c[i].unit->name, t->n_oct, c[i].total, (unsigned long long)su[i].cycles,
-                (unsigned long long)su[i].setup_stalls, (unsigned long long)su[i].pixels);
+    for (size_t i = 0, k = 0; i < n; i++)
+        if (su[i].renders)
+            fprintf(f, "%s\n    { \"unit\": \"%s\", \"octave_lanes\": %u, \"total_gates\": %.1f, \"cycles\": %llu, "
+                       "\"setup_stalls\": %llu, \"pixels\": %llu }",
+                    k++ ? "," : "", c[i].unit->name, t->n_oct, c[i].total, (unsigned long long)su[i].cycles,
+                    (unsigned long long)su[i].setup_stalls, (unsigned long long)su[i].pixels);
+    fprintf(f, " ],\n  \"also_used\": [");
+    for (size_t i = 0, k = 0; i < n; i++)
+        if (!su[i].renders)
+            fprintf(f, "%s\n    { \"unit\": \"%s\", \"config\": \"%s\", \"total_gates\": %.1f, \"latency\": %u }",
+                    k++ ? "," : "", c[i].unit->name, c[i].cfg, c[i].total, c[i].latency);
     fprintf(f, " ],\n  \"gates\": ");
     np_report_gates_json(f, c, n);
     fprintf(f, "}\n");
@@ -481,13 +509,26 @@ static int write_scene(const char *dir, const char *path)
                 left[nleft++] = u;
         } else {
             su[n].u = u;
+            su[n].renders = u->span != NULL;
             if (np_unit_cost_compute(u, &su[n].cfg, &np_cost_default, &costs[n], err, sizeof err) != 0) {
                 np_err("report", "%s: %s", u->name, err);
                 rc = NP_EXIT_USAGE;
             } else {
-                if (u->stream)
+                if (u->stream && su[n].renders)
                     scene_frame(&su[n], &fr);
                 n++;
+                /* A unit with a serial variant (aacount): priced beside the parallel one. */
+                if (!su[n - 1].renders && n < MAXU) {
+                    su[n] = su[n - 1];
+                    char e2[256];
+                    if (np_unit_cfg_set(u, &su[n].cfg, "serial", "1", e2, sizeof e2) == 0) {
+                        if (np_unit_cost_compute(u, &su[n].cfg, &np_cost_default, &costs[n], err, sizeof err) != 0) {
+                            np_err("report", "%s serial: %s", u->name, err);
+                            rc = NP_EXIT_USAGE;
+                        } else
+                            n++;
+                    }
+                }
             }
         }
     }

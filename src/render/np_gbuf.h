@@ -93,11 +93,11 @@
  * --- Resolve (np_gbuf_resolve) ---
  * A pixel's colour from its s shaded samples (1 <= s <= 16), per channel:
  *   S   u12       sum of the s u8 colours (<= 255 s <= 4080)
- *   R   u18       NP_GBUF_RECIP[s] = ceil(2^17 / s) (the reciprocal ROM)
+ *   R   u18       np_aacount_rom(s) = ceil(2^17 / s) (the reciprocal ROM)
  *   out u8        (S R + 2^16) >> 17
  * which equals round_half_up(S / s) for every s in 1..16 and S in
- * 0..255 s (gbuf.resolve_exhaustive). This is the spec the unit aacount's
- * resolve implements.
+ * 0..255 s (gbuf.resolve_exhaustive, aacount.resolve_exhaustive). The
+ * renderer calls the unit's resolve, np_aacount_resolve: one definition.
  *
  * --- Lighting (np_gbuf_light; scene key light.image, PIN) ---
  * Only when the scene's "light" section has "image": true (default false:
@@ -140,7 +140,6 @@ enum {
     NP_GBUF_DEPTH_BITS = 24,
     NP_GBUF_DEPTH_FAR = (1 << NP_GBUF_DEPTH_BITS) - 1,
     NP_GBUF_NORMAL_FRAC = 7,  /* s8 Q0.7 */
-    NP_GBUF_RECIP_FRAC = 17,  /* the resolve's reciprocal ROM: u18 Q1.17 */
     NP_GBUF_NORMAL_ONE = 127, /* the normal code of 1.0 */
     NP_GBUF_LIGHT_FRAC = 15,  /* light register s17 Q1.15 */
     NP_GBUF_L_FRAC = 16       /* ambient, lam, L: Q1.16 */
@@ -148,23 +147,11 @@ enum {
 #define NP_GBUF_NONE UINT32_MAX
 
 /*
- * The paper's index matrices (Figure 3), used literally: B_m[b][a], sample
- * (a, b) is among the first s iff B_m[b][a] < s. m = 1: B_1 = [[0]].
- *   B2 = [[0,2],[3,1]]  B3 = [[2,6,3],[5,0,8],[1,7,4]]
- *   B4 = [[1,8,2,10],[12,4,14,6],[3,11,0,9],[15,7,13,5]]
- * B3's index 0 is the pixel centre.
+ * The paper's index matrices (Figure 3) and the resolve's reciprocal ROM have
+ * one definition, the unit's (rtl_model/np_aacount.h): np_aacount_bayer(m, a, b)
+ * = B_m[b][a], np_aacount_mask(m, s) the first-s mask (bit j = b m + a set iff
+ * B_m[b][a] < s; s >= n gives all n), np_aacount_resolve(sum, s) the resolve.
  */
-unsigned np_gbuf_order(unsigned m, unsigned a, unsigned b);
-/* The mask (bit j = b m + a) of the samples with B_m[b][a] < s; s >= n gives all n. */
-uint16_t np_gbuf_mask_first(unsigned m, unsigned s);
-
-/* The resolve's reciprocal ROM: NP_GBUF_RECIP[s] = ceil(2^17 / s), s = 1..16 (entry 0 unused, 0). */
-extern const uint32_t NP_GBUF_RECIP[NP_GBUF_N_MAX + 1];
-/* round_half_up(sum / s) by the ROM (above); sum <= 255 s, 1 <= s <= 16. */
-static inline uint8_t np_gbuf_resolve8(uint32_t sum, unsigned s)
-{
-    return (uint8_t)(((uint64_t)sum * NP_GBUF_RECIP[s] + (1u << (NP_GBUF_RECIP_FRAC - 1))) >> NP_GBUF_RECIP_FRAC);
-}
 
 /* A sub-span: sample (a, b) of pixels x0 .. x0 + n - 1 on pixel row y of one polygon. */
 typedef struct np_gbuf_span {
@@ -253,14 +240,14 @@ int np_gbuf_shade(const np_gbuf *g, const np_unit *u, const void *cfg, const uin
 
 /*
  * The S buffer (the paper's one sample per pixel): each pixel's sample with
- * B index 0 (np_gbuf_mask_first(m, 1)) shaded, into rgb1 (w * h * 3, one
+ * B index 0 (np_aacount_mask(m, 1)) shaded, into rgb1 (w * h * 3, one
  * pixel each; background where that sample is uncovered). For m = 3 and
  * m = 1 this is the 1x1 renderer's image of the unit, bit for bit.
  */
 int np_gbuf_shade_first(const np_gbuf *g, const np_unit *u, const void *cfg, uint8_t *rgb1, np_gbuf_cost *cost);
 
 /*
- * Resolve: each pixel the mean (np_gbuf_resolve8) of its samples in mask[p]
+ * Resolve: each pixel the mean (np_aacount_resolve) of its samples in mask[p]
  * (NULL: all n), from per-sample rgb (np_gbuf_shade), into out (w * h * 3).
  * A pixel with an empty mask gets the background.
  */

@@ -21,6 +21,7 @@
 #include "np_aacount.h"
 #include "np_gbuf.h"
 #include "np_render.h"
+#include "unit_aacount.h"
 
 /* What does not change with the unit's constants: built once per scene and m. */
 typedef struct np_aa_frame {
@@ -93,5 +94,17 @@ void np_aa_window(const np_aa_frame *f, unsigned x, unsigned y, np_aacount_win *
 int np_aa_run(const np_aa_frame *f, const np_aacount_cfg *c, const np_aacount_regs *regs, int shade,
               np_aa_result *r);
 void np_aa_result_free(np_aa_result *r);
+
+/*
+ * What a count that saw every sample's colour could do (not the unit: a
+ * yardstick for the metrics): per covered pixel the s minimising its error
+ * against full m x m plus lambda s, the first s samples of B_m resolved, over
+ * lambda in {0} and 1e-7 .. 1 (400 steps); of the counts with at most
+ * budget_spp samples per covered pixel the one with the least MSE against
+ * the ground truth f->gt: that MSE ([0, 1] scale) and its samples per
+ * covered pixel. 0, or -1 (no ground truth, no memory, no count within the
+ * budget).
+ */
+int np_aa_colour_oracle(const np_aa_frame *f, double budget_spp, double *mse_gt, double *spp);
 
 #endif /* NP_RENDER_AA_H */

@@ -13,34 +13,9 @@ static uint8_t luma_of(const uint8_t *rgb)
     return (uint8_t)((77u * rgb[0] + 150u * rgb[1] + 29u * rgb[2] + 128u) >> 8);
 }
 
-static uint32_t sat_key(double v, double hi)
-{
-    if (!(v > 0.0))
-        return 0;
-    double r = floor(v + 0.5);
-    return (uint32_t)(r > hi ? hi : r);
-}
-
 void np_aa_cfg_from_scene(const np_scene *sc, unsigned m, double z_near, double z_far, np_aacount_cfg *c)
 {
-    const np_scene_aa *a = &sc->aa;
-    *c = np_aacount_cfg_default();
-    c->m = (uint8_t)m;
-    c->depth = (uint8_t)(a->have_cd != 0);
-    c->normal = (uint8_t)(a->have_cn != 0);
-    c->luma = (uint8_t)(a->have_cs != 0);
-    c->luma_taps = (uint8_t)(a->luma_taps ? a->luma_taps : 4u);
-    c->tile = (uint8_t)a->tile;
-    double range = z_far - z_near, code = 16777215.0;
-    /* k_d = c_d Var(z) = c_d Var(d) (range / (2^24 - 1))^2 = key Var(d / 2^24) */
-    c->c_d = a->have_cd ? sat_key(a->c_d * range * range * (16777216.0 / code) * (16777216.0 / code), 4294967295.0)
-                        : 0u;
-    c->c_n = (uint8_t)(a->have_cn ? sat_key(4.0 * a->c_n, 255.0) : 0u);
-    c->c_s = (uint16_t)(a->have_cs ? sat_key(16.0 * a->c_s, 65535.0) : 0u);
-    /* r / 255 < t_min iff r < ceil(255 t_min) for integer r (the 1e-9 absorbs 16/255 * 255 = 16.000...04) */
-    double tm = ceil(255.0 * a->t_min - 1e-9);
-    c->t_min = (uint8_t)(tm < 0.0 ? 0.0 : tm > 255.0 ? 255.0 : tm);
-    c->t_edge = (uint8_t)sat_key(256.0 * a->t_edge, 255.0);
+    np_aacount_cfg_scene(sc, m, z_far - z_near, c);
 }
 
 void np_aa_frame_free(np_aa_frame *f)
@@ -53,25 +28,6 @@ void np_aa_frame_free(np_aa_frame *f)
     free(f->luma);
     free(f->covered);
     memset(f, 0, sizeof *f);
-}
-
-/* Resolve every pixel by the unit's resolve over the samples of masks[p] (all n when masks is NULL). */
-static void resolve(const np_gbuf *g, const uint16_t *masks, const uint8_t *rgb, uint8_t *out)
-{
-    const size_t npx = (size_t)g->w * g->h;
-    for (size_t p = 0; p < npx; p++) {
-        unsigned mk = masks ? (unsigned)masks[p] : (1u << g->n) - 1u;
-        unsigned s = 0;
-        uint32_t sum[3] = { 0, 0, 0 };
-        for (unsigned j = 0; j < g->n; j++)
-            if (mk >> j & 1u) {
-                s++;
-                for (unsigned ch = 0; ch < 3; ch++)
-                    sum[ch] += rgb[3 * (p * g->n + j) + ch];
-            }
-        for (unsigned ch = 0; ch < 3; ch++)
-            out[3 * p + ch] = s ? np_aacount_resolve(sum[ch], s) : 0u;
-    }
 }
 
 int np_aa_frame_build(const np_scene *sc, unsigned m, const np_render_unit_cfg *tex, const double *gt,
@@ -102,7 +58,7 @@ int np_aa_frame_build(const np_scene *sc, unsigned m, const np_render_unit_cfg *
         np_aa_frame_free(f);
         return -1;
     }
-    resolve(g, NULL, f->rgb_full, f->img_full);
+    np_gbuf_resolve(g, NULL, f->rgb_full, f->img_full);
     f->resolve_full_cycles = (uint64_t)npx * g->n + 2u; /* a sample a clock; the product and the add */
     for (size_t i = 0; i < npx * 3; i++)
         f->img_full_d[i] = f->img_full[i];
@@ -256,9 +212,9 @@ int np_aa_run(const np_aa_frame *f, const np_aacount_cfg *c, const np_aacount_re
             return -1;
         }
         r->shade_cycles = f->cost_s.cycles + r->shade_extra.cycles;
-        resolve(g, masks, rgb, r->img);
+        np_gbuf_resolve(g, masks, rgb, r->img);
     } else {
-        resolve(g, masks, f->rgb_full, r->img);
+        np_gbuf_resolve(g, masks, f->rgb_full, r->img);
     }
     r->resolve_cycles = 2u;
     for (size_t p = 0; p < npx; p++)
@@ -268,4 +224,66 @@ int np_aa_run(const np_aa_frame *f, const np_aacount_cfg *c, const np_aacount_re
     free(masks);
     free(rgb);
     return 0;
+}
+
+int np_aa_colour_oracle(const np_aa_frame *f, double budget_spp, double *mse_gt, double *spp)
+{
+    const unsigned n = f->g.n;
+    const size_t npx = (size_t)f->g.w * f->g.h;
+    *mse_gt = (double)NAN;
+    *spp = 0;
+    if (!f->gt)
+        return -1;
+    double *e = malloc(npx * (n + 1) * sizeof *e), *ef = malloc(npx * (n + 1) * sizeof *ef);
+    if (!e || !ef) {
+        free(e);
+        free(ef);
+        return -1;
+    }
+    uint64_t cov = 0;
+    for (size_t p = 0; p < npx; p++) {
+        if (!f->covered[p])
+            continue;
+        cov++;
+        for (unsigned s = 1; s <= n; s++) {
+            const uint16_t mk = np_aacount_mask(f->g.m, s);
+            double eg = 0, eo = 0;
+            for (unsigned ch = 0; ch < 3; ch++) {
+                uint32_t sum = 0;
+                for (unsigned j = 0; j < n; j++)
+                    if (((unsigned)mk >> j) & 1u)
+                        sum += f->rgb_full[3 * (p * n + j) + ch];
+                const double v = (double)np_aacount_resolve(sum, s);
+                const double dg = (v - f->gt[3 * p + ch]) / 255.0, dfull = (v - (double)f->img_full[3 * p + ch]) / 255.0;
+                eg += dg * dg;
+                eo += dfull * dfull;
+            }
+            e[p * (n + 1) + s] = eg;
+            ef[p * (n + 1) + s] = eo;
+        }
+    }
+    for (int k = 0; cov && k <= 400; k++) {
+        const double lambda = k == 0 ? 0.0 : 1e-7 * pow(10.0, (double)k / 50.0); /* 0, 1e-7 .. 1 */
+        double sum_g = 0;
+        uint64_t ssum = 0;
+        for (size_t p = 0; p < npx; p++) {
+            if (!f->covered[p])
+                continue;
+            const double *ep = ef + p * (n + 1);
+            unsigned bs = 1;
+            for (unsigned s = 2; s <= n; s++)
+                if (ep[s] + lambda * s < ep[bs] + lambda * bs)
+                    bs = s;
+            sum_g += e[p * (n + 1) + bs];
+            ssum += bs;
+        }
+        const double mse = sum_g / (3.0 * (double)cov), per = (double)ssum / (double)cov;
+        if (per <= budget_spp && (*spp == 0 || mse < *mse_gt)) {
+            *mse_gt = mse;
+            *spp = per;
+        }
+    }
+    free(e);
+    free(ef);
+    return *spp > 0 ? 0 : -1;
 }

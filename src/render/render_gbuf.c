@@ -7,35 +7,17 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "np_aacount.h"
 #include "np_cli.h"
 #include "np_texel.h"
 #include "np_texreg.h"
 #include "render_view.h"
 
-/* --- Index matrices, reciprocal ROM --- */
-
-static const uint8_t B1[1] = { 0 };
-static const uint8_t B2[4] = { 0, 2, 3, 1 };
-static const uint8_t B3[9] = { 2, 6, 3, 5, 0, 8, 1, 7, 4 };
-static const uint8_t B4[16] = { 1, 8, 2, 10, 12, 4, 14, 6, 3, 11, 0, 9, 15, 7, 13, 5 };
-static const uint8_t *const B[NP_GBUF_M_MAX + 1] = { NULL, B1, B2, B3, B4 };
-
-unsigned np_gbuf_order(unsigned m, unsigned a, unsigned b) { return B[m][b * m + a]; }
-
-uint16_t np_gbuf_mask_first(unsigned m, unsigned s)
-{
-    uint16_t mask = 0;
-    for (unsigned j = 0; j < m * m; j++)
-        if (B[m][j] < s)
-            mask = (uint16_t)(mask | (1u << j));
-    return mask;
-}
-
-/* ceil(2^17 / s): u18 (entry 1 is 2^17). gbuf.resolve_exhaustive regenerates and checks every entry. */
-const uint32_t NP_GBUF_RECIP[NP_GBUF_N_MAX + 1] = {
-    0,     131072, 65536, 43691, 32768, 26215, 21846, 18725, 16384,
-    14564, 13108,  11916, 10923, 10083, 9363,  8739,  8192,
-};
+/*
+ * The paper's index matrices and the resolve's reciprocal ROM are the unit's
+ * (rtl_model/np_aacount.h: np_aacount_mask, np_aacount_resolve): one
+ * definition, the hardware's.
+ */
 
 /* Round half up to 8 bits (the units' colour stage, np_tex_colour_round). */
 static uint8_t round8(double v) { return (uint8_t)floor(v + 0.5); }
@@ -625,7 +607,7 @@ int np_gbuf_shade_first(const np_gbuf *g, const np_unit *u, const void *cfg, uin
         free(all);
         return -1;
     }
-    const uint16_t first = np_gbuf_mask_first(g->m, 1);
+    const uint16_t first = np_aacount_mask(g->m, 1);
     unsigned j0 = 0;
     while (!((first >> j0) & 1u))
         j0++;
@@ -654,7 +636,7 @@ void np_gbuf_resolve(const np_gbuf *g, const uint16_t *mask, const uint8_t *rgb,
                 s++;
             }
         for (int ch = 0; ch < 3; ch++)
-            out[3 * p + (size_t)ch] = s ? np_gbuf_resolve8(sum[ch], s) : round8(g->sc->background[ch]);
+            out[3 * p + (size_t)ch] = s ? np_aacount_resolve(sum[ch], s) : round8(g->sc->background[ch]);
     }
 }
 

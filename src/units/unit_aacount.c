@@ -7,12 +7,15 @@
  * Metrics a configuration does not build have no bits on the bus, no output
  * column and no gates.
  */
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "np_aacount.h"
 #include "np_ref.h"
+#include "np_scene.h"
 #include "np_unit.h"
+#include "unit_aacount.h"
 
 typedef struct aac_cfg {
     np_aacount_cfg c;
@@ -257,6 +260,57 @@ static int timing(const void *cfg, np_unit_timing *t, char *err, size_t errlen)
     return 0;
 }
 
+/* --- From a scene (unit_aacount.h) --- */
+
+static uint32_t sat_key(double v, double hi)
+{
+    if (!(v > 0.0))
+        return 0;
+    double r = floor(v + 0.5);
+    return (uint32_t)(r > hi ? hi : r);
+}
+
+void np_aacount_cfg_scene(const np_scene *sc, unsigned m, double depth_range, np_aacount_cfg *c)
+{
+    const np_scene_aa *a = &sc->aa;
+    *c = np_aacount_cfg_default();
+    c->m = (uint8_t)m;
+    c->depth = (uint8_t)(a->have_cd != 0);
+    c->normal = (uint8_t)(a->have_cn != 0);
+    c->luma = (uint8_t)(a->have_cs != 0);
+    c->luma_taps = (uint8_t)(a->luma_taps ? a->luma_taps : 4u);
+    c->tile = (uint8_t)a->tile;
+    double range = depth_range, code = 16777215.0;
+    /* k_d = c_d Var(z) = c_d Var(d) (range / (2^24 - 1))^2 = key Var(d / 2^24) */
+    c->c_d = a->have_cd ? sat_key(a->c_d * range * range * (16777216.0 / code) * (16777216.0 / code), 4294967295.0)
+                        : 0u;
+    c->c_n = (uint8_t)(a->have_cn ? sat_key(4.0 * a->c_n, 255.0) : 0u);
+    c->c_s = (uint16_t)(a->have_cs ? sat_key(16.0 * a->c_s, 65535.0) : 0u);
+    /* r / 255 < t_min iff r < ceil(255 t_min) for integer r (the 1e-9 absorbs 16/255 * 255 = 16.000...04) */
+    double tm = ceil(255.0 * a->t_min - 1e-9);
+    c->t_min = (uint8_t)(tm < 0.0 ? 0.0 : tm > 255.0 ? 255.0 : tm);
+    c->t_edge = (uint8_t)sat_key(256.0 * a->t_edge, 255.0);
+}
+
+/*
+ * The registry's hook: a scene with an "aa" section uses the unit, at its m,
+ * with the metrics it enables (the others are not built: no bus bits, no
+ * gates). The parallel variant; the gate report prices the serial one too.
+ */
+static int cfg_scene(void *cfg, const np_scene *sc, char *err, size_t errlen)
+{
+    if (!sc->aa.present)
+        return 0;
+    aac_cfg *c = cfg;
+    np_aacount_cfg_scene(sc, sc->aa.m ? sc->aa.m : 3u, 1.0, &c->c);
+    const char *why = np_aacount_cfg_check(&c->c);
+    if (why) {
+        snprintf(err, errlen, "aa: %s", why);
+        return -1;
+    }
+    return 1;
+}
+
 const np_unit np_unit_aacount = {
     .name = "aacount",
     .summary = "adaptive supersampling sample count: depth variance, normal cone, luma range (Hollaender et al.)",
@@ -273,6 +327,7 @@ const np_unit np_unit_aacount = {
     .boundary = boundary,
     .datapath = datapath,
     .timing = timing,
+    .cfg_scene = cfg_scene,
     .trace = trace,
     .conformance_configs = conformance_configs,
 };
