@@ -47,8 +47,10 @@
  * Since s >= j + 1 iff k > j (j integer), s = 1 + #{ j in 1..n-1 : k > j }, and
  * each metric's "k_x > j" is one integer comparison against a register:
  *   depth   k_d > j  iff  v >= vd[j],  vd[j] = floor(j n^2 2^48 / c_d) + 1
- *           (vd = 2^56, never, when c_d = 0 or the quotient reaches 2^56)
- *   normal  with C = 4 c_n (u8, Q6.2): k_n > j iff min|cos| < a_j =
+ *           (vd = 2^56 exactly - never, as v < 2^56 - when c_d = 0 or when
+ *           floor(j n^2 2^48 / c_d) + 1 would reach 2^56)
+ *   normal  with C the c_n register (u8 Q6.2: the code of 4 c_n, c_n the real
+ *           constant): k_n > j iff min|cos| < a_j =
  *           (C^2 - 16 j^2) / C^2; never when a_j <= 0 (C^2 <= 16 j^2; the
  *           square below would lose the sign); otherwise, both sides being
  *           >= 0, iff min p/q < a_j^2 iff pmin nd < na[j] qmin with
@@ -64,8 +66,9 @@
  *           scale, t_edge u8 Q0.8: 32 = 1/8 is 8 r < lmax, exactly the
  *           paper's r < lmax / 8; a floor(lmax / 8) compare would not be:
  *           lmax = 9, r = 1) gives ss = 1; otherwise k_s > j iff
- *           r >= rs[j], rs[j] = floor(255 * 16 j / C_s) + 1 (C_s = 16 c_s,
- *           u16 Q12.4; rs = 256, never, when C_s = 0 or above 255).
+ *           r >= rs[j], rs[j] = min(floor(255 * 16 j / C_s) + 1, 256) (C_s the
+ *           c_s register, u16 Q12.4, the code of 16 c_s; rs = 256 means never,
+ *           as r <= 255: when C_s = 0, or when the quotient + 1 exceeds 255).
  * Every register is the exact integer image of its real comparison, so the
  * counts equal the exact rational reference (src/ref/ref_aacount.c) on every
  * window: there is no rounding anywhere to bound.
@@ -132,9 +135,9 @@ typedef struct np_aacount_cfg {
     uint8_t luma_taps; /* 4: the four neighbours (the paper); 5: and the centre (FXAA) */
     uint8_t tile;      /* 0, or 6: the 6 x 6 tile maximum after the unit */
     uint8_t serial;    /* 0: parallel (one window a clock); 1: serial (one beat a clock) */
-    uint8_t c_n;       /* C = 4 c_n, u8 Q6.2 */
+    uint8_t c_n;       /* the code C itself, u8 Q6.2: the real constant c_n = C / 4 (key c_n=32: c_n = 8) */
     uint32_t c_d;      /* c_d, u32, per (depth range)^2 */
-    uint16_t c_s;      /* C_s = 16 c_s, u16 Q12.4, per luma range [0, 1] */
+    uint16_t c_s;      /* the code C_s itself, u16 Q12.4: the real c_s = C_s / 16 per luma range [0, 1] (key 128: 8) */
     uint8_t t_min;     /* luma code: t_min = t_min / 255 (PIN 16) */
     uint8_t t_edge;    /* Q0.8: t_edge = t_edge / 256 (PIN 32 = 1/8) */
 } np_aacount_cfg;
@@ -220,11 +223,15 @@ void np_aacount_tile_max(uint8_t *s, unsigned w, unsigned h);
 /* --- The window bus of the registry's vectors (a vector line carries one window) --- */
 
 /*
- * Bits of the window bus: per sample (beat) i, from bit 0 up: d (24, when
- * depth is built), nx, ny, nz (8 each, two's complement, when normal is
- * built); after the n beats the five lumas (8 each, centre left right up
- * down, when luma is built). The bus is cut into 64-bit words w0 (bits 0..63),
- * w1, ...; at most 8 words (512 bits).
+ * Bits of the window bus: beat i (sample index i = b m + a) occupies bits
+ * [i B, (i + 1) B), B = 24 (when depth is built) + 24 (when normal is built),
+ * and holds from its lowest bit up: d (24), then nx, ny, nz (8 each, two's
+ * complement). After the n beats, at bit n B, the five lumas, 8 bits each
+ * from the lowest up: centre, left, right, up, down (40 bits, when luma is
+ * built). The bus is cut into 64-bit words w0 (bits 0..63, the vector's first
+ * input word), w1, ...; the last word holds what is left (its upper bits are
+ * not part of the bus); at most 8 words (512 bits). A sample whose normal is
+ * (0,0,0) takes no part in the cone test (nor in nbar).
  */
 unsigned np_aacount_bus_bits(const np_aacount_cfg *cfg);
 void np_aacount_bus_pack(const np_aacount_cfg *cfg, const np_aacount_win *w, uint64_t *words);
@@ -249,7 +256,8 @@ void np_aacount_sig_out(const np_aacount_sig *s, np_aacount_out *o);
  * nbar over n beats while the normals go into a buffer of n x 24 bits; pass 2
  * (the next n clocks, overlapped with the next window's pass 1: two buffers)
  * computes each beat's p, q and the running least ratio; then one clock of
- * counts and mask. A window every n clocks, latency 2n + 2 from its first beat.
+ * counts and mask. A window every n clocks, latency 2n clocks from its first
+ * beat (np_aacount_serial_latency).
  */
 typedef struct np_aacount_serial {
     const np_aacount_cfg *cfg;
