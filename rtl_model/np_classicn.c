@@ -211,20 +211,21 @@ size_t np_classicn_datapath(const np_classicn_cfg *cfg, np_op *ops, size_t max)
     unsigned n = cfg->dims, nc = 1u << n, ws = cfg->s_frac, wl = cfg->lerp_frac, nb = cfg->out_bits;
     unsigned f = np_classicn_out_frac(cfg), sw = ws + 1u, lookups = np_hashn_lookups(n);
     unsigned gb = np_bits_for_range(-(int64_t)np_gradn_max_terms(n) * 256, (int64_t)np_gradn_max_terms(n) * 256, 1);
-    /* L: cell + 1, the lookups, an adder tree per corner; u^2 per axis. */
-    np_dp_op(&d, "L", NULL, NP_OP_ADD, n, 8, 0, 0, 0, 0);
+    /* L: cell + 1 (n 8-bit incrementers), the lookups, an adder tree per corner; u * u per axis (a squarer). */
+    np_dp_op(&d, "L", NULL, NP_OP_INC, n, 8, 0, 0, 0, 0);
     np_dp_op(&d, "L", NULL, NP_OP_LUT, nc * lookups, 3, 6, 0, 0, 1);
     tree(&d, "L", "h", nc, lookups, 6, 6, 0, 2);
-    np_dp_op(&d, "L", "s2", NP_OP_MUL, n, 8, 8, 16, 0, 0);
+    np_dp_op(&d, "L", "s2", NP_OP_SQR, n, 8, 0, 16, 0, 0);
     np_dp_op(&d, "L", NULL, NP_OP_REG, 1, n * 8 + nc * 6 + n * 16 + 1, 0, 0, 0, 0);
     /* H: per corner and axis a 3:1 select of the s9 offset, a 10-bit negate; the sum over n axes. */
     np_dp_op(&d, "H", NULL, NP_OP_MUX, nc * n, 9, 3, 0, 0, 0);
     np_dp_op(&d, "H", NULL, NP_OP_NEG, nc * n, 10, 0, 0, 0, 1);
     tree(&d, "H", "g", nc, n, 10, gb, 1, 2);
-    np_dp_op(&d, "H", NULL, NP_OP_ADD, n, 10, 0, 0, 0, 0);
+    /* S second half: 768 - 2u (a constant minus x: an incrementer), the product, + half an LSB. */
+    np_dp_op(&d, "H", NULL, NP_OP_INC, n, 10, 0, 0, 0, 0);
     np_dp_op(&d, "H", "snum", NP_OP_MUL, n, 16, 10, NP_CLASSICN_SNUM_BITS, 0, 1);
     if (ws < NP_CLASSICN_SNUM_BITS)
-        np_dp_op(&d, "H", "s", NP_OP_ADD, n, sw, 0, sw, 0, 2);
+        np_dp_op(&d, "H", "s", NP_OP_INC, n, sw, 0, sw, 0, 2);
     np_dp_op(&d, "H", NULL, NP_OP_REG, 1, nc * gb + n * sw + 1, 0, 0, 0, 0);
     /* I: n levels; |l_m| <= m/2 + (n - m), the operands of level m are level m - 1's (|g| <= n). */
     static const char *const mst[NP_CLASSICN_MAX] = { "I1m", "I2m", "I3m", "I4m", "I5m" };
@@ -236,33 +237,62 @@ size_t np_classicn_datapath(const np_classicn_cfg *cfg, np_op *ops, size_t max)
      * check's margin, so those three signals are declared untraced (NULL).
      */
     int last_traced = n != 4u;
-    unsigned vi_last = 0;
+    unsigned vi_last = 0, zin = 0;
     for (unsigned lvl = 0; lvl < n; lvl++) {
         unsigned cnt = nc >> (lvl + 1u);
         double opb = lvl == 0 ? (double)n : 0.5 * lvl + (double)(n - lvl);
         unsigned vi = int_bits(0.5 * (lvl + 1u) + (double)(n - lvl - 1u));
         unsigned af = lvl == 0 ? NP_CLASSICN_FRAC_IN : wl;
-        unsigned aw = af + 1u + int_bits(opb);
-        unsigned dw = af + 1u + int_bits(2.0 * opb);
-        unsigned pw = dw + ws, sumw = af + ws + 1u + vi, vw = wl + 1u + vi;
+        unsigned ai = 1u + int_bits(opb), di = 1u + int_bits(2.0 * opb); /* sign + integer bits */
+        unsigned dw = af + di, pw = dw + ws, sumw = af + ws + 1u + vi, vw = wl + 1u + vi;
         unsigned later = sw * (n - 1u - lvl);
-        np_dp_op(&d, mst[lvl], names[lvl][0], NP_OP_ADD, cnt, dw, 0, dw, 1, 0);
-        np_dp_op(&d, mst[lvl], names[lvl][1], NP_OP_MUL, cnt, sw, dw, pw, 1, 1);
-        np_dp_op(&d, mst[lvl], NULL, NP_OP_REG, 1, cnt * (pw + aw) + later + 1, 0, 0, 0, 0);
+        /*
+         * np_classic_datapath's rules, level by level: constant-zero low
+         * bits (level 1 widening, 8 + WS < WL, leaves zout of them; a level
+         * drops WS) are priced out (effective fractions afe, wle; the traced
+         * widths stay the words'); the bank keeps prod without the low bits
+         * the rounding never reads; the sum's adder spans only the bits above
+         * prod's low WS; the rounding is an incrementer (of bits sh..WS-1,
+         * or of the kept bits and the round bit when sh > WS, or the adder's
+         * carry-in when sh == WS); the last level's bits under O's round bit
+         * only carry (a comparator's chain).
+         */
+        unsigned zout = lvl == 0 ? (wl > af + ws ? wl - af - ws : 0u) : (zin > ws ? zin - ws : 0u);
+        unsigned afe = af - zin, wle = wl - zout;
+        unsigned dwe = afe + di, pwe = dwe + ws, sumwe = afe + ws + 1u + vi, vwe = wle + 1u + vi;
+        unsigned sh = afe + ws > wle ? afe + ws - wle : 0u;
+        unsigned dead = sh == 0u ? 0u : (sh - 1u < ws ? sh - 1u : ws);
+        unsigned unread = lvl + 1u == n && wl > f + 1u + zout ? wl - f - 1u - zout : 0u;
+        np_dp_op(&d, mst[lvl], names[lvl][0], NP_OP_ADD, cnt, dwe, 0, dw, 1, 0);
+        np_dp_op(&d, mst[lvl], names[lvl][1], NP_OP_MUL, cnt, sw, dwe, pw, 1, 1);
+        np_dp_op(&d, mst[lvl], NULL, NP_OP_REG, 1, cnt * (pwe - dead + afe + ai) + later + 1, 0, 0, 0, 0);
         int named = last_traced || lvl + 1u < n;
-        np_dp_op(&d, ast[lvl], named ? names[lvl][2] : NULL, NP_OP_ADD, cnt, sumw, 0, named ? sumw : 0u, 1, 0);
-        if (af + ws > wl)
-            np_dp_op(&d, ast[lvl], named ? names[lvl][3] : NULL, NP_OP_ADD, cnt, vw + 1u, 0, named ? vw : 0u, 1, 1);
+        np_dp_op(&d, ast[lvl], named ? names[lvl][2] : NULL, NP_OP_ADD, cnt, sumwe - ws - unread, 0,
+                 named ? sumw : 0u, 1, 0);
+        if (unread > 0u)
+            np_dp_op(&d, ast[lvl], NULL, NP_OP_CMP, cnt, unread, 0, 0, 0, 0);
+        const char *lname = named ? names[lvl][3] : NULL;
+        if (sh > 0u && sh < ws)
+            np_dp_op(&d, ast[lvl], lname, NP_OP_INC, cnt, ws - sh + 1u, 0, named ? vw : 0u, 1, 1);
+        else if (sh > ws)
+            np_dp_op(&d, ast[lvl], lname, NP_OP_INC, cnt, vwe + 1u, 0, named ? vw : 0u, 1, 1);
         else
-            np_dp_op(&d, ast[lvl], named ? names[lvl][3] : NULL, NP_OP_REG, 0, 0, 0, named ? vw : 0u, 1, 1);
-        np_dp_op(&d, ast[lvl], NULL, NP_OP_REG, 1, cnt * vw + later + 1, 0, 0, 0, 0);
+            np_dp_op(&d, ast[lvl], lname, NP_OP_REG, 0, 0, 0, named ? vw : 0u, 1, 1); /* wiring or carry-in */
+        np_dp_op(&d, ast[lvl], NULL, NP_OP_REG, 1, cnt * (vwe - unread) + later + 1, 0, 0, 0, 0);
         vi_last = vi;
+        zin = zout;
     }
-    /* O: round to Q(I).F (the value's bits plus the round bit), saturate (two comparisons, a 3:1 select). */
+    /*
+     * O: round to Q(I).F, an incrementer over the kept bits (sign, vi, F)
+     * and the round bit. |noise| <= n/2: the rounded word leaves sN only at
+     * n = 3 (vi = 1, I = 2), by the carry into +2.0, which classic3 folds into
+     * the incrementer (np_classic_datapath); at n = 2, 4, 5 it never does.
+     * So the saturation costs no gate. Without rounding (WL == F): wiring.
+     */
     if (wl > f)
-        np_dp_op(&d, "O", NULL, NP_OP_ADD, 1, f + 2u + vi_last, 0, 0, 0, 0);
-    np_dp_op(&d, "O", NULL, NP_OP_CMP, 2, f + 2u + vi_last, 0, 0, 0, 1);
-    np_dp_op(&d, "O", last_traced ? "f" : NULL, NP_OP_MUX, 1, nb, 3, last_traced ? nb : 0u, 1, 2);
+        np_dp_op(&d, "O", last_traced ? "f" : NULL, NP_OP_INC, 1, f + 2u + vi_last, 0, last_traced ? nb : 0u, 1, 0);
+    else
+        np_dp_op(&d, "O", last_traced ? "f" : NULL, NP_OP_REG, 0, 0, 0, last_traced ? nb : 0u, 1, 0);
     np_dp_op(&d, "O", NULL, NP_OP_REG, 1, nb + 1, 0, 0, 0, 0);
     return d.n;
 }

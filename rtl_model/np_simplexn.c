@@ -372,7 +372,7 @@ size_t np_simplexn_datapath(const np_simplexn_cfg *cfg, np_op *ops, size_t max)
     lv = lv > li ? lv : li;
     np_dp_op(&d, "RK", NULL, NP_OP_ADD, n, OFFW, 0, 0, 0, lv++);
     np_dp_op(&d, "RK", "off", NP_OP_ADD, n, OFFW, 0, OFFW, 1, lv++);
-    np_dp_op(&d, "RK", NULL, NP_OP_ADD, n, NP_HASHN_COORD, 0, 0, 0, 0); /* cell + 1 mod 256 */
+    np_dp_op(&d, "RK", NULL, NP_OP_INC, n, NP_HASHN_COORD, 0, 0, 0, 0); /* cell + 1 mod 256 */
     unsigned layer[16], depth = network_layers(n, layer);
     for (unsigned k = 0; k < depth; k++) {
         np_dp_op(&d, "RK", NULL, NP_OP_CMP, layer[k], OFFW + AXW, 0, 0, 0, lv + 2u * k);
@@ -401,20 +401,20 @@ size_t np_simplexn_datapath(const np_simplexn_cfg *cfg, np_op *ops, size_t max)
     uint64_t r2max = (uint64_t)ceil(g->edge2 * (double)g->w * (double)g->w);
     unsigned r2w = ubits(r2max), tdw = sbits((uint64_t)g->k * r2max > g->tv ? (uint64_t)g->k * r2max : g->tv);
     unsigned tw = ubits(g->tv);
-    np_dp_op(&d, "KT", NULL, NP_OP_MUL, nc * n, OFFW, OFFW, 2u * OFFW, 0, 0);
+    np_dp_op(&d, "KT", NULL, NP_OP_SQR, nc * n, OFFW, 0, 2u * OFFW, 0, 0); /* d_a^2: squarers */
     lv = tree(&d, "KT", "r2", nc, n, r2w, 0, 1);
     lv += const_mul(&d, "KT", NULL, nc, g->k, tdw, 0, lv);
-    np_dp_op(&d, "KT", NULL, NP_OP_ADD, nc, tdw, 0, 0, 1, lv++);
+    np_dp_op(&d, "KT", NULL, NP_OP_INC, nc, tdw, 0, 0, 1, lv++); /* a constant minus k R2 */
     np_dp_op(&d, "KT", "t", NP_OP_MUX, nc, tw, 2, tw, 0, lv);
     np_dp_op(&d, "KT", NULL, NP_OP_REG, 1, nc * (tw + gdw) + 1u, 0, 0, 0, 0);
-    /* P2, P4: the largest words are at T = Tv (every rounding is monotone). */
+    /* P2, P4: squarers; roundings are incrementers (as simplex3); the largest words are at T = Tv. */
     uint64_t t2 = np_simplexn_tau2(g, cfg, g->tv), t4 = np_simplexn_tau4(cfg, (uint32_t)t2);
     unsigned t2w = ubits(t2), t4w = ubits(t4);
-    np_dp_op(&d, "P2", NULL, NP_OP_MUL, nc, tw, tw, 2u * tw, 0, 0);
-    np_dp_op(&d, "P2", "tau2", NP_OP_ADD, nc, t2w + 1u, 0, t2w, 0, 1);
+    np_dp_op(&d, "P2", NULL, NP_OP_SQR, nc, tw, 0, 2u * tw, 0, 0);
+    np_dp_op(&d, "P2", "tau2", NP_OP_INC, nc, t2w + 1u, 0, t2w, 0, 1);
     np_dp_op(&d, "P2", NULL, NP_OP_REG, 1, nc * (t2w + gdw) + 1u, 0, 0, 0, 0);
-    np_dp_op(&d, "P4", NULL, NP_OP_MUL, nc, t2w, t2w, 2u * t2w, 0, 0);
-    np_dp_op(&d, "P4", "tau4", NP_OP_ADD, nc, t4w + 1u, 0, t4w, 0, 1);
+    np_dp_op(&d, "P4", NULL, NP_OP_SQR, nc, t2w, 0, 2u * t2w, 0, 0);
+    np_dp_op(&d, "P4", "tau4", NP_OP_INC, nc, t4w + 1u, 0, t4w, 0, 1);
     np_dp_op(&d, "P4", NULL, NP_OP_REG, 1, nc * (t4w + gdw) + 1u, 0, 0, 0, 0);
     /*
      * M: fc = round(tau4 gd): |tau^4 G.d| <= fcmax where T > 0, plus tau4's
@@ -425,19 +425,19 @@ size_t np_simplexn_datapath(const np_simplexn_cfg *cfg, np_op *ops, size_t max)
     unsigned fcw = sbits(fcmax);
     np_dp_op(&d, "M", NULL, NP_OP_MUL, nc, t4w, gdw, t4w + gdw, 1, 0);
     if (wt + g->gdf > wp)
-        np_dp_op(&d, "M", "fc", NP_OP_ADD, nc, fcw + 1u, 0, fcw, 1, 1);
+        np_dp_op(&d, "M", "fc", NP_OP_INC, nc, fcw + 1u, 0, fcw, 1, 1);
     np_dp_op(&d, "M", NULL, NP_OP_REG, 1, nc * fcw + 1u, 0, 0, 0, 0);
     /* A: the sum of n + 1 terms, |S| <= smax + errors < (n + 1) max |fc|: s(fcw + ceil log2 (n+1)). */
     unsigned sw = fcw + clog2(nc);
     tree(&d, "A", NULL, 1, nc, sw, 1, 0);
     np_dp_op(&d, "A", NULL, NP_OP_REG, 1, sw + 1u, 0, 0, 0, 0);
-    /* O: Kf' S as shift-adds, rounding by WK + WP - N bits, the saturation (2 comparisons, a 3:1 select). */
+    /* O: Kf' S as shift-adds, rounding (an incrementer), the saturation (2 constant compares, a 3:1 select). */
     uint64_t kf = (uint64_t)np_simplexn_kf(g, cfg);
     unsigned pw = sw + ubits(kf);
     lv = const_mul(&d, "O", NULL, 1, kf, pw, 1, 0);
     if (wk + wp > nb)
-        np_dp_op(&d, "O", NULL, NP_OP_ADD, 1, pw - (wk + wp - nb) + 1u, 0, 0, 1, lv++);
-    np_dp_op(&d, "O", NULL, NP_OP_CMP, 2, pw - (wk + wp > nb ? wk + wp - nb : 0u), 0, 0, 0, lv++);
+        np_dp_op(&d, "O", NULL, NP_OP_INC, 1, pw - (wk + wp - nb) + 1u, 0, 0, 1, lv++);
+    np_dp_op(&d, "O", NULL, NP_OP_CMPK, 2, pw - (wk + wp > nb ? wk + wp - nb : 0u), 0, 0, 0, lv++);
     np_dp_op(&d, "O", NULL, NP_OP_MUX, 1, nb, 3, 0, 1, lv); /* the port sN: untraced, see np_simplexn.h */
     np_dp_op(&d, "O", NULL, NP_OP_REG, 1, nb + 1u, 0, 0, 0, 0);
     return d.n;
