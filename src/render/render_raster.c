@@ -241,7 +241,8 @@ int np_render_prepare(const np_scene *sc, np_render_frame *fr, char *err, size_t
         }
     }
     np_gbuf_free(&g);
-    qsort(fr->spans, fr->n_spans, sizeof *fr->spans, span_order);
+    if (fr->n_spans) /* an empty frame (allow_empty) has no span array: qsort must not see NULL */
+        qsort(fr->spans, fr->n_spans, sizeof *fr->spans, span_order);
     size_t npx = (size_t)sc->width * sc->height;
     fr->mask = calloc(npx, 1);
     if (!fr->mask) {
