@@ -362,6 +362,15 @@ static void op_text(const np_op *op, char *buf, size_t len)
     }
 }
 
+/* Results per clock as a person reads it: "1 / clock", "4 / clock", or "1 / 9 clocks" for a serial unit. */
+static void fmt_throughput(char *buf, size_t len, double t)
+{
+    if (t >= 1.0 || t <= 0.0)
+        snprintf(buf, len, "%.0f / clock", t);
+    else
+        snprintf(buf, len, "1 / %.3g clocks", 1.0 / t);
+}
+
 void np_report_gates_md(FILE *f, const np_unit_cost *c, size_t n, const char *title)
 {
     fprintf(f, "# %s\n\n", title);
@@ -370,10 +379,13 @@ void np_report_gates_md(FILE *f, const np_unit_cost *c, size_t n, const char *ti
                "Gates are NAND2 equivalents; delays are gate levels.\n\n");
     fprintf(f, "| unit | configuration | logic | registers (bits) | total | latency | throughput | critical path |\n");
     fprintf(f, "| --- | --- | ---: | ---: | ---: | ---: | ---: | --- |\n");
-    for (size_t i = 0; i < n; i++)
-        fprintf(f, "| %s | `%s` | %.0f | %.0f (%u) | **%.0f** | %u clocks | %.0f / clock | %.0f levels (%s) |\n",
+    for (size_t i = 0; i < n; i++) {
+        char tp[32];
+        fmt_throughput(tp, sizeof tp, c[i].throughput);
+        fprintf(f, "| %s | `%s` | %.0f | %.0f (%u) | **%.0f** | %u clocks | %s | %.0f levels (%s) |\n",
                 c[i].unit->name, c[i].cfg, c[i].logic, c[i].regs, c[i].reg_bits, c[i].total,
-                c[i].latency, c[i].throughput, c[i].crit, c[i].crit_stage);
+                c[i].latency, tp, c[i].crit, c[i].crit_stage);
+    }
     for (size_t i = 0; i < n; i++) {
         const np_unit_cost *u = &c[i];
         fprintf(f, "\n## %s (`%s`)\n\n", u->unit->name, u->cfg);
