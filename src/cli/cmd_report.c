@@ -94,13 +94,16 @@ static int commit(FILE *f, const char *tmp, const char *final)
 
 static int write_gates(const char *dir, const np_unit *only, const char *spec)
 {
-    np_unit_cost *costs = calloc(16, sizeof *costs);
+    size_t nunits = 0;
+    while (np_unit_at(nunits) != NULL)
+        nunits++;
+    np_unit_cost *costs = calloc(nunits ? nunits : 1, sizeof *costs);
     size_t n = 0;
     char err[256];
     if (!costs)
         return NP_EXIT_USAGE;
     const np_unit *u;
-    for (size_t i = 0; (u = np_unit_at(i)) != NULL && n < 16; i++) {
+    for (size_t i = 0; (u = np_unit_at(i)) != NULL && n < nunits; i++) {
         if ((only && u != only) || !u->datapath)
             continue;
         np_unit_cfg cfg;
