@@ -21,13 +21,16 @@
 #include "np_stream.h"
 #include "np_wave_json.h"
 #include "np_wave_scene.h"
+#include "unit_span.h"
 
 /* --levels: the target clock in gate levels the gate reports pipeline every stage to (np_report_levels_md). */
 static unsigned g_levels = NP_REPORT_LEVELS_DEFAULT;
+/* --sized: gates --scene with the span units' registers sized by the scene (np_scene.size_registers). */
+static int g_sized;
 
 static const char usage_text[] =
     "usage: noisepipe report gates  [--unit U] [--config K=V,...] [--levels N] [-o DIR]\n"
-    "       noisepipe report gates  --scene SCENE.json [--levels N] [-o DIR]\n"
+    "       noisepipe report gates  --scene SCENE.json [--sized] [--levels N] [-o DIR]\n"
     "       noisepipe report gates  --synth [--unit U] [--config K=V,...] [--rtl DIR] [--tolerance PCT]\n"
     "       noisepipe report pareto [--unit U] [--samples N] [--seed S] [-o DIR]\n"
     "       noisepipe report runtime [--scene SCENE.json] [--repeat N] -o DIR\n"
@@ -49,6 +52,9 @@ static const char usage_text[] =
     "  metrics it enables, luma_taps, tile), parallel and serial. With -o, DIR/scene-NAME-gates.md\n"
     "  and .json. A wave scene (a \"waves\" section): the wave unit with the effects the scene does\n"
     "  not use left out, and the frame's cycles with the culled boxes left out.\n"
+    "  --sized (with --scene): the span units' registers sized by the scene - the fewest\n"
+    "  transform, quadric, index and guard bits whose predicted bound is <= 1 LSB (render\n"
+    "  --sized renders with them) - instead of the default widths; DIR/scene-NAME-sized-gates.md.\n"
     "  --synth: synthesise the reference RTL (rtl_model/verilog, or --rtl DIR) with Yosys + ABC\n"
     "  and print its NAND2 equivalents per stage beside the cost model's (classic3, simplex3;\n"
     "  docs/cost-model.md). Needs yosys (exit 2 without it); --tolerance PCT: exit 1 when a\n"
@@ -261,6 +267,28 @@ static void scene_md(FILE *f, const np_scene *sc, const np_render_frame *fr, con
     for (size_t i = 0; i < nleft; i++)
         fprintf(f, "%s `%s`", i ? "," : "", left[i]->name);
     fprintf(f, "%s\n\n", nleft ? "" : " none");
+    /*
+     * The registers' widths (issue 10): the default ones, or (--sized) the
+     * fewest whose predicted bound over this scene is <= 1 LSB.
+     */
+    fprintf(f, "Registers %s: the predicted bound is the unit's own over the scene's widest span (%u pixels) plus "
+               "the registers' rounding over its texture coordinates (docs/fdiff.md).\n\n",
+            sc->size_registers ? "**sized by the scene** (`--sized`: the fewest transform, quadric, index and guard "
+                                 "bits whose predicted bound is <= 1 LSB)"
+                               : "at the units' default widths (`--sized` prices the scene-sized ones)",
+            sc->width);
+    fprintf(f, "| unit | configuration | quadric A'..J' | transform M | predicted bound |\n| --- | --- | --- | --- | ---: |\n");
+    for (size_t i = 0; i < n; i++) {
+        if (!su[i].renders)
+            continue;
+        const unsigned tex = np_su_texture(c[i].unit->span, &su[i].cfg);
+        const np_tex_regs *rg = np_ut_regs(tex);
+        fprintf(f, "| %s | `%s` | s%u Q%u.%u | s%u Q%u.%u | %.3f LSB |\n", c[i].unit->name, c[i].cfg, np_tex_k_bits(rg),
+                np_tex_k_bits(rg) - 1u - np_tex_k_frac(rg), np_tex_k_frac(rg), np_tex_m_bits(rg),
+                np_tex_m_bits(rg) - 1u - np_tex_m_frac(rg), np_tex_m_frac(rg),
+                np_su_predicted_lsb(c[i].unit, &su[i].cfg, sc->width));
+    }
+    fprintf(f, "\n");
     fprintf(f, "| unit | octave lanes | gates | latency | throughput | cycles / frame (cycle model) | set-up stalls | cycles / pixel |\n");
     fprintf(f, "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
     for (size_t i = 0; i < n; i++) {
@@ -486,6 +514,7 @@ static int write_scene(const char *dir, const char *path)
         np_err("report", "%s", err);
         return NP_EXIT_USAGE;
     }
+    sc.size_registers = g_sized;
     if (np_render_prepare(&sc, &fr, err, sizeof err) != 0) {
         np_err("report", "%s", err);
         np_scene_free(&sc);
@@ -541,14 +570,14 @@ static int write_scene(const char *dir, const char *path)
             scene_md(stdout, &sc, &fr, su, costs, n, left, nleft);
         } else {
             char name[128], tmp[1024], fin[1024];
-            snprintf(name, sizeof name, "scene-%s-gates.md", sc.name);
+            snprintf(name, sizeof name, "scene-%s%s-gates.md", sc.name, g_sized ? "-sized" : "");
             FILE *f = open_tmp(dir, name, tmp, fin, sizeof tmp);
             if (f) {
                 scene_md(f, &sc, &fr, su, costs, n, left, nleft);
                 rc = commit(f, tmp, fin) ? NP_EXIT_USAGE : rc;
             } else
                 rc = NP_EXIT_USAGE;
-            snprintf(name, sizeof name, "scene-%s-gates.json", sc.name);
+            snprintf(name, sizeof name, "scene-%s%s-gates.json", sc.name, g_sized ? "-sized" : "");
             f = rc ? NULL : open_tmp(dir, name, tmp, fin, sizeof tmp);
             if (f) {
                 scene_json(f, &sc, &fr, su, costs, n, left, nleft);
@@ -556,7 +585,7 @@ static int write_scene(const char *dir, const char *path)
             } else
                 rc = NP_EXIT_USAGE;
             if (rc == NP_EXIT_OK)
-                printf("wrote %s/scene-%s-gates.md and .json (%zu units)\n", dir, sc.name, n);
+                printf("wrote %s/scene-%s%s-gates.md and .json (%zu units)\n", dir, sc.name, g_sized ? "-sized" : "", n);
         }
     }
     free(costs);
@@ -638,6 +667,10 @@ int np_cmd_report(int argc, char **argv)
         }
         if (strcmp(a, "--synth") == 0) {
             synth = 1;
+            continue;
+        }
+        if (strcmp(a, "--sized") == 0) {
+            g_sized = 1;
             continue;
         }
         if (!v) {
