@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* noisepipe report: gate and latency estimates; error against cost. */
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -158,7 +159,75 @@ typedef struct scene_unit {
     int have_frame;
     int renders;          /* 1: a span unit that renders the scene; 0: another unit it uses (aacount) */
     uint64_t cycles, setup_stalls, pixels, spans;
+    /* --sized: the set-up engine sizes tried (setup_mults), their gates and frame cycles; chosen: the least gates x cycles. */
+    unsigned n_p, p[5], chosen;
+    double p_gates[5];
+    uint64_t p_cycles[5], p_stalls[5];
 } scene_unit;
+
+static int scene_frame(scene_unit *su, const np_render_frame *fr);
+
+/*
+ * --sized (issue 14): the set-up multiplier count chosen for the scene by
+ * the least gates x cycles over P = 1, 2, 4, 8, 16 (those the unit's key
+ * takes), each priced and run through the stream model on the frame; su
+ * and c become the chosen one's. 0, or -1 with err.
+ */
+static int scene_choose_p(scene_unit *su, np_unit_cost *c, const np_render_frame *fr, char *err, size_t errlen)
+{
+    static const unsigned ps[] = { 1, 2, 4, 8, 16 };
+    scene_unit best = *su;
+    np_unit_cost *cb = malloc(sizeof *cb), *ct = malloc(sizeof *ct);
+    double best_gc = (double)INFINITY;
+    int rc = cb && ct ? 0 : -1;
+    su->n_p = 0;
+    for (size_t i = 0; i < sizeof ps / sizeof ps[0] && rc == 0; i++) {
+        scene_unit t = *su;
+        char v[16], e2[256];
+        snprintf(v, sizeof v, "%u", ps[i]);
+        if (np_unit_cfg_set(su->u, &t.cfg, "setup_mults", v, e2, sizeof e2) != 0)
+            continue; /* beyond the unit's engine */
+        if (np_unit_cost_compute(su->u, &t.cfg, &np_cost_default, ct, err, errlen) != 0 || scene_frame(&t, fr) != 0) {
+            if (!err[0])
+                snprintf(err, errlen, "setup_mults=%u: the stream model did not finish the frame", ps[i]);
+            rc = -1;
+            break;
+        }
+        unsigned k = su->n_p++;
+        su->p[k] = ps[i];
+        su->p_gates[k] = ct->total;
+        su->p_cycles[k] = t.cycles;
+        su->p_stalls[k] = t.setup_stalls;
+        const double gc = ct->total * (double)t.cycles;
+        if (gc < best_gc) {
+            best_gc = gc;
+            best = t;
+            *cb = *ct;
+            su->chosen = ps[i];
+        }
+    }
+    if (rc == 0 && su->n_p) {
+        unsigned n_p = su->n_p, chosen = su->chosen;
+        unsigned p[5];
+        double g[5];
+        uint64_t cy[5], st[5];
+        memcpy(p, su->p, sizeof p);
+        memcpy(g, su->p_gates, sizeof g);
+        memcpy(cy, su->p_cycles, sizeof cy);
+        memcpy(st, su->p_stalls, sizeof st);
+        *su = best;
+        su->n_p = n_p;
+        su->chosen = chosen;
+        memcpy(su->p, p, sizeof p);
+        memcpy(su->p_gates, g, sizeof g);
+        memcpy(su->p_cycles, cy, sizeof cy);
+        memcpy(su->p_stalls, st, sizeof st);
+        *c = *cb;
+    }
+    free(cb);
+    free(ct);
+    return rc;
+}
 
 /* Index of the input field called name, or -1. */
 static int field_index(const np_unit_fields *f, const char *name)
@@ -289,6 +358,20 @@ static void scene_md(FILE *f, const np_scene *sc, const np_render_frame *fr, con
                 np_su_predicted_lsb(c[i].unit, &su[i].cfg, sc->width));
     }
     fprintf(f, "\n");
+    for (size_t i = 0; i < n; i++) {
+        if (!su[i].renders || !su[i].n_p)
+            continue;
+        fprintf(f, "Set-up multipliers of %s (`setup_mults`), chosen for this scene by the least gates x cycles "
+                   "(the stream model on the frame):\n\n| P | gates | cycles / frame | set-up stall cycles | gates x "
+                   "cycles |\n| ---: | ---: | ---: | ---: | ---: |\n",
+                c[i].unit->name);
+        for (unsigned k = 0; k < su[i].n_p; k++)
+            fprintf(f, "| %s%u%s | %.0f | %llu | %llu | %.3g |\n", su[i].p[k] == su[i].chosen ? "**" : "", su[i].p[k],
+                    su[i].p[k] == su[i].chosen ? " (chosen)**" : "", su[i].p_gates[k],
+                    (unsigned long long)su[i].p_cycles[k], (unsigned long long)su[i].p_stalls[k],
+                    su[i].p_gates[k] * (double)su[i].p_cycles[k]);
+        fprintf(f, "\n");
+    }
     fprintf(f, "| unit | octave lanes | gates | latency | throughput | cycles / frame (cycle model) | set-up stalls | cycles / pixel |\n");
     fprintf(f, "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
     for (size_t i = 0; i < n; i++) {
@@ -545,6 +628,12 @@ static int write_scene(const char *dir, const char *path)
             } else {
                 if (u->stream && su[n].renders)
                     scene_frame(&su[n], &fr);
+                err[0] = '\0';
+                if (g_sized && u->stream && su[n].renders && scene_choose_p(&su[n], &costs[n], &fr, err, sizeof err) != 0) {
+                    np_err("report", "%s: %s", u->name, err);
+                    rc = NP_EXIT_USAGE;
+                    break;
+                }
                 n++;
                 /* A unit with a serial variant (aacount): priced beside the parallel one. */
                 if (!su[n - 1].renders && n < MAXU) {
