@@ -291,6 +291,18 @@ static const char *unit_spec(const void *ctx, const np_unit *u)
     return i < 0 ? NULL : o->unit_spec[i];
 }
 
+/*
+ * A lit image's bound (scene light.image): the lighting stage's 0.513 LSB
+ * plus the unlit colour's error (argued in np_gbuf.h, "Lighting").
+ */
+#define LIGHT_BOUND_LSB 0.513
+
+/* The predicted bound of unit uc's image of scene sc (the texture's, plus the lighting when it shades the image). */
+static double predicted_lsb(const np_render_unit_cfg *uc, const np_scene *sc)
+{
+    return np_su_predicted_lsb(uc->u, &uc->cfg, sc->width) + (sc->light_image ? LIGHT_BOUND_LSB : 0.0);
+}
+
 static void print_run(const np_render_unit_cfg *uc, const np_scene *sc, const np_render_run *r)
 {
     const char *unit = uc->u->name, *cfg = uc->text;
@@ -312,12 +324,17 @@ static void print_run(const np_render_unit_cfg *uc, const np_scene *sc, const np
      * coordinates, the bound the scene check accepted.
      */
     const np_texreg_scene_bound *b = uc->u->span ? np_ut_texture_bound(np_su_texture(uc->u->span, &uc->cfg)) : NULL;
-    const double pred = uc->u->span ? np_su_predicted_lsb(uc->u, &uc->cfg, sc->width) : (double)NAN;
+    const double pred = uc->u->span ? predicted_lsb(uc, sc) : (double)NAN;
     if (b && !isnan(pred)) {
         const np_tex_regs *rg = np_ut_regs(np_su_texture(uc->u->span, &uc->cfg));
-        printf("         bound: predicted %.3f LSB (unit %.3f + registers %.3g), measured max %.3f LSB%s;"
+        const double light = sc->light_image ? LIGHT_BOUND_LSB : 0.0;
+        char lit[48] = "";
+        if (sc->light_image)
+            snprintf(lit, sizeof lit, " + lighting %.3f", light);
+        printf("         bound: predicted %.3f LSB (unit %.3f + registers %.3g%s), measured max %.3f LSB%s;"
                " registers: quadric s%u Q.%u, transform s%u Q.%u\n",
-               pred, pred - b->reg_lsb, b->reg_lsb, r->err.max_lsb, r->err.max_lsb <= pred ? "" : "  OVER THE BOUND",
+               pred, pred - b->reg_lsb - light, b->reg_lsb, lit, r->err.max_lsb,
+               r->err.max_lsb <= pred ? "" : "  OVER THE BOUND",
                np_tex_k_bits(rg), np_tex_k_frac(rg), np_tex_m_bits(rg), np_tex_m_frac(rg));
     }
     if (r->have_cycles)
@@ -416,10 +433,10 @@ static int render_scene(const opts *o, const char *path, hash_list *hashes)
                        runs[i].err.max_lsb, o->tolerance);
                 rc = NP_EXIT_FAIL;
             } else if (us[i].u->span && np_ut_texture_bound(np_su_texture(us[i].u->span, &us[i].cfg)) &&
-                       runs[i].err.max_lsb > np_su_predicted_lsb(us[i].u, &us[i].cfg, sc.width)) {
+                       runs[i].err.max_lsb > predicted_lsb(&us[i], &sc)) {
                 /* A measured error above the predicted bound is a bug in the bound (or the model). */
                 printf("  FAIL: %s max error %.3f LSB exceeds its predicted bound %.3f LSB\n", us[i].u->name,
-                       runs[i].err.max_lsb, np_su_predicted_lsb(us[i].u, &us[i].cfg, sc.width));
+                       runs[i].err.max_lsb, predicted_lsb(&us[i], &sc));
                 rc = NP_EXIT_FAIL;
             }
         }

@@ -298,8 +298,11 @@ int np_texreg_size(const np_ref_texture *t, const double lo[3], const double hi[
         mf++;
     while (kf < ktop && !(size_try(t, lo, hi, max_span, kf, mf, &f, r, b) <= budget))
         kf++;
-    if (!(size_try(t, lo, hi, max_span, kf, mf, fmt, r, b) < (double)INFINITY))
-        return np_texreg_compile_fmt(t, fmt, r, err, errlen); /* (not reached: kf = ktop fits) */
+    /* (ktop, mf) fits by the searches above, and k's format does not depend on mf: this fits. */
+    if (!(size_try(t, lo, hi, max_span, kf, mf, fmt, r, b) < (double)INFINITY)) {
+        snprintf(err, errlen, "no register format holds the texture (quadric Q.%u, transform Q.%u)", kf, mf);
+        return -1;
+    }
     return 0;
 }
 
