@@ -14,7 +14,7 @@ np_test_program(test_texel test_texel.c span_test.c)
 np_add_cases(test_texel fdiff texel_exact_weights texel_cycle_vs_model)
 np_test_program(test_texture test_texture.c span_test.c)
 np_add_cases(test_texture fdiff colour_stage front_end_rounding lattice_distribution cfg_validation
-  register_bound)
+  register_bound sized_fewest)
 
 np_test_program(test_render test_render.c np_golden.c)
 target_link_libraries(test_render PRIVATE np_render)

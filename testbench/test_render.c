@@ -384,6 +384,23 @@ static int sized_registers(void)
                    scenes[i].name, us[k].u->name, us[k].text, np_tex_k_bits(r), np_tex_k_frac(r), np_tex_m_bits(r),
                    np_tex_m_frac(r), pred, run.err.max_lsb, run.cycle_mismatch ? "DIFFERS" : "agrees", note);
             NP_CHECK(pred <= 1.0, "%s %s: predicted %.3f > 1", scenes[i].name, us[k].u->name, pred);
+            /* The fewest guard bits: one fewer takes the predicted bound over 1 LSB. */
+            for (const np_unit_key *key = us[k].u->keys; key && key->name; key++) {
+                unsigned g;
+                if (strcmp(key->name, "guard") != 0)
+                    continue;
+                memcpy(&g, us[k].cfg.bytes + key->offset, sizeof g);
+                if (g == 0)
+                    break;
+                np_unit_cfg c2 = us[k].cfg;
+                char v[16];
+                snprintf(v, sizeof v, "%u", g - 1u);
+                NP_CHECK(np_unit_cfg_set(us[k].u, &c2, "guard", v, err, sizeof err) == 0, "%s", err);
+                const double p1 = np_su_predicted_lsb(us[k].u, &c2, s.width);
+                printf("%-22s %-5s guard=%u: predicted %.3f LSB > 1\n", scenes[i].name, us[k].u->name, g - 1u, p1);
+                NP_CHECK(p1 > 1.0, "%s %s: guard=%u is not the fewest (guard=%u predicts %.3f)", scenes[i].name,
+                         us[k].u->name, g, g - 1u, p1);
+            }
             NP_CHECK(run.err.max_lsb <= pred, "%s %s: measured %.4f above the predicted %.4f", scenes[i].name,
                      us[k].u->name, run.err.max_lsb, pred);
             NP_CHECK(!run.cycle_mismatch, "%s %s: the cycle model differs", scenes[i].name, us[k].u->name);
