@@ -153,7 +153,7 @@ void np_fdiff_quad_setup(const np_fdiff_cfg *cfg, const np_tex_regs *r, const in
     for (unsigned j = 0; j < 3; j++) {
         if (exact)
             exact[j] = e[j];
-        q[j] = np_tex_to_index(e[j], NP_TEX_Q_EXACT_FRAC, F, W);
+        q[j] = np_tex_to_index(e[j], np_tex_q_frac(r), F, W);
     }
 }
 
@@ -671,7 +671,9 @@ size_t np_fdiff_datapath(const np_fdiff_cfg *cfg, const np_tex_regs *r, np_op *o
      * [-2^39, 2^39): up to 2^78), p0..r2 (r2 = h dudv: s87, the widest), and
      * alpha..delta (window yw each); the multipliers' pipeline Lm deep.
      */
-    np_dp_op(&d, "SU", "Y", NP_OP_MUL, P, NP_TEX_S_BITS, yw, yw, 1, 0);
+    /* The narrow operand: s48 coordinates, or a scene-sized quadric register when wider (k_bits <= 64). */
+    const unsigned aw = np_tex_k_bits(r) > NP_TEX_S_BITS ? np_tex_k_bits(r) : NP_TEX_S_BITS;
+    np_dp_op(&d, "SU", "Y", NP_OP_MUL, P, aw, yw, yw, 1, 0);
     np_dp_op(&d, "SU", NULL, NP_OP_ADD, P, yw, 0, 0, 0, 1);
     np_dp_op(&d, "SU", NULL, NP_OP_ADD, 1, W + 1u, 0, 0, 0, 2);
     np_dp_op(&d, "SU", "uv", NP_OP_REG, 0, 0, 0, 2u * NP_TEX_FC, 0, 0);
@@ -679,7 +681,7 @@ size_t np_fdiff_datapath(const np_fdiff_cfg *cfg, const np_tex_regs *r, np_op *o
     np_dp_op(&d, "SU", "dudv", NP_OP_REG, 0, 0, 0, 2u * NP_TEX_DU_BITS, 1, 0);
     np_dp_op(&d, "SU", "r2", NP_OP_REG, 0, 0, 0, 87, 1, 0);
     np_dp_op(&d, "SU", NULL, NP_OP_REG, 1,
-             2u * NP_TEX_FC + 73u + 2u * NP_TEX_DU_BITS + 6u * 87u + 4u * yw + P * Lm * (NP_TEX_S_BITS + yw) + P * yw +
+             2u * NP_TEX_FC + 73u + 2u * NP_TEX_DU_BITS + 6u * 87u + 4u * yw + P * Lm * (aw + yw) + P * yw +
                  STALL_BITS + 1u,
              0, 0, 0, 0);
     /*

@@ -109,7 +109,7 @@ static void stage_a(const void *cv, void *sv)
     const unsigned nf = NP_TEX_LAT_FRAC + 3u * cfg->weight_frac + NP_TEX_AMP_FRAC;
     for (unsigned o = 0; o < t->r->n_oct; o++)
         s->N[o] = np_tex_to_index(np_mul128((np_s128)t->r->oct[o].amp, s->l3[o]), nf, F, W);
-    s->q = np_tex_to_index(s->qx, NP_TEX_Q_EXACT_FRAC, F, W);
+    s->q = np_tex_to_index(s->qx, np_tex_q_frac(t->r), F, W);
 }
 
 static void stage_s(const void *cv, void *sv)
@@ -302,7 +302,7 @@ size_t np_texel_datapath(const np_texel_cfg *cfg, const np_tex_regs *r, np_op *o
     const unsigned no = r->n_oct, wt = cfg->weight_frac, F = np_texel_frac(cfg), W = np_texel_width(cfg);
     const unsigned P = cfg->setup_mults, Lm = cfg->mult_lat;
     const unsigned wb = wt < NP_TEX_FC ? wt + 1u : NP_TEX_FC;  /* weight: u(WT+1) Q1.WT (exact u32 at WT = 32) */
-    const unsigned qw = np_texel_q_window(cfg), alw = np_texel_al_window(cfg);
+    const unsigned qw = np_texel_q_window(cfg, r), alw = np_texel_al_window(cfg);
     const unsigned l1 = NP_TEX_LAT_FRAC + wt, l2 = l1 + wt, l3 = l2 + wt; /* u6 Q0.6 times 2^WT per level */
     const unsigned side = SIDE_BITS + 1u;                     /* x, y and the valid bit */
     /* Texture registers (written by the host between frames). */
@@ -317,11 +317,13 @@ size_t np_texel_datapath(const np_texel_cfg *cfg, const np_tex_regs *r, np_op *o
      * min(97, qw) covers every product; its accumulator, the rows' register
      * file (6 x s97) and q, dq, d2q (qw each).
      */
-    const unsigned ms = 2u * NP_TEX_S_BITS + 1u, qm = ms < qw ? ms : qw;
-    const unsigned fe_prod = NP_TEX_S_BITS + qm, fe_sum = fe_prod + 1u;
-    np_dp_op(&d, "FE", NULL, NP_OP_MUL, P, NP_TEX_S_BITS, qm, 0, 0, 0);
+    /* Rows M_q s: s(k_bits + 48 + 1) (s97 with the default s48 quadric); narrow operand s48 or k_bits. */
+    const unsigned kb = np_tex_k_bits(r), aw = kb > NP_TEX_S_BITS ? kb : NP_TEX_S_BITS;
+    const unsigned ms = kb + NP_TEX_S_BITS + 1u, qm = ms < qw ? ms : qw;
+    const unsigned fe_prod = aw + qm, fe_sum = fe_prod + 1u;
+    np_dp_op(&d, "FE", NULL, NP_OP_MUL, P, aw, qm, 0, 0, 0);
     np_dp_op(&d, "FE", NULL, NP_OP_ADD, P, fe_sum, 0, 0, 0, 1);
-    np_dp_op(&d, "FE", NULL, NP_OP_ADD, 1, NP_TEX_M_FRAC + NP_TEX_U_BITS, 0, 0, 0, 2);
+    np_dp_op(&d, "FE", NULL, NP_OP_ADD, 1, np_tex_m_frac(r) + NP_TEX_U_BITS, 0, 0, 0, 2);
     np_dp_op(&d, "FE", NULL, NP_OP_REG, 1, P * Lm * fe_prod + P * fe_sum + 6u * ms + 3u * qw + 16u, 0, 0, 0, 0);
     /*
      * D: one DDA step per pixel: u += du (u40, mod 256) per octave and axis, s += ds; the quadric's two
@@ -387,7 +389,7 @@ void np_texel_trace(const np_texel_cfg *cfg, const np_tex_regs *r, unsigned k, c
                 np_tex_trace(t, n, "n", s->n[o][c]);
         for (unsigned a = 0; a < 3; a++)
             np_tex_trace(t, n, "s", s->s[a]);
-        np_tex_trace128(t, n, "qx", np_wrap_s128(s->qx, np_texel_q_window(cfg)));
+        np_tex_trace128(t, n, "qx", np_wrap_s128(s->qx, np_texel_q_window(cfg, r)));
         break;
     case 1:
         for (unsigned o = 0; o < r->n_oct; o++)

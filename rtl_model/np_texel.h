@@ -152,9 +152,9 @@ size_t np_texel_datapath(const np_texel_cfg *cfg, const np_tex_regs *r, np_op *o
 void np_texel_trace(const np_texel_cfg *cfg, const np_tex_regs *r, unsigned k, const np_texel_sig *sig,
                     np_trace *t, size_t n);
 /* Widths of the windows the datapath keeps of the exact products (np_tex_window). */
-static inline unsigned np_texel_q_window(const np_texel_cfg *c)
+static inline unsigned np_texel_q_window(const np_texel_cfg *c, const np_tex_regs *r)
 {
-    return np_tex_window(NP_TEX_Q_EXACT_FRAC, np_texel_frac(c), np_texel_width(c));
+    return np_tex_window(np_tex_q_frac(r), np_texel_frac(c), np_texel_width(c));
 }
 static inline unsigned np_texel_al_window(const np_texel_cfg *c)
 {

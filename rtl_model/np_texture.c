@@ -9,6 +9,11 @@ enum { KA, KB, KC, KD, KE, KF, KG, KH, KI, KJ, K_COUNT };
 
 const char *np_tex_regs_check(const np_tex_regs *r)
 {
+    if (r->k_bits && (r->k_bits > NP_TEX_K_BITS_MAX || r->k_frac > NP_TEX_K_FRAC_MAX || r->k_frac + 1u > r->k_bits))
+        return "quadric register format outside s64 / 48 fraction bits";
+    if (r->m_bits && (r->m_bits > NP_TEX_M_BITS_MAX || r->m_frac > NP_TEX_M_FRAC_MAX || r->m_frac + 1u > r->m_bits ||
+                      r->m_bits > 1u + NP_TEX_M_INT_MAX + r->m_frac))
+        return "transform register format outside s48 / 40 fraction bits / 7 integer bits";
     if (r->n_oct > NP_TEX_MAX_OCTAVES)
         return "at most 8 octaves";
     if (r->cmap_n < 2 || r->cmap_n > NP_TEX_CMAP_MAX)
@@ -16,14 +21,14 @@ const char *np_tex_regs_check(const np_tex_regs *r)
     if (r->cmap_repeat && (r->cmap_n & (r->cmap_n - 1u)) != 0)
         return "a repeating colour map needs a power-of-two number of entries";
     for (unsigned i = 0; i < K_COUNT; i++)
-        if (!np_fits_s(r->k[i], NP_TEX_K_BITS))
-            return "quadric coefficient outside s48 Q23.24";
+        if (!np_fits_s(r->k[i], np_tex_k_bits(r)))
+            return "quadric coefficient outside its register (s48 Q23.24 or the scene-sized format)";
     for (unsigned i = 0; i < r->n_oct; i++) {
         const np_tex_octave *o = &r->oct[i];
         for (unsigned a = 0; a < 3; a++) {
             for (unsigned b = 0; b < 3; b++)
-                if (!np_fits_s(o->m[a][b], NP_TEX_M_BITS))
-                    return "octave transform entry outside s24 Q7.16";
+                if (!np_fits_s(o->m[a][b], np_tex_m_bits(r)))
+                    return "octave transform entry outside its register (s24 Q7.16 or the scene-sized format)";
             if (!np_fits_s(o->o[a], NP_TEX_O_BITS))
                 return "octave offset outside s48 Q15.32";
         }
@@ -68,8 +73,11 @@ void np_tex_octave_span(const np_tex_regs *r, unsigned i, const int64_t s[3], co
                         np_tex_oct_span *o)
 {
     const np_tex_octave *t = &r->oct[i];
-    /* Products s24 Q7.16 x s48 Q15.32: Q22.48, exact in 128 bits. */
-    const unsigned sh = NP_TEX_M_FRAC;
+    /*
+     * Products s24 Q7.16 x s48 Q15.32: Q22.48, exact in 128 bits (scene-sized:
+     * at most s48 Q7.40 x s48, Q22.72 in 96 bits).
+     */
+    const unsigned sh = np_tex_m_frac(r);
     for (unsigned a = 0; a < 3; a++) {
         np_s128 u = np_shl128((np_s128)t->o[a], sh); /* Q15.48 */
         np_s128 d = 0;
@@ -112,7 +120,7 @@ void np_tex_quadric_exact(const np_tex_regs *r, const int64_t s[3], const int64_
         bs = np_add128(bs, np_mul128((np_s128)bq[a], (np_s128)s[a]));   /* Q.56 */
         bds = np_add128(bds, np_mul128((np_s128)bq[a], (np_s128)ds[a])); /* Q.56 */
     }
-    const unsigned up = NP_TEX_FC;         /* Q.56 -> Q.88 */
+    const unsigned up = NP_TEX_FC;         /* Q.56 -> Q.88 (Q.(32 + k_frac) -> Q.(64 + k_frac)) */
     const unsigned upj = 2u * NP_TEX_FC;   /* J: Q.24 -> Q.88 */
     q[0] = np_add128(np_add128(sms, np_shl128(bs, up + 1u)), np_shl128((np_s128)k[KJ], upj));
     q[1] = np_add128(np_add128(np_shl128(smds, 1), dsmds), np_shl128(bds, up + 1u));
@@ -217,8 +225,8 @@ unsigned np_tex_seg_bits(const np_tex_regs *r) { return np_bits_for_range(0, (in
 
 unsigned np_tex_reg_bits(const np_tex_regs *r)
 {
-    const unsigned oct = 9u * NP_TEX_M_BITS + 3u * NP_TEX_O_BITS + NP_TEX_AMP_BITS;
-    return K_COUNT * NP_TEX_K_BITS + r->n_oct * oct + r->cmap_n * 3u * 8u;
+    const unsigned oct = 9u * np_tex_m_bits(r) + 3u * NP_TEX_O_BITS + NP_TEX_AMP_BITS;
+    return K_COUNT * np_tex_k_bits(r) + r->n_oct * oct + r->cmap_n * 3u * 8u;
 }
 
 unsigned np_tex_dp_lattice(np_dp *d, const char *stage, unsigned lanes, unsigned level0)

@@ -41,6 +41,10 @@
  * --- Registers (formats) ---
  *   k[10]    s48 Q23.24   A'..J' (folded quadric coefficients, order A B C D E F G H I J)
  *   m[3][3]  s24 Q7.16    octave transform matrix, |m| < 128
+ * (the default formats; a texture compiled for a scene may size the quadric
+ * and the transform: k in s(k_bits) Q(k_bits-1-k_frac).k_frac, k_frac <= 48,
+ * k_bits <= 64, and m in s(m_bits) Q(m_bits-1-m_frac).m_frac, m_frac <= 40,
+ * m_bits <= 48, |m| < 128 - np_tex_regs.k_bits / m_bits, 0 for the defaults)
  *   o[3]     s48 Q15.32   octave transform offset
  *   amp      s32 Q17.14   octave amplitude a'_i
  *   cmap     N x 3 u8     colour entries, 2 <= N <= 256 (repeat: N a power of two)
@@ -110,23 +114,39 @@ enum {
     /* Fraction bits of the exact quadric value: two coordinates and a coefficient. */
     NP_TEX_Q_EXACT_FRAC = 2 * NP_TEX_FC + NP_TEX_K_FRAC, /* 88 */
     NP_TEX_IDX_INT_MIN = 1, NP_TEX_IDX_INT_MAX = 16,
+    /* Scene-sized register formats (np_tex_regs.m_bits, k_bits): the widest the units take. */
+    NP_TEX_M_FRAC_MAX = 40, NP_TEX_M_BITS_MAX = 48, NP_TEX_M_INT_MAX = 7,
+    NP_TEX_K_FRAC_MAX = 48, NP_TEX_K_BITS_MAX = 64,
     NP_TEX_W_FRAC_MIN = 1, NP_TEX_W_FRAC_MAX = 24
 };
 
 typedef struct np_tex_octave {
-    int32_t m[3][3]; /* s24 Q7.16 */
+    int64_t m[3][3]; /* s24 Q7.16 (or the scene-sized s(m_bits) Q.m_frac) */
     int64_t o[3];    /* s48 Q15.32 */
     int32_t amp;     /* s32 Q17.14 */
 } np_tex_octave;
 
 typedef struct np_tex_regs {
-    int64_t k[10];                 /* s48 Q23.24: A' B' C' D' E' F' G' H' I' J' */
+    int64_t k[10];                 /* s48 Q23.24 (or s(k_bits) Q.k_frac): A' B' C' D' E' F' G' H' I' J' */
     unsigned n_oct;                /* 0..NP_TEX_MAX_OCTAVES */
     np_tex_octave oct[NP_TEX_MAX_OCTAVES];
     unsigned cmap_n;               /* N, 2..256 */
     int cmap_repeat;               /* 1: x wraps mod N (N a power of two); 0: clamp to [0, N-1] */
     uint8_t cmap[NP_TEX_CMAP_MAX][3];
+    /*
+     * Register formats sized by a scene (np_texreg_size, issue 10): 0 in
+     * k_bits (m_bits) selects the default s48 Q23.24 (s24 Q7.16) and the
+     * fraction field is then ignored. Read them through the accessors.
+     */
+    unsigned k_frac, k_bits, m_frac, m_bits;
 } np_tex_regs;
+
+static inline unsigned np_tex_k_frac(const np_tex_regs *r) { return r->k_bits ? r->k_frac : (unsigned)NP_TEX_K_FRAC; }
+static inline unsigned np_tex_k_bits(const np_tex_regs *r) { return r->k_bits ? r->k_bits : (unsigned)NP_TEX_K_BITS; }
+static inline unsigned np_tex_m_frac(const np_tex_regs *r) { return r->m_bits ? r->m_frac : (unsigned)NP_TEX_M_FRAC; }
+static inline unsigned np_tex_m_bits(const np_tex_regs *r) { return r->m_bits ? r->m_bits : (unsigned)NP_TEX_M_BITS; }
+/* Fraction bits of the exact quadric value (np_tex_quadric_exact): 2 x 32 + k_frac (88 by default). */
+static inline unsigned np_tex_q_frac(const np_tex_regs *r) { return 2u * NP_TEX_FC + np_tex_k_frac(r); }
 
 /* NULL when the registers are consistent, else a static message. */
 const char *np_tex_regs_check(const np_tex_regs *r);
@@ -175,7 +195,8 @@ void np_tex_lattice(uint8_t i, uint8_t j, uint8_t k, uint8_t n[8]);
 
 /*
  * The quadric's value and forward differences along the span, exact modulo
- * 2^128 at NP_TEX_Q_EXACT_FRAC (88) fraction bits:
+ * 2^128 at np_tex_q_frac(r) fraction bits (NP_TEX_Q_EXACT_FRAC, 88, with the
+ * default s48 Q23.24 registers):
  *   q[0] = q'(s), q[1] = q'(s + ds) - q'(s), q[2] = 2 ds^T M_q ds (constant).
  * (Both units call this; the per-pixel unit with ds = 0 for q[0] only.)
  */

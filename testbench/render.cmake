@@ -14,13 +14,13 @@ np_test_program(test_texel test_texel.c span_test.c)
 np_add_cases(test_texel fdiff texel_exact_weights texel_cycle_vs_model)
 np_test_program(test_texture test_texture.c span_test.c)
 np_add_cases(test_texture fdiff colour_stage front_end_rounding lattice_distribution cfg_validation
-  register_bound)
+  register_bound sized_fewest)
 
 np_test_program(test_render test_render.c np_golden.c)
 target_link_libraries(test_render PRIVATE np_render)
 target_compile_definitions(test_render PRIVATE NP_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 np_add_cases(test_render render
-  sha256_kat exr_roundtrip png_roundtrip scene_errors scene_seed seed_scenes_1lsb golden_hashes
+  sha256_kat exr_roundtrip png_roundtrip scene_errors scene_seed seed_scenes_1lsb golden_hashes sized_registers
   scanline perspective_polygon builtin_textures stream_vectors
   error_colour_bar error_rounded shading_view exr_colour_attributes)
 foreach(c exr_roundtrip png_roundtrip stream_vectors error_colour_bar error_rounded shading_view exr_colour_attributes)
@@ -120,4 +120,22 @@ foreach(c
       -DCMD=$<TARGET_FILE:noisepipe> -DARGS=${args} -DWANT_RC=2 "-DWANT=scene ${name}: ${want}"
       -P ${CMAKE_CURRENT_SOURCE_DIR}/render_expect.cmake)
   endforeach()
+endforeach()
+# Registers sized by the scene (render --sized, report gates --scene): the issue's four scenes render
+# within 1 LSB (render.sized_registers measures them against the predicted bound); a scene the widest
+# registers cannot hold is still refused, exit 2, naming the field, its value and the width it needs.
+add_test(NAME render.sized_cli_scale1e6 COMMAND noisepipe render --sized --no-cycles
+  -o ${CMAKE_CURRENT_BINARY_DIR}/render-sized ${CMAKE_CURRENT_SOURCE_DIR}/scenes/reg_scale1e6.json)
+set_tests_properties(render.sized_cli_scale1e6 PROPERTIES PASS_REGULAR_EXPRESSION
+  "fdiff .*bound: predicted 0\\.[0-9]+ LSB \\(unit [0-9.]+ \\+ registers [0-9.e-]+\\), measured max 0\\.[0-9]+ LSB; registers: quadric s[0-9]+ Q\\.[0-9]+, transform s[0-9]+ Q\\.2[0-9].*render: ok")
+foreach(cmd render report)
+  if(cmd STREQUAL render)
+    set(args "render\;--sized\;-o\;${CMAKE_CURRENT_BINARY_DIR}/render-sized\;${CMAKE_CURRENT_SOURCE_DIR}/scenes/reg_clamp_j5000.json")
+  else()
+    set(args "report\;gates\;--sized\;--scene\;${CMAKE_CURRENT_SOURCE_DIR}/scenes/reg_clamp_j5000.json")
+  endif()
+  add_test(NAME render.sized_${cmd}_refuses_clamp_j5000 COMMAND ${CMAKE_COMMAND}
+    -DCMD=$<TARGET_FILE:noisepipe> -DARGS=${args} -DWANT_RC=2
+    "-DWANT=scene reg_clamp_j5000: field texture.quadric.J: the colour index reaches 5000.98 on a clamped colour map over the scene's coordinates: it needs 13 index integer bits, the unit has at most 11"
+    -P ${CMAKE_CURRENT_SOURCE_DIR}/render_expect.cmake)
 endforeach()

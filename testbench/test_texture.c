@@ -258,12 +258,93 @@ static int register_bound(void)
     return 0;
 }
 
+/* The registers' bound of texture t in formats f over lo..hi (spans of max_span pixels). */
+static double reg_bound_at(const np_ref_texture *t, np_texreg_fmt f, const double lo[3], const double hi[3],
+                           unsigned max_span)
+{
+    np_tex_regs r;
+    np_texreg_scene_bound b;
+    char err[256];
+    if (np_texreg_compile_fmt(t, &f, &r, err, sizeof err) != 0)
+        return (double)INFINITY;
+    np_texreg_scene_bound_compute(t, &r, lo, hi, max_span, &b);
+    return b.reg_lsb;
+}
+
+/*
+ * Registers sized by the scene (np_texreg_size), the fewest both ways: on
+ * the issue-10 textures the chosen transform fraction is the fewest whose
+ * registers' bound is <= the budget with the quadric at its widest (one bit
+ * fewer exceeds it), the chosen quadric fraction the fewest at that
+ * transform, and the chosen formats meet the budget; the seed textures'
+ * dyadic values need no fraction bits.
+ */
+static int sized_fewest(void)
+{
+    const double B = NP_TEXREG_SIZE_BUDGET;
+    struct {
+        const char *name;
+        double scale, quad_a, lo, hi;
+        int repeat;
+        unsigned span;
+    } cs[] = { { "scale 0.1 near 1000", 0.1, 0, 990, 1000, 0, 64 },
+               { "scale 1e-6", 1e-6, 0, 0, 20000, 0, 512 },
+               { "quadric A = 1e-6", 1, 1e-6, 0, 20000, 1, 512 },
+               { "dyadic (wood-like)", 5, 10, 0, 1, 1, 256 } };
+    for (size_t i = 0; i < sizeof cs / sizeof cs[0]; i++) {
+        np_ref_texture t;
+        memset(&t, 0, sizeof t);
+        t.quad[0] = cs[i].quad_a;
+        t.n_oct = 1;
+        for (int a = 0; a < 3; a++)
+            t.oct[0].m[a][a] = cs[i].scale;
+        t.oct[0].amp = 1;
+        t.cmap.n = 2;
+        t.cmap.repeat = cs[i].repeat;
+        t.cmap.f0 = 0;
+        t.cmap.f1 = 1;
+        for (int ch = 0; ch < 3; ch++)
+            t.cmap.c[1][ch] = 255;
+        const double lo[3] = { cs[i].lo, cs[i].lo, cs[i].lo }, hi[3] = { cs[i].hi, cs[i].hi, cs[i].hi };
+        np_texreg_fmt f;
+        np_tex_regs r;
+        np_texreg_scene_bound b;
+        char err[256];
+        NP_CHECK(np_texreg_size(&t, lo, hi, cs[i].span, B, &f, &r, &b, err, sizeof err) == 0, "%s: %s", cs[i].name, err);
+        /* The quadric at its widest: the same integer bits, 48 fraction bits. */
+        np_texreg_fmt wide = f;
+        wide.k_bits = f.k_bits - f.k_frac + NP_TEX_K_FRAC_MAX;
+        wide.k_frac = NP_TEX_K_FRAC_MAX;
+        np_texreg_fmt m1 = wide, k1 = f;
+        m1.m_frac--;
+        m1.m_bits--;
+        k1.k_frac--;
+        k1.k_bits--;
+        const double at = b.reg_lsb, at_m1 = f.m_frac ? reg_bound_at(&t, m1, lo, hi, cs[i].span) : (double)NAN,
+                     at_k1 = f.k_frac ? reg_bound_at(&t, k1, lo, hi, cs[i].span) : (double)NAN;
+        printf("%-20s quadric s%u Q.%u, transform s%u Q.%u: registers %.4g LSB <= %.3g; one transform bit fewer "
+               "%.4g, one quadric bit fewer %.4g\n",
+               cs[i].name, f.k_bits, f.k_frac, f.m_bits, f.m_frac, at, B, at_m1, at_k1);
+        NP_CHECK(at <= B, "%s: %.4g over the budget", cs[i].name, at);
+        NP_CHECK(f.m_frac == 0 || at_m1 > B, "%s: transform Q.%u is not the fewest", cs[i].name, f.m_frac);
+        NP_CHECK(f.k_frac == 0 || at_k1 > B, "%s: quadric Q.%u is not the fewest", cs[i].name, f.k_frac);
+        if (i == 3)
+            NP_CHECK(f.m_frac == 0 && f.k_frac == 0, "dyadic values need no fraction bits (Q.%u, Q.%u)", f.k_frac,
+                     f.m_frac);
+        else
+            NP_CHECK(f.m_frac > NP_TEX_M_FRAC || f.k_frac > NP_TEX_K_FRAC, "%s: wider than the defaults expected",
+                     cs[i].name);
+    }
+    return 0;
+}
+
 static const np_test_case cases[] = {
     { "colour_stage", colour_stage },
     { "front_end_rounding", front_end_rounding },
     { "lattice_distribution", lattice_distribution },
     { "cfg_validation", cfg_validation },
     { "register_bound", register_bound },
+    { "sized_fewest", sized_fewest },
     { NULL, NULL },
 };
 

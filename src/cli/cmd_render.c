@@ -15,6 +15,8 @@
 #include "np_cmd.h"
 #include "np_image.h"
 #include "np_render.h"
+#include "np_texreg.h"
+#include "unit_span.h"
 #include "np_unit.h"
 #include "render_cli.h"
 
@@ -45,6 +47,9 @@ static void usage(FILE *f)
           "  --tolerance LSB      fail (exit 1) when a unit's max error exceeds LSB (default 1)\n"
           "  --no-check           do not compare the errors with the tolerance\n"
           "  --no-cycles          skip the cycle-accurate models\n"
+          "  --sized              registers sized by the scene: the fewest transform, quadric,\n"
+          "                       index and guard bits whose bound is <= 1 LSB (default: the\n"
+          "                       units' default widths, the golden images)\n"
           "  --hashes FILE        compare the images' hashes with FILE (vectors/images/hashes.txt);\n"
           "                       exit 1 on any change\n"
           "  --write-hashes FILE  write the images' hashes to FILE\n"
@@ -68,7 +73,7 @@ typedef struct opts {
     char unit_spec[MAX_UNITS][UNIT_SPEC_MAX];
     np_unit_cfg ucfg[MAX_UNITS];
     double tolerance;
-    int check, cycles, ppm, bench;
+    int check, cycles, ppm, bench, sized;
     const char *hashes, *write_hashes, *report;
     unsigned repeat;
     const char *scenes[MAX_SCENES];
@@ -247,6 +252,8 @@ static int parse_opts(int argc, char **argv, opts *o)
             o->repeat = (unsigned)n;
         } else if (strcmp(argv[i], "--no-check") == 0) {
             o->check = 0;
+        } else if (strcmp(argv[i], "--sized") == 0) {
+            o->sized = 1;
         } else if (strcmp(argv[i], "--no-cycles") == 0) {
             o->cycles = 0;
         } else if (strcmp(argv[i], "--ppm") == 0) {
@@ -284,8 +291,21 @@ static const char *unit_spec(const void *ctx, const np_unit *u)
     return i < 0 ? NULL : o->unit_spec[i];
 }
 
-static void print_run(const char *unit, const char *cfg, const np_render_run *r)
+/*
+ * A lit image's bound (scene light.image): the lighting stage's 0.513 LSB
+ * plus the unlit colour's error (argued in np_gbuf.h, "Lighting").
+ */
+#define LIGHT_BOUND_LSB 0.513
+
+/* The predicted bound of unit uc's image of scene sc (the texture's, plus the lighting when it shades the image). */
+static double predicted_lsb(const np_render_unit_cfg *uc, const np_scene *sc)
 {
+    return np_su_predicted_lsb(uc->u, &uc->cfg, sc->width) + (sc->light_image ? LIGHT_BOUND_LSB : 0.0);
+}
+
+static void print_run(const np_render_unit_cfg *uc, const np_scene *sc, const np_render_run *r)
+{
+    const char *unit = uc->u->name, *cfg = uc->text;
     char psnr[32];
     if (isinf(r->err.psnr_db))
         snprintf(psnr, sizeof psnr, "inf");
@@ -298,6 +318,25 @@ static void print_run(const char *unit, const char *cfg, const np_render_run *r)
            " (max %u LSB)\n",
            (unsigned long long)r->err.over_cr, (unsigned long long)r->err.samples, r->err.max_cr);
     printf("         config %s\n", cfg);
+    /*
+     * The predicted bound beside the measured error (issue 10): the unit's
+     * own over the scene's widest span plus the registers' rounding over its
+     * coordinates, the bound the scene check accepted.
+     */
+    const np_texreg_scene_bound *b = uc->u->span ? np_ut_texture_bound(np_su_texture(uc->u->span, &uc->cfg)) : NULL;
+    const double pred = uc->u->span ? predicted_lsb(uc, sc) : (double)NAN;
+    if (b && !isnan(pred)) {
+        const np_tex_regs *rg = np_ut_regs(np_su_texture(uc->u->span, &uc->cfg));
+        const double light = sc->light_image ? LIGHT_BOUND_LSB : 0.0;
+        char lit[48] = "";
+        if (sc->light_image)
+            snprintf(lit, sizeof lit, " + lighting %.3f", light);
+        printf("         bound: predicted %.3f LSB (unit %.3f + registers %.3g%s), measured max %.3f LSB%s;"
+               " registers: quadric s%u Q.%u, transform s%u Q.%u\n",
+               pred, pred - b->reg_lsb - light, b->reg_lsb, lit, r->err.max_lsb,
+               r->err.max_lsb <= pred ? "" : "  OVER THE BOUND",
+               np_tex_k_bits(rg), np_tex_k_frac(rg), np_tex_m_bits(rg), np_tex_m_frac(rg));
+    }
     if (r->have_cycles)
         printf("         cycles/frame %llu, set-up stall cycles %llu, set-ups: %llu span, %llu cell, %llu interval;"
                " bit-exact model %.4f s, cycle model %.4f s%s\n",
@@ -352,6 +391,7 @@ static int render_scene(const opts *o, const char *path, hash_list *hashes)
         np_err(CMD, "%s", err);
         return NP_EXIT_USAGE;
     }
+    sc.size_registers = o->sized;
     if (np_render_prepare(&sc, &fr, err, sizeof err)) {
         np_err(CMD, "%s", err);
         np_scene_free(&sc);
@@ -380,19 +420,27 @@ static int render_scene(const opts *o, const char *path, hash_list *hashes)
            sc.name, path, sc.width, sc.height, (unsigned long long)fr.pixels, fr.n_spans, fr.longest,
            sc.tex.n_oct, sc.tex.n_oct == 1 ? "" : "s", fr.ref_seconds);
     for (int i = 0; i < nu; i++)
-        print_run(us[i].u->name, us[i].text, &runs[i]);
+        print_run(&us[i], &sc, &runs[i]);
     for (int i = 0; i < nu; i++)
         if (runs[i].cycle_mismatch) {
             np_err(CMD, "%s: %s: the cycle-accurate model differs from the bit-exact model", sc.name, us[i].u->name);
             rc = NP_EXIT_FAIL;
         }
-    if (o->check)
-        for (int i = 0; i < nu; i++)
+    if (o->check) {
+        for (int i = 0; i < nu; i++) {
             if (runs[i].err.max_lsb > o->tolerance) {
                 printf("  FAIL: %s max error %.3f LSB exceeds the tolerance %.3f LSB\n", us[i].u->name,
                        runs[i].err.max_lsb, o->tolerance);
                 rc = NP_EXIT_FAIL;
+            } else if (us[i].u->span && np_ut_texture_bound(np_su_texture(us[i].u->span, &us[i].cfg)) &&
+                       runs[i].err.max_lsb > predicted_lsb(&us[i], &sc)) {
+                /* A measured error above the predicted bound is a bug in the bound (or the model). */
+                printf("  FAIL: %s max error %.3f LSB exceeds its predicted bound %.3f LSB\n", us[i].u->name,
+                       runs[i].err.max_lsb, predicted_lsb(&us[i], &sc));
+                rc = NP_EXIT_FAIL;
             }
+        }
+    }
     if (np_mkdir_p(o->out) != 0) {
         np_err(CMD, "%s: cannot create: %s", o->out, strerror(errno));
         rc = NP_EXIT_USAGE;

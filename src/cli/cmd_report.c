@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* noisepipe report: gate and latency estimates; error against cost. */
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,13 +22,16 @@
 #include "np_stream.h"
 #include "np_wave_json.h"
 #include "np_wave_scene.h"
+#include "unit_span.h"
 
 /* --levels: the target clock in gate levels the gate reports pipeline every stage to (np_report_levels_md). */
 static unsigned g_levels = NP_REPORT_LEVELS_DEFAULT;
+/* --sized: gates --scene with the span units' registers sized by the scene (np_scene.size_registers). */
+static int g_sized;
 
 static const char usage_text[] =
     "usage: noisepipe report gates  [--unit U] [--config K=V,...] [--levels N] [-o DIR]\n"
-    "       noisepipe report gates  --scene SCENE.json [--levels N] [-o DIR]\n"
+    "       noisepipe report gates  --scene SCENE.json [--sized] [--levels N] [-o DIR]\n"
     "       noisepipe report gates  --synth [--unit U] [--config K=V,...] [--rtl DIR] [--tolerance PCT]\n"
     "       noisepipe report pareto [--unit U] [--samples N] [--seed S] [-o DIR]\n"
     "       noisepipe report runtime [--scene SCENE.json] [--repeat N] -o DIR\n"
@@ -49,6 +53,9 @@ static const char usage_text[] =
     "  metrics it enables, luma_taps, tile), parallel and serial. With -o, DIR/scene-NAME-gates.md\n"
     "  and .json. A wave scene (a \"waves\" section): the wave unit with the effects the scene does\n"
     "  not use left out, and the frame's cycles with the culled boxes left out.\n"
+    "  --sized (with --scene): the span units' registers sized by the scene - the fewest\n"
+    "  transform, quadric, index and guard bits whose predicted bound is <= 1 LSB (render\n"
+    "  --sized renders with them) - instead of the default widths; DIR/scene-NAME-sized-gates.md.\n"
     "  --synth: synthesise the reference RTL (rtl_model/verilog, or --rtl DIR) with Yosys + ABC\n"
     "  and print its NAND2 equivalents per stage beside the cost model's (classic3, simplex3;\n"
     "  docs/cost-model.md). Needs yosys (exit 2 without it); --tolerance PCT: exit 1 when a\n"
@@ -155,7 +162,75 @@ typedef struct scene_unit {
     int have_frame;
     int renders;          /* 1: a span unit that renders the scene; 0: another unit it uses (aacount) */
     uint64_t cycles, setup_stalls, pixels, spans;
+    /* --sized: the set-up engine sizes tried (setup_mults), their gates and frame cycles; chosen: the least gates x cycles. */
+    unsigned n_p, p[5], chosen;
+    double p_gates[5];
+    uint64_t p_cycles[5], p_stalls[5];
 } scene_unit;
+
+static int scene_frame(scene_unit *su, const np_render_frame *fr);
+
+/*
+ * --sized (issue 14): the set-up multiplier count chosen for the scene by
+ * the least gates x cycles over P = 1, 2, 4, 8, 16 (those the unit's key
+ * takes), each priced and run through the stream model on the frame; su
+ * and c become the chosen one's. 0, or -1 with err.
+ */
+static int scene_choose_p(scene_unit *su, np_unit_cost *c, const np_render_frame *fr, char *err, size_t errlen)
+{
+    static const unsigned ps[] = { 1, 2, 4, 8, 16 };
+    scene_unit best = *su;
+    np_unit_cost *cb = malloc(sizeof *cb), *ct = malloc(sizeof *ct);
+    double best_gc = (double)INFINITY;
+    int rc = cb && ct ? 0 : -1;
+    su->n_p = 0;
+    for (size_t i = 0; i < sizeof ps / sizeof ps[0] && rc == 0; i++) {
+        scene_unit t = *su;
+        char v[16], e2[256];
+        snprintf(v, sizeof v, "%u", ps[i]);
+        if (np_unit_cfg_set(su->u, &t.cfg, "setup_mults", v, e2, sizeof e2) != 0)
+            continue; /* beyond the unit's engine */
+        if (np_unit_cost_compute(su->u, &t.cfg, &np_cost_default, ct, err, errlen) != 0 || scene_frame(&t, fr) != 0) {
+            if (!err[0])
+                snprintf(err, errlen, "setup_mults=%u: the stream model did not finish the frame", ps[i]);
+            rc = -1;
+            break;
+        }
+        unsigned k = su->n_p++;
+        su->p[k] = ps[i];
+        su->p_gates[k] = ct->total;
+        su->p_cycles[k] = t.cycles;
+        su->p_stalls[k] = t.setup_stalls;
+        const double gc = ct->total * (double)t.cycles;
+        if (gc < best_gc) {
+            best_gc = gc;
+            best = t;
+            *cb = *ct;
+            su->chosen = ps[i];
+        }
+    }
+    if (rc == 0 && su->n_p) {
+        unsigned n_p = su->n_p, chosen = su->chosen;
+        unsigned p[5];
+        double g[5];
+        uint64_t cy[5], st[5];
+        memcpy(p, su->p, sizeof p);
+        memcpy(g, su->p_gates, sizeof g);
+        memcpy(cy, su->p_cycles, sizeof cy);
+        memcpy(st, su->p_stalls, sizeof st);
+        *su = best;
+        su->n_p = n_p;
+        su->chosen = chosen;
+        memcpy(su->p, p, sizeof p);
+        memcpy(su->p_gates, g, sizeof g);
+        memcpy(su->p_cycles, cy, sizeof cy);
+        memcpy(su->p_stalls, st, sizeof st);
+        *c = *cb;
+    }
+    free(cb);
+    free(ct);
+    return rc;
+}
 
 /* Index of the input field called name, or -1. */
 static int field_index(const np_unit_fields *f, const char *name)
@@ -264,6 +339,42 @@ static void scene_md(FILE *f, const np_scene *sc, const np_render_frame *fr, con
     for (size_t i = 0; i < nleft; i++)
         fprintf(f, "%s `%s`", i ? "," : "", left[i]->name);
     fprintf(f, "%s\n\n", nleft ? "" : " none");
+    /*
+     * The registers' widths (issue 10): the default ones, or (--sized) the
+     * fewest whose predicted bound over this scene is <= 1 LSB.
+     */
+    fprintf(f, "Registers %s: the predicted bound is the unit's own over the scene's widest span (%u pixels) plus "
+               "the registers' rounding over its texture coordinates (docs/fdiff.md).\n\n",
+            sc->size_registers ? "**sized by the scene** (`--sized`: the fewest transform, quadric, index and guard "
+                                 "bits whose predicted bound is <= 1 LSB)"
+                               : "at the units' default widths (`--sized` prices the scene-sized ones)",
+            sc->width);
+    fprintf(f, "| unit | configuration | quadric A'..J' | transform M | predicted bound |\n| --- | --- | --- | --- | ---: |\n");
+    for (size_t i = 0; i < n; i++) {
+        if (!su[i].renders)
+            continue;
+        const unsigned tex = np_su_texture(c[i].unit->span, &su[i].cfg);
+        const np_tex_regs *rg = np_ut_regs(tex);
+        fprintf(f, "| %s | `%s` | s%u Q%u.%u | s%u Q%u.%u | %.3f LSB |\n", c[i].unit->name, c[i].cfg, np_tex_k_bits(rg),
+                np_tex_k_bits(rg) - 1u - np_tex_k_frac(rg), np_tex_k_frac(rg), np_tex_m_bits(rg),
+                np_tex_m_bits(rg) - 1u - np_tex_m_frac(rg), np_tex_m_frac(rg),
+                np_su_predicted_lsb(c[i].unit, &su[i].cfg, sc->width));
+    }
+    fprintf(f, "\n");
+    for (size_t i = 0; i < n; i++) {
+        if (!su[i].renders || !su[i].n_p)
+            continue;
+        fprintf(f, "Set-up multipliers of %s (`setup_mults`), chosen for this scene by the least gates x cycles "
+                   "(the stream model on the frame):\n\n| P | gates | cycles / frame | set-up stall cycles | gates x "
+                   "cycles |\n| ---: | ---: | ---: | ---: | ---: |\n",
+                c[i].unit->name);
+        for (unsigned k = 0; k < su[i].n_p; k++)
+            fprintf(f, "| %s%u%s | %.0f | %llu | %llu | %.3g |\n", su[i].p[k] == su[i].chosen ? "**" : "", su[i].p[k],
+                    su[i].p[k] == su[i].chosen ? " (chosen)**" : "", su[i].p_gates[k],
+                    (unsigned long long)su[i].p_cycles[k], (unsigned long long)su[i].p_stalls[k],
+                    su[i].p_gates[k] * (double)su[i].p_cycles[k]);
+        fprintf(f, "\n");
+    }
     fprintf(f, "| unit | octave lanes | gates | latency | throughput | cycles / frame (cycle model) | set-up stalls | cycles / pixel |\n");
     fprintf(f, "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
     for (size_t i = 0; i < n; i++) {
@@ -489,6 +600,7 @@ static int write_scene(const char *dir, const char *path)
         np_err("report", "%s", err);
         return NP_EXIT_USAGE;
     }
+    sc.size_registers = g_sized;
     if (np_render_prepare(&sc, &fr, err, sizeof err) != 0) {
         np_err("report", "%s", err);
         np_scene_free(&sc);
@@ -519,6 +631,12 @@ static int write_scene(const char *dir, const char *path)
             } else {
                 if (u->stream && su[n].renders)
                     scene_frame(&su[n], &fr);
+                err[0] = '\0';
+                if (g_sized && u->stream && su[n].renders && scene_choose_p(&su[n], &costs[n], &fr, err, sizeof err) != 0) {
+                    np_err("report", "%s: %s", u->name, err);
+                    rc = NP_EXIT_USAGE;
+                    break;
+                }
                 n++;
                 /* A unit with a serial variant (aacount): priced beside the parallel one. */
                 if (!su[n - 1].renders && n < MAXU) {
@@ -544,14 +662,14 @@ static int write_scene(const char *dir, const char *path)
             scene_md(stdout, &sc, &fr, su, costs, n, left, nleft);
         } else {
             char name[128], tmp[1024], fin[1024];
-            snprintf(name, sizeof name, "scene-%s-gates.md", sc.name);
+            snprintf(name, sizeof name, "scene-%s%s-gates.md", sc.name, g_sized ? "-sized" : "");
             FILE *f = open_tmp(dir, name, tmp, fin, sizeof tmp);
             if (f) {
                 scene_md(f, &sc, &fr, su, costs, n, left, nleft);
                 rc = commit(f, tmp, fin) ? NP_EXIT_USAGE : rc;
             } else
                 rc = NP_EXIT_USAGE;
-            snprintf(name, sizeof name, "scene-%s-gates.json", sc.name);
+            snprintf(name, sizeof name, "scene-%s%s-gates.json", sc.name, g_sized ? "-sized" : "");
             f = rc ? NULL : open_tmp(dir, name, tmp, fin, sizeof tmp);
             if (f) {
                 scene_json(f, &sc, &fr, su, costs, n, left, nleft);
@@ -559,7 +677,7 @@ static int write_scene(const char *dir, const char *path)
             } else
                 rc = NP_EXIT_USAGE;
             if (rc == NP_EXIT_OK)
-                printf("wrote %s/scene-%s-gates.md and .json (%zu units)\n", dir, sc.name, n);
+                printf("wrote %s/scene-%s%s-gates.md and .json (%zu units)\n", dir, sc.name, g_sized ? "-sized" : "", n);
         }
     }
     free(costs);
@@ -641,6 +759,10 @@ int np_cmd_report(int argc, char **argv)
         }
         if (strcmp(a, "--synth") == 0) {
             synth = 1;
+            continue;
+        }
+        if (strcmp(a, "--sized") == 0) {
+            g_sized = 1;
             continue;
         }
         if (!v) {

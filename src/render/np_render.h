@@ -103,7 +103,8 @@ enum { NP_RENDER_MAX_UNITS = 8 };
  * (np_unit.span) whose cfg_scene accepts sc, in registry order, configured
  * by spec(ctx, u) ("key=value,...", NULL for none) over the defaults and
  * by cfg_scene for the keys the scene sets (NP_UNIT_KEY_SCENE: the
- * texture). Writes up to NP_RENDER_MAX_UNITS into us; the count, or -1 with err.
+ * texture; with sc->size_registers also the index and guard bits it sized,
+ * unless spec gives them). Writes up to NP_RENDER_MAX_UNITS into us; the count, or -1 with err.
  */
 int np_render_units(const np_scene *sc, const char *(*spec)(const void *ctx, const np_unit *u), const void *ctx,
                     np_render_unit_cfg *us, char *err, size_t errlen);

@@ -87,6 +87,12 @@ typedef struct np_scene {
     unsigned probe_row;                  /* scanline of the noise-difference plot */
     int allow_empty;                     /* "allow_empty": true: an image that covers no pixel is not an error */
     /*
+     * Not from the file: set by a tool (render --sized, report gates --scene):
+     * the span units' cfg_scene sizes their registers to the scene
+     * (np_su_cfg_scene) instead of keeping the default widths.
+     */
+    int size_registers;
+    /*
      * "light": one directional light for the shaded views (NAME_*_lit.png),
      * never for the units' outputs or the hashed images. light_dir is the unit
      * vector from a surface towards the light (world space); a view pixel is

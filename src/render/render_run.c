@@ -10,6 +10,7 @@
 
 #include "np_cli.h"
 #include "np_gbuf.h"
+#include "unit_span.h"
 
 /* Round half up to 8 bits: the units' colour stage rounding (np_tex_colour_round). */
 static uint8_t round8(double v) { return (uint8_t)floor(v + 0.5); }
@@ -175,6 +176,12 @@ int np_render_unit(const np_render_frame *fr, const np_unit *u, const void *cfg,
 {
     if (!u->span)
         return -1;
+    if (fr->sc->size_registers) {
+        /* Registers sized by the scene: the unit's texture as its cfg_scene compiled it, not the frame's defaults. */
+        np_render_frame f = *fr;
+        f.regs = *np_ut_regs(np_su_texture(u->span, cfg));
+        return np_render_engine(&f, u->span->engine, np_unit_span_cfg(u->span, cfg), cycles, run);
+    }
     return np_render_engine(fr, u->span->engine, np_unit_span_cfg(u->span, cfg), cycles, run);
 }
 

@@ -67,6 +67,20 @@ int np_render_units(const np_scene *sc, const char *(*spec)(const void *ctx, con
             return -1;
         }
         snprintf(c->spec, sizeof c->spec, "%s", s ? s : "");
+        /*
+         * Registers sized by the scene (np_scene.size_registers): the index
+         * and guard bits cfg_scene chose, unless the spec gives them.
+         */
+        static const char *const sized_keys[] = { "idx_int", "guard" };
+        for (unsigned j = 0; sc->size_registers && j < sizeof sized_keys / sizeof sized_keys[0]; j++)
+            for (const np_unit_key *k = u->keys; k && k->name; k++)
+                if (strcmp(k->name, sized_keys[j]) == 0 && k->size == sizeof(unsigned) &&
+                    !sets(c->spec, k->name, strlen(k->name))) {
+                    unsigned v;
+                    memcpy(&v, c->scene.bytes + k->offset, sizeof v);
+                    size_t n0 = strlen(c->spec);
+                    snprintf(c->spec + n0, sizeof c->spec - n0, "%s%s=%u", n0 ? "," : "", k->name, v);
+                }
         if (np_render_unit_reconfigure(c, NULL, why, sizeof why) != 0) {
             snprintf(err, errlen, "%s configuration: %s", u->name, why);
             return -1;

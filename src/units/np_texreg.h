@@ -36,6 +36,14 @@ double np_texreg_index_scale(const np_ref_colormap *c);
  */
 int np_texreg_compile(const np_ref_texture *t, np_tex_regs *r, char *err, size_t errlen);
 
+/* Register formats of a texture sized by a scene (np_tex_regs.k_frac ...; 0 bits: the default format). */
+typedef struct np_texreg_fmt {
+    unsigned k_frac, k_bits;   /* quadric: s(k_bits) Q(k_bits-1-k_frac).k_frac */
+    unsigned m_frac, m_bits;   /* transform: s(m_bits) Q(m_bits-1-m_frac).m_frac */
+} np_texreg_fmt;
+/* np_texreg_compile into the formats fmt (NULL: the defaults). */
+int np_texreg_compile_fmt(const np_ref_texture *t, const np_texreg_fmt *fmt, np_tex_regs *r, char *err, size_t errlen);
+
 /*
  * What rounding the texture into registers costs over a scene, and whether
  * the units can render it within 1 LSB (issue 10: register quantisation
@@ -83,6 +91,25 @@ void np_texreg_scene_bound_compute(const np_ref_texture *t, const np_tex_regs *r
  */
 int np_texreg_scene_check(const char *scene, const np_texreg_scene_bound *b, double unit_lsb, unsigned idx_int,
                           unsigned idx_int_max, char *err, size_t errlen);
+
+/*
+ * Registers sized by the scene (issue 10): the fewest transform fraction
+ * bits m_frac (0..40) and then the fewest quadric fraction bits k_frac
+ * (0..48) whose registers' bound over the scene (np_texreg_scene_bound_compute
+ * over lo..hi and spans of max_span pixels) is <= budget colour LSB - the
+ * transform searched with the quadric at its widest, then the quadric at the
+ * transform found - each register with the fewest integer bits that hold
+ * the scene's values (the transform at most 7, |m| < 128; the quadric's
+ * width at most 64, so a large coefficient leaves fewer fraction bits).
+ * When even the widest formats exceed budget, the widest are chosen and the
+ * caller's check (np_texreg_scene_check) decides. r: the texture compiled
+ * in them, b: their bound, fmt: the formats. 0, or -1 with err (a value that
+ * fits no format).
+ */
+int np_texreg_size(const np_ref_texture *t, const double lo[3], const double hi[3], unsigned max_span, double budget,
+                   np_texreg_fmt *fmt, np_tex_regs *r, np_texreg_scene_bound *b, char *err, size_t errlen);
+/* The share of the 1 LSB budget the scene-sized registers get (the unit's own rounding has the rest). */
+#define NP_TEXREG_SIZE_BUDGET 0.125
 
 /*
  * Built-in textures: "wood" and "marble" (the seed scenes' textures, the same

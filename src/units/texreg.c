@@ -27,13 +27,26 @@ double np_texreg_index_scale(const np_ref_colormap *c)
 
 int np_texreg_compile(const np_ref_texture *t, np_tex_regs *r, char *err, size_t errlen)
 {
+    return np_texreg_compile_fmt(t, NULL, r, err, errlen);
+}
+
+int np_texreg_compile_fmt(const np_ref_texture *t, const np_texreg_fmt *fmt, np_tex_regs *r, char *err, size_t errlen)
+{
     static const char qn[] = "ABCDEFGHIJ";
     memset(r, 0, sizeof *r);
+    if (fmt) {
+        r->k_frac = fmt->k_frac;
+        r->k_bits = fmt->k_bits;
+        r->m_frac = fmt->m_frac;
+        r->m_bits = fmt->m_bits;
+    }
+    const unsigned kf = np_tex_k_frac(r), kb = np_tex_k_bits(r), mf = np_tex_m_frac(r), mb = np_tex_m_bits(r);
     double S = np_texreg_index_scale(&t->cmap);
     for (unsigned i = 0; i < 10; i++) {
         double v = S * (i == 9 ? t->quad[9] - t->cmap.f0 : t->quad[i]);
-        if (np_texreg_quantize(v, NP_TEX_K_FRAC, NP_TEX_K_BITS, &r->k[i])) {
-            snprintf(err, errlen, "quadric coefficient %c scaled by the colour map (%g) does not fit s48 Q23.24", qn[i], v);
+        if (np_texreg_quantize(v, (int)kf, kb, &r->k[i])) {
+            snprintf(err, errlen, "quadric coefficient %c scaled by the colour map (%g) does not fit s%u Q%u.%u", qn[i],
+                     v, kb, kb - 1u - kf, kf);
             return -1;
         }
     }
@@ -54,11 +67,12 @@ int np_texreg_compile(const np_ref_texture *t, np_tex_regs *r, char *err, size_t
         d->amp = (int32_t)q;
         for (unsigned a = 0; a < 3; a++) {
             for (unsigned b = 0; b < 3; b++) {
-                if (np_texreg_quantize(src->m[a][b], NP_TEX_M_FRAC, NP_TEX_M_BITS, &q)) {
-                    snprintf(err, errlen, "octave %u: transform entry %g does not fit s24 Q7.16", o, src->m[a][b]);
+                if (np_texreg_quantize(src->m[a][b], (int)mf, mb, &q)) {
+                    snprintf(err, errlen, "octave %u: transform entry %g does not fit s%u Q%u.%u", o, src->m[a][b], mb,
+                             mb - 1u - mf, mf);
                     return -1;
                 }
-                d->m[a][b] = (int32_t)q;
+                d->m[a][b] = q;
             }
             if (np_texreg_quantize(src->o[a], NP_TEX_FC, NP_TEX_O_BITS, &d->o[a])) {
                 snprintf(err, errlen, "octave %u: offset %g does not fit s48 Q15.32", o, src->o[a]);
@@ -115,6 +129,8 @@ void np_texreg_scene_bound_compute(const np_ref_texture *t, const np_tex_regs *r
     static const char qn[] = "ABCDEFGHIJ";
     memset(b, 0, sizeof *b);
     bound_acc a = { b, (double)np_tex_colour_slope(r) };
+    const int kf = (int)np_tex_k_frac(r), mf = (int)np_tex_m_frac(r);
+    const unsigned kb = np_tex_k_bits(r), mb = np_tex_m_bits(r);
     const double S = np_texreg_index_scale(&t->cmap), nmax = 63.0 / 64.0;
     double m[3];
     for (int k = 0; k < 3; k++)
@@ -125,9 +141,9 @@ void np_texreg_scene_bound_compute(const np_ref_texture *t, const np_tex_regs *r
     char f[96];
     for (int j = 0; j < 10; j++) {
         double want = S * (j == 9 ? t->quad[9] - t->cmap.f0 : t->quad[j]);
-        double got = ldexp((double)r->k[j], -NP_TEX_K_FRAC);
+        double got = ldexp((double)r->k[j], -kf);
         snprintf(f, sizeof f, "texture.quadric.%c", qn[j]);
-        bound_add(&a, fabs(got - want), mono[j], f, want, NP_TEX_K_FRAC, NP_TEX_K_BITS);
+        bound_add(&a, fabs(got - want), mono[j], f, want, (unsigned)kf, kb);
         b->index_max += fabs(got) * mono[j];
         if (fabs(got) * mono[j] > b->index_worst_value) {
             b->index_worst_value = fabs(got) * mono[j];
@@ -147,9 +163,9 @@ void np_texreg_scene_bound_compute(const np_ref_texture *t, const np_tex_regs *r
         }
         for (int ax = 0; ax < 3; ax++) {
             for (int bx = 0; bx < 3; bx++) {
-                double got = ldexp((double)ro->m[ax][bx], -NP_TEX_M_FRAC);
+                double got = ldexp((double)ro->m[ax][bx], -mf);
                 snprintf(f, sizeof f, "texture.octaves[%u] transform entry [%d][%d]", i, ax, bx);
-                bound_add(&a, fabs(got - o->m[ax][bx]), g * m[bx], f, o->m[ax][bx], NP_TEX_M_FRAC, NP_TEX_M_BITS);
+                bound_add(&a, fabs(got - o->m[ax][bx]), g * m[bx], f, o->m[ax][bx], (unsigned)mf, mb);
             }
             snprintf(f, sizeof f, "texture.octaves[%u].offset[%d]", i, ax);
             bound_add(&a, fabs(ldexp((double)ro->o[ax], -NP_TEX_FC) - o->o[ax]), g, f, o->o[ax], NP_TEX_FC,
@@ -158,14 +174,14 @@ void np_texreg_scene_bound_compute(const np_ref_texture *t, const np_tex_regs *r
             b->reg_index += g * ldexp(1.0 + (double)max_span, -(NP_TEX_FC + 1));
             /* The descriptor's s and ds, rounded to Q.32 by the host, through the transform. */
             for (int bx = 0; bx < 3; bx++)
-                b->reg_index += g * fabs(ldexp((double)ro->m[ax][bx], -NP_TEX_M_FRAC)) *
+                b->reg_index += g * fabs(ldexp((double)ro->m[ax][bx], -mf)) *
                                 ldexp(1.0 + (double)max_span, -(NP_TEX_FC + 1));
         }
     }
     /* The descriptor's rounding through the quadric: |grad q'|_1 over the box times 2^-33 (1 + n_max). */
     double k[10];
     for (int j = 0; j < 10; j++)
-        k[j] = fabs(ldexp((double)r->k[j], -NP_TEX_K_FRAC));
+        k[j] = fabs(ldexp((double)r->k[j], -kf));
     const double grad = 2 * k[0] * m[0] + 2 * k[1] * (m[0] + m[1]) + 2 * k[2] * (m[0] + m[2]) + 2 * k[3] +
                         2 * k[4] * m[1] + 2 * k[5] * (m[1] + m[2]) + 2 * k[6] + 2 * k[7] * m[2] + 2 * k[8];
     b->reg_index += grad * ldexp(1.0 + (double)max_span, -(NP_TEX_FC + 1));
@@ -208,6 +224,83 @@ int np_texreg_scene_check(const char *scene, const np_texreg_scene_bound *b, dou
                  "(the registers would need %u more fraction bits: %s with %u)",
                  scene, b->worst, b->worst_value, b->worst_bits, b->worst_frac, b->worst_lsb, unit_lsb + b->reg_lsb, e,
                  b->worst, b->worst_frac + e);
+        return -1;
+    }
+    return 0;
+}
+
+/* --- Registers sized by the scene (np_texreg.h) --- */
+
+/* Fewest bits of a two's-complement word holding q. */
+static unsigned sbits(int64_t q)
+{
+    unsigned b = 1;
+    while (b < 64 && !(q >= -((int64_t)1 << (b - 1)) && q < ((int64_t)1 << (b - 1))))
+        b++;
+    return b;
+}
+
+/* The formats at fractions kf, mf with the fewest integer bits: 0, or -1 when a value fits no width. */
+static int size_fmt(const np_ref_texture *t, unsigned kf, unsigned mf, np_texreg_fmt *f)
+{
+    const double S = np_texreg_index_scale(&t->cmap);
+    unsigned kb = kf + 1u, mb = mf + 1u;
+    int64_t q;
+    for (unsigned j = 0; j < 10; j++) {
+        if (np_texreg_quantize(S * (j == 9 ? t->quad[9] - t->cmap.f0 : t->quad[j]), (int)kf, 64, &q))
+            return -1;
+        unsigned b = sbits(q);
+        kb = b > kb ? b : kb;
+    }
+    for (unsigned o = 0; o < t->n_oct && o < NP_TEX_MAX_OCTAVES; o++)
+        for (unsigned a = 0; a < 3; a++)
+            for (unsigned c = 0; c < 3; c++) {
+                if (np_texreg_quantize(t->oct[o].m[a][c], (int)mf, 64, &q))
+                    return -1;
+                unsigned b = sbits(q);
+                mb = b > mb ? b : mb;
+            }
+    if (kb > NP_TEX_K_BITS_MAX || mb > NP_TEX_M_BITS_MAX || mb > 1u + NP_TEX_M_INT_MAX + mf)
+        return -1;
+    *f = (np_texreg_fmt){ kf, kb, mf, mb };
+    return 0;
+}
+
+/* The registers' bound (colour LSB) at fractions kf, mf; +inf when they do not fit. */
+static double size_try(const np_ref_texture *t, const double lo[3], const double hi[3], unsigned max_span, unsigned kf,
+                       unsigned mf, np_texreg_fmt *f, np_tex_regs *r, np_texreg_scene_bound *b)
+{
+    char err[200];
+    if (size_fmt(t, kf, mf, f) != 0 || np_texreg_compile_fmt(t, f, r, err, sizeof err) != 0)
+        return (double)INFINITY;
+    np_texreg_scene_bound_compute(t, r, lo, hi, max_span, b);
+    return b->reg_lsb;
+}
+
+int np_texreg_size(const np_ref_texture *t, const double lo[3], const double hi[3], unsigned max_span, double budget,
+                   np_texreg_fmt *fmt, np_tex_regs *r, np_texreg_scene_bound *b, char *err, size_t errlen)
+{
+    /* The widest quadric fraction the coefficients leave within 64 bits. */
+    unsigned ktop = NP_TEX_K_FRAC_MAX;
+    np_texreg_fmt f;
+    while (size_fmt(t, ktop, NP_TEX_M_FRAC_MAX, &f) != 0) {
+        if (ktop == 0) {
+            /* A value no format holds: compile at the defaults for the message. */
+            if (np_texreg_compile(t, r, err, errlen) == 0)
+                snprintf(err, errlen, "a quadric coefficient or transform entry does not fit the widest registers "
+                                      "(s64 quadric, s48 Q7.40 transform)");
+            return -1;
+        }
+        ktop--;
+    }
+    unsigned mf = 0, kf = 0;
+    while (mf < NP_TEX_M_FRAC_MAX && !(size_try(t, lo, hi, max_span, ktop, mf, &f, r, b) <= budget))
+        mf++;
+    while (kf < ktop && !(size_try(t, lo, hi, max_span, kf, mf, &f, r, b) <= budget))
+        kf++;
+    /* (ktop, mf) fits by the searches above, and k's format does not depend on mf: this fits. */
+    if (!(size_try(t, lo, hi, max_span, kf, mf, fmt, r, b) < (double)INFINITY)) {
+        snprintf(err, errlen, "no register format holds the texture (quadric Q.%u, transform Q.%u)", kf, mf);
         return -1;
     }
     return 0;

@@ -41,20 +41,26 @@ static const char *cfg_check(const void *cfg)
     return why ? why : np_su_scene_index_check(&fd_su.span, cfg, 11);
 }
 
-static double error_bound(const void *cfg)
+/*
+ * The colour bound at the map's slope, every octave drifting over runs of at
+ * most m = max_span - 1 steps (or K, the re-set-up interval, when shorter)
+ * and the quadric over the span, against the exact texture at the unit's
+ * coordinates (np_fdiff.h); the float reference adds the front end's and the
+ * registers' roundings (docs/fdiff.md).
+ */
+static double bound_span(const void *cfg, unsigned max_span)
 {
-    /*
-     * The colour bound for one octave at the map's slope over a run of m <= 65,535 steps,
-     * against the exact texture at the unit's coordinates (np_fdiff.h); the float
-     * reference adds the front end's and the registers' roundings (docs/fdiff.md).
-     */
     const fd_cfg *k = cfg;
     const np_tex_regs *r = np_ut_regs(k->tex);
-    uint64_t m = k->c.resetup ? k->c.resetup : NP_TEX_SPAN_MAX - 1u;
+    const uint64_t ms = max_span > 1u ? max_span - 1u : 0u;
+    const uint64_t m = k->c.resetup && k->c.resetup < ms ? k->c.resetup : ms;
     double idx = (double)r->n_oct * np_fdiff_drift_bound_noise(np_fdiff_frac(&k->c), m) +
-                 np_fdiff_drift_bound_quad(np_fdiff_frac(&k->c), NP_TEX_SPAN_MAX - 1u);
+                 np_fdiff_drift_bound_quad(np_fdiff_frac(&k->c), ms);
     return 0.5 + (double)np_tex_colour_slope(r) * (idx + ldexp(1.0, -(int)k->c.w_frac - 1));
 }
+
+/* Over any span (m <= 65,535 steps). */
+static double error_bound(const void *cfg) { return bound_span(cfg, NP_TEX_SPAN_MAX); }
 
 /*
  * The stream model's timing (np_fdiff.h): 1 clock to accept a descriptor,
@@ -179,6 +185,7 @@ static np_su fd_su = {
               fd_trace },
     .engine_cfg_size = sizeof(np_fdiff_cfg),
     .idx_int_max = 11,
+    .bound_span = bound_span,
     .front_name = "R",
 };
 NP_SU_DEFINE(fd_su, np_unit_fdiff);

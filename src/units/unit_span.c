@@ -47,7 +47,7 @@ void np_ut_span(const uint64_t *in, np_span *sp)
 }
 
 /* Built-in textures, then the textures of scenes (np_ut_texture_add). */
-enum { N_TEX = 3, N_SCENE_TEX = 8 };
+enum { N_TEX = 3, N_SCENE_TEX = 16 };
 static np_tex_regs ut_regs[N_TEX + N_SCENE_TEX];
 static np_ref_texture ut_scene_tex[N_SCENE_TEX];
 static char ut_scene_name[N_SCENE_TEX][80];
@@ -84,11 +84,11 @@ static const np_ref_texture *ut_ref_texture(unsigned tex)
     return np_texreg_builtin(np_texreg_builtin_name(tex < N_TEX ? tex : 0));
 }
 
-int np_ut_texture_add(const char *name, const np_ref_texture *t, unsigned *tex, char *err, size_t errlen)
+/* np_ut_texture_add with the registers already compiled (r). */
+static int ut_texture_add_regs(const char *name, const np_ref_texture *t, const np_tex_regs *rr, unsigned *tex,
+                               char *err, size_t errlen)
 {
-    np_tex_regs r;
-    if (np_texreg_compile(t, &r, err, errlen) != 0)
-        return -1;
+    const np_tex_regs r = *rr;
     pthread_once(&ut_once, ut_compile);
     pthread_mutex_lock(&ut_lock);
     int rc = 0;
@@ -111,6 +111,14 @@ int np_ut_texture_add(const char *name, const np_ref_texture *t, unsigned *tex, 
     return rc;
 }
 
+int np_ut_texture_add(const char *name, const np_ref_texture *t, unsigned *tex, char *err, size_t errlen)
+{
+    np_tex_regs r;
+    if (np_texreg_compile(t, &r, err, errlen) != 0)
+        return -1;
+    return ut_texture_add_regs(name, t, &r, tex, err, errlen);
+}
+
 const np_texreg_scene_bound *np_ut_texture_bound(unsigned tex)
 {
     return tex >= N_TEX && tex < N_TEX + ut_n_scene && ut_scene_has_bound[tex - N_TEX] ? &ut_scene_bound[tex - N_TEX]
@@ -129,12 +137,38 @@ const char *np_su_scene_index_check(const np_unit_span *s, const void *cfg, unsi
     return msg;
 }
 
+/* The unsigned key name of u's configuration block cfg, or NULL. */
+static unsigned *ut_key(const np_unit *u, void *cfg, const char *name)
+{
+    for (const np_unit_key *k = u->keys; k && k->name; k++)
+        if (strcmp(k->name, name) == 0 && k->size == sizeof(unsigned))
+            return (unsigned *)(void *)((char *)cfg + k->offset);
+    return NULL;
+}
+
+static double ut_own_bound(const np_su *su, const np_unit *u, const void *cfg, unsigned max_span)
+{
+    if (su->bound_span)
+        return su->bound_span(cfg, max_span);
+    return u->error_bound_lsb ? u->error_bound_lsb(cfg) : 0.5;
+}
+
+double np_su_predicted_lsb(const np_unit *u, const void *cfg, unsigned max_span)
+{
+    const np_su *su = (const np_su *)(const void *)u->span; /* np_unit.span is np_su's first member */
+    const np_texreg_scene_bound *b = np_ut_texture_bound(np_su_texture(u->span, cfg));
+    if (!b)
+        return (double)NAN;
+    return ut_own_bound(su, u, cfg, max_span) + b->reg_lsb;
+}
+
 int np_su_cfg_scene(const np_su *su, const np_unit *u, void *cfg, const np_scene *sc, char *err, size_t errlen)
 {
     unsigned *tex = (unsigned *)(void *)((char *)cfg + su->span.texture_offset);
     char name[80];
-    snprintf(name, sizeof name, "scene:%s", sc->name);
-    if (np_ut_texture_add(name, &sc->tex, tex, err, errlen) != 0)
+    const int sized = sc->size_registers && su->idx_int_max;
+    snprintf(name, sizeof name, "%s:%s", sized ? "sized" : "scene", sc->name);
+    if (!sized && np_ut_texture_add(name, &sc->tex, tex, err, errlen) != 0)
         return -1;
     if (!su->idx_int_max)
         return 1;
@@ -156,12 +190,45 @@ int np_su_cfg_scene(const np_su *su, const np_unit *u, void *cfg, const np_scene
         for (int a = 0; a < 3; a++)
             lo[a] = hi[a] = 0;
     np_texreg_scene_bound b;
-    np_texreg_scene_bound_compute(&sc->tex, np_ut_regs(*tex), lo, hi, sc->width, &b);
+    if (sized) {
+        /*
+         * Registers sized by the scene (issue 10): the transform and quadric
+         * formats within NP_TEXREG_SIZE_BUDGET (np_texreg_size), the fewest
+         * index integer bits (a clamped map's index range; log2 N for a
+         * repeating one), then the fewest guard bits whose own bound over the
+         * scene's widest span plus the registers' is <= 1 LSB.
+         */
+        np_texreg_fmt fmt;
+        np_tex_regs r;
+        if (np_texreg_size(&sc->tex, lo, hi, sc->width, NP_TEXREG_SIZE_BUDGET, &fmt, &r, &b, err, errlen) != 0 ||
+            ut_texture_add_regs(name, &sc->tex, &r, tex, err, errlen) != 0)
+            return -1;
+        unsigned *I = (unsigned *)(void *)((char *)cfg + su->span.engine_cfg_offset), need = b.idx_int_need;
+        if (r.cmap_repeat)
+            while ((1u << need) < r.cmap_n)
+                need++;
+        if (need <= su->idx_int_max)
+            *I = need;
+        unsigned *G = ut_key(u, cfg, "guard");
+        if (G) {
+            const np_unit_key *gk = u->keys;
+            while (strcmp(gk->name, "guard") != 0)
+                gk++;
+            const unsigned g0 = *G;
+            for (*G = gk->lo; *G <= gk->hi; ++*G)
+                if (ut_own_bound(su, u, cfg, sc->width) + b.reg_lsb <= 1.0)
+                    break;
+            if (*G > gk->hi)
+                *G = g0; /* none holds: the check below refuses with the default's numbers */
+        }
+    } else {
+        np_texreg_scene_bound_compute(&sc->tex, np_ut_regs(*tex), lo, hi, sc->width, &b);
+    }
     pthread_mutex_lock(&ut_lock);
     ut_scene_bound[*tex - N_TEX] = b;
     ut_scene_has_bound[*tex - N_TEX] = 1;
     pthread_mutex_unlock(&ut_lock);
-    const double own = u->error_bound_lsb ? u->error_bound_lsb(cfg) : 0.5;
+    const double own = ut_own_bound(su, u, cfg, sc->width);
     return np_texreg_scene_check(sc->name, &b, own, *(const unsigned *)np_su_engine_cfg(&su->span, cfg),
                                  su->idx_int_max, err, errlen) == 0
                ? 1

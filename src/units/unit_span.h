@@ -103,6 +103,12 @@ typedef struct np_su {
      * rounding and index range against the unit's bound (np_texreg.h).
      */
     unsigned idx_int_max;
+    /*
+     * Optional: the unit's own colour bound (LSB) for spans of at most
+     * max_span pixels (NULL: error_bound_lsb, the bound for any span). The
+     * scene check and the scene sizing use it over the scene's widest span.
+     */
+    double (*bound_span)(const void *cfg, unsigned max_span);
     /* The pipe's stage table, built by the first pipe_init. */
     np_stage_desc stages[1 + NP_SU_STAGES_MAX];
     int built;
@@ -123,6 +129,13 @@ size_t np_su_datapath(const np_su *su, const void *cfg, np_op *ops, size_t max);
  * register rounding takes the unit's bound (u->error_bound_lsb) over 1 LSB.
  */
 int np_su_cfg_scene(const np_su *su, const np_unit *u, void *cfg, const struct np_scene *sc, char *err, size_t errlen);
+/*
+ * The predicted colour bound (LSB) of unit u in configuration cfg on the
+ * scene whose texture cfg selects: the unit's own bound over spans of
+ * max_span pixels plus the registers' rounding over the scene (the bound
+ * np_su_cfg_scene computed); NAN when cfg's texture is not a scene's.
+ */
+double np_su_predicted_lsb(const np_unit *u, const void *cfg, unsigned max_span);
 /*
  * For a unit's cfg_check: NULL, or a message when cfg's texture is a scene's
  * whose clamped index does not fit cfg's idx_int (it would wrap).

@@ -115,7 +115,7 @@ static const char *tx_trace(const void *ecfg, const np_tex_regs *r, np_rng *g, n
             np_texel_stages[k].fn(np_span_ctx_of(&front), &s);
             np_texel_trace(cfg, r, k, &s, t, n);
         }
-        if (np_tex_to_index(np_wrap_s128(s.qx, np_texel_q_window(cfg)), NP_TEX_Q_EXACT_FRAC, F, W) != s.q)
+        if (np_tex_to_index(np_wrap_s128(s.qx, np_texel_q_window(cfg, r)), np_tex_q_frac(r), F, W) != s.q)
             return "the quadric's window is too narrow for the rounding";
         for (unsigned o = 0; o < r->n_oct; o++)
             if (np_tex_to_index(np_wrap_s128(np_mul128((np_s128)r->oct[o].amp, s.l3[o]), np_texel_al_window(cfg)), nf,
