@@ -23,7 +23,7 @@ set_tests_properties(hatch.cli_seeds_usage PROPERTIES
 np_test_program(test_hatch_scene test_hatch_scene.c)
 target_link_libraries(test_hatch_scene PRIVATE np_render)
 target_compile_definitions(test_hatch_scene PRIVATE NP_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
-np_add_cases(test_hatch_scene hatch scene_cover_identical scene_lod scene_keys)
+np_add_cases(test_hatch_scene hatch scene_cover_identical scene_lod scene_keys scene_gates)
 # The command on the hatched cubes: every image against its golden hash, the hatched image's cycle
 # model and float reference checked by the command.
 add_test(NAME hatch.scene_golden COMMAND noisepipe render -o ${CMAKE_CURRENT_BINARY_DIR}/hatch-scenes
@@ -36,3 +36,7 @@ add_test(NAME hatch.scene_zoom COMMAND noisepipe render --no-cycles --zoom-frame
   -o ${CMAKE_CURRENT_BINARY_DIR}/hatch-zoom ${PROJECT_SOURCE_DIR}/vectors/scenes/hatch_wood.json)
 set_tests_properties(hatch.scene_zoom PROPERTIES
   PASS_REGULAR_EXPRESSION "levels -1 \\.\\. -9 on polygon.*16 stroke centres of layer 0 tracked: 0 frame-centres off their UV point, 0 alpha drops \\(0 frames without the polygon\\).*render: ok")
+# The gate report of a hatched scene: the unit configured from the scene, with its coverage logic.
+add_test(NAME hatch.scene_report_gates COMMAND noisepipe report gates --scene ${PROJECT_SOURCE_DIR}/vectors/scenes/hatch_wood.json)
+set_tests_properties(hatch.scene_report_gates PROPERTIES
+  PASS_REGULAR_EXPRESSION "also used:\\*\\* `hatch` `set=best16 layers=4 fade=smooth guard=9 lanes=1 rot=pin inv_len=1024 inv_wid=8533 mode=coverage slots=4`")

@@ -36,8 +36,9 @@ static void print_frame(const np_hatch_cfg *c, unsigned coverage, const np_hatch
     if (coverage)
         printf("         coverage lists at the pixels: mean %.3f entries a layer, max %u\n", f->list_mean, f->list_max);
     if (f->pipe_cycles)
-        printf("         unrolled cycle model: %llu cycles (%llu pixels + latency %u), outputs %s; bit-exact model %.3f s\n",
-               (unsigned long long)f->pipe_cycles, (unsigned long long)f->samples, np_hatch_depth(c),
+        printf("         unrolled cycle model (%s): %llu cycles (%llu pixels + latency %u), outputs %s; bit-exact model %.3f s\n",
+               coverage ? "coverage slots" : "every seed", (unsigned long long)f->pipe_cycles,
+               (unsigned long long)f->samples, f->pipe_depth,
                f->pipe_mismatch ? "DIFFER" : "equal", f->seconds);
 }
 

@@ -76,7 +76,12 @@ typedef struct np_hatch_frame {
     /* Coverage lists at the samples: mean entries per layer and the longest (coverage mode). */
     double list_mean;
     unsigned list_max;
-    /* The unrolled cycle model (np_pipe), fed every covered sample back to back (when asked). */
+    /*
+     * The unrolled cycle model (np_pipe), fed every covered sample back to back
+     * (when asked): brute force's seed stages, or in coverage mode the coverage
+     * unit's slot stages reading the host's lists (np_hatch_cfg.cover_slots).
+     */
+    unsigned pipe_depth;   /* its latency */
     uint64_t pipe_cycles;
     int pipe_mismatch;
     /* Against the float reference np_ref_hatch (when asked): max |out - ref| in LSB, and > 1 LSB count. */

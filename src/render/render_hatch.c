@@ -274,7 +274,14 @@ int np_hatch_render(const np_scene *sc, const np_hatch_cfg *cfg, unsigned covera
     f->samples = n;
     if (have_cv && n)
         f->list_mean = (double)list_sum / ((double)n * cfg->layers);
-    if ((flags & NP_HATCH_RENDER_PIPE) && run_pipe(cfg, f, xs, pix, n, &f->pipe_cycles, &f->pipe_mismatch)) {
+    /* The cycle model: brute force's, or the coverage unit's slots with the host's lists. */
+    np_hatch_cfg pc = *cfg;
+    if (have_cv) {
+        pc.cover_slots = np_hatch_cover_slots(cfg, &cv);
+        pc.cover = &cv;
+    }
+    f->pipe_depth = np_hatch_depth(&pc);
+    if ((flags & NP_HATCH_RENDER_PIPE) && run_pipe(&pc, f, xs, pix, n, &f->pipe_cycles, &f->pipe_mismatch)) {
         snprintf(err, errlen, "out of memory");
         goto out;
     }
