@@ -57,7 +57,11 @@ int np_hatch_render_cfg(const np_scene_hatch *h, const char *more, np_hatch_cfg 
     }
     snprintf(spec, sizeof spec, "set=%s,layers=%u,fade=%s,lanes=%u%s%s", np_hatch_sets[h->set].name, h->layers,
              h->fade ? "onebyone" : "smooth", h->lanes, more && *more ? "," : "", more ? more : "");
-    return np_unit_configure(u, cfg, spec, err, errlen);
+    np_unit_cfg block; /* np_unit_configure writes a whole configuration block */
+    if (np_unit_configure(u, block.bytes, spec, err, errlen) != 0)
+        return -1;
+    memcpy(cfg, block.bytes, sizeof *cfg);
+    return 0;
 }
 
 void np_hatch_frame_free(np_hatch_frame *f)
