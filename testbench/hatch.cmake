@@ -40,3 +40,12 @@ set_tests_properties(hatch.scene_zoom PROPERTIES
 add_test(NAME hatch.scene_report_gates COMMAND noisepipe report gates --scene ${PROJECT_SOURCE_DIR}/vectors/scenes/hatch_wood.json)
 set_tests_properties(hatch.scene_report_gates PROPERTIES
   PASS_REGULAR_EXPRESSION "also used:\\*\\* `hatch` `set=best16 layers=4 fade=smooth guard=9 lanes=1 rot=pin inv_len=1024 inv_wid=8533 mode=coverage slots=4`")
+# B16 / C16 / B64 / C64 on the hatched cube beside the paper's Table 1 (the command compares the images).
+add_test(NAME hatch.scene_table1 COMMAND noisepipe render --no-cycles --hatch-table
+  -o ${CMAKE_CURRENT_BINARY_DIR}/hatch-table ${PROJECT_SOURCE_DIR}/vectors/scenes/hatch_wood.json)
+set_tests_properties(hatch.scene_table1 PROPERTIES
+  PASS_REGULAR_EXPRESSION "\\| C16 \\| 4\\.903 \\| 1\\.226 \\(4\\) \\| 0 of 35136 \\|.*\\| C64 \\| 4\\.842 \\| 1\\.210 \\(4\\) \\| 0 of 35136 \\|.*units at 1 GHz.*coverage against brute force: bit-identical.*render: ok")
+# The hatch options on a scene without a "hatch" section: refused (exit 2), naming the scene.
+add_test(NAME hatch.scene_needs_hatch COMMAND noisepipe render --zoom-frames 2 -o ${CMAKE_CURRENT_BINARY_DIR}/hatch-none embedded:wood)
+set_tests_properties(hatch.scene_needs_hatch PROPERTIES
+  PASS_REGULAR_EXPRESSION "noisepipe render: wood: --hatch-table and --zoom-frames need a scene with a \"hatch\" section")
