@@ -36,6 +36,9 @@ const char *np_hatch_cfg_check(const np_hatch_cfg *cfg)
         return "rot: pin, 0, 45, 90 or 1e-4";
     if (cfg->inv_u < 1u || cfg->inv_u > 0xFFFFu || cfg->inv_v < 1u || cfg->inv_v > 0xFFFFu)
         return "inv_len, inv_wid: u16 Q8.8, nonzero";
+    if (cfg->cover_slots && (cfg->cover_slots % cfg->lanes || cfg->cover_slots > NP_HATCH_LANES_MAX ||
+                             (cfg->cover_slots > NP_HATCH_COVER_MAX && cfg->cover_slots != cfg->lanes)))
+        return "coverage slots: a multiple of lanes, at most 8 (or the lanes)";
     return NULL;
 }
 
@@ -303,6 +306,12 @@ int np_hatch_cover_build(const np_hatch_cfg *cfg, np_hatch_cover *cv)
     return rc;
 }
 
+unsigned np_hatch_cover_slots(const np_hatch_cfg *cfg, const np_hatch_cover *cv)
+{
+    unsigned m = cv->max_len ? cv->max_len : 1u;
+    return (m + cfg->lanes - 1u) / cfg->lanes * cfg->lanes;
+}
+
 void np_hatch_cover_free(np_hatch_cover *cv)
 {
     free(cv->len);
@@ -340,21 +349,45 @@ uint64_t np_hatch_xs(np_u128 x_uv, int level)
 
 /* --- cycle model --- */
 
-static void st_setup(const void *cfg, void *sig) { np_hatch_setup(cfg, sig); }
+/* Stage A; with coverage, the point's lists too (the list memory's read: texel = the top fraction bits of x). */
+static void st_setup(const void *vcfg, void *vsig)
+{
+    const np_hatch_cfg *cfg = vcfg;
+    np_hatch_sig *s = vsig;
+    np_hatch_setup(cfg, s);
+    const np_hatch_cover *cv = cfg->cover;
+    if (!cfg->cover_slots || !cv)
+        return;
+    unsigned tb = log2u(cv->t);
+    unsigned tu = (unsigned)((s->xu >> (32u - tb)) & (cv->t - 1u)), tv = (unsigned)((s->xv >> (32u - tb)) & (cv->t - 1u));
+    for (unsigned l = 0; l < cfg->layers; l++) {
+        size_t at = ((size_t)l * cv->t + tv) * cv->t + tu;
+        s->ln[l] = cv->len[at];
+        memcpy(s->li[l], cv->idx + at * NP_HATCH_COVER_MAX, NP_HATCH_COVER_MAX);
+    }
+}
 
 /* P seeds; the stage that takes the last seed also rounds the output (stage O folded into it). */
 static void st_seeds(const void *vcfg, void *vsig)
 {
     const np_hatch_cfg *cfg = vcfg;
     np_hatch_sig *s = vsig;
-    unsigned n = np_hatch_n(cfg);
-    for (unsigned k = 0; k < cfg->lanes; k++, s->pos++)
-        np_hatch_seed(cfg, s, s->pos / n, s->pos % n, NULL);
+    unsigned n = cfg->cover_slots ? cfg->cover_slots : np_hatch_n(cfg);
+    for (unsigned k = 0; k < cfg->lanes; k++, s->pos++) {
+        unsigned l = s->pos / n, j = s->pos % n;
+        if (!cfg->cover_slots)
+            np_hatch_seed(cfg, s, l, j, NULL);
+        else if (j < s->ln[l]) /* an empty slot: alpha 0, c unchanged */
+            np_hatch_seed(cfg, s, l, s->li[l][j], NULL);
+    }
     if (s->pos == cfg->layers * n)
         np_hatch_output(cfg, s);
 }
 
-unsigned np_hatch_depth(const np_hatch_cfg *cfg) { return 1u + cfg->layers * np_hatch_n(cfg) / cfg->lanes; }
+unsigned np_hatch_depth(const np_hatch_cfg *cfg)
+{
+    return 1u + cfg->layers * (cfg->cover_slots ? cfg->cover_slots : np_hatch_n(cfg)) / cfg->lanes;
+}
 
 /* A, then S0..S(G-1): a prefix of one table serves every configuration. */
 static const np_stage_desc stages[1 + NP_HATCH_LAYERS_MAX * 64] = {
@@ -672,11 +705,14 @@ unsigned np_hatch_bigq_bits(const np_hatch_cfg *cfg)
 size_t np_hatch_datapath(const np_hatch_cfg *cfg, np_op *ops, size_t max)
 {
     np_dp d = { ops, max, 0 };
-    unsigned n = np_hatch_n(cfg), p = cfg->lanes, f1 = 9u + cfg->guard, g = cfg->layers * n / cfg->lanes;
+    unsigned n = np_hatch_n(cfg), p = cfg->lanes, f1 = 9u + cfg->guard;
+    unsigned slots = cfg->cover_slots ? cfg->cover_slots : n, g = cfg->layers * slots / cfg->lanes;
     unsigned gp = g * p, obo = cfg->fade == NP_HATCH_FADE_ONE_BY_ONE;
     unsigned kb = np_hatch_k_bits(cfg), qb = np_hatch_q_bits(cfg), Qb = np_hatch_bigq_bits(cfg);
-    /* What every bank carries besides c: x (66), the layer tones, oms (17), ku, kv, valid. */
-    unsigned carry = 66u + 31u * cfg->layers + 17u + 2u * kb + 1u;
+    /* Coverage: a list word per layer, slots indices of log2 N bits and a 4-bit length. */
+    unsigned nb = log2u(n), tb = log2u(4u << np_hatch_sets[cfg->set].K), lw = slots * nb + 4u;
+    /* What every bank carries besides c: x (66), the layer tones, oms (17), ku, kv, valid (and the lists). */
+    unsigned carry = 66u + 31u * cfg->layers + 17u + 2u * kb + 1u + (cfg->cover_slots ? cfg->layers * lw : 0u);
     /* A: tone -> A (a 256-word constant ROM), the (4A - l) clamps, 1 - m saturation, the two k products. */
     OP("A", "A", NP_OP_ROM, 1, 8, 31, 31, 0, 0);
     OP("A", "al", NP_OP_ADD, cfg->layers, 33, 0, 31, 0, 1);
@@ -684,9 +720,18 @@ size_t np_hatch_datapath(const np_hatch_cfg *cfg, np_op *ops, size_t max)
     OP("A", "oms", NP_OP_CMP, 1, 17, 0, 17, 0, 0);
     OP("A", NULL, NP_OP_MUX, 1, 17, 2, 0, 0, 1);
     OP("A", "k", NP_OP_MUL, 2, 17, 16, kb, 0, 0);
+    if (cfg->cover_slots) /* the list memory, one per layer, addressed by the texel (wiring from x) */
+        OP("A", "list", NP_OP_ROM, cfg->layers, 2 * tb, lw, lw, 0, 0);
     OP("A", NULL, NP_OP_REG, 1, carry + f1, 0, 0, 0, 0);
     /* S: per seed, the parity add, survival, R r, 2 q k, the profile, the fades, alpha; then the blends. */
     unsigned lv = 0;
+    if (cfg->cover_slots) {
+        /* The slot's seed: W = rotl(b, i) for the list's i, two N-bit rotators; st is wiring from W. */
+        OP("S", "W", NP_OP_MUX, 2 * gp * nb, n, 2, n, 0, lv);
+        lv += nb;
+        OP("S", NULL, NP_OP_CMPK, gp, 4, 0, 0, 0, 0);              /* enable: j < len */
+        OP("S", NULL, NP_OP_MUX, gp, 31, 2, 0, 0, 7);              /* alpha 0 in an empty slot */
+    }
     OP("S", "d", NP_OP_ADD, 2 * gp, 33, 0, 33, 0, lv++);
     OP("S", NULL, NP_OP_LUT, gp, 4, 1, 0, 0, lv);                 /* survival: two XNOR, one AND */
     OP("S", NULL, NP_OP_MUL, 4 * gp, 16, 33, 0, 0, lv++);

@@ -133,6 +133,18 @@ typedef struct np_hatch_cfg {
     unsigned rot;     /* NP_HATCH_ROT_* */
     unsigned inv_u;   /* u16 Q8.8 1/(F e) along the stroke (every layer) */
     unsigned inv_v;   /* u16 Q8.8 1/(F e) across */
+    /*
+     * The coverage-prefiltered unit (not registry keys: the unit's vectors and
+     * keys are brute force's; a scene with "hatch.mode": "coverage" sets them,
+     * np_hatch_cfg_scene). cover_slots 0: brute force, every seed has a lane
+     * of its own. Else each layer has cover_slots seed slots (a multiple of
+     * lanes, at least the host's longest list): the point's list is read in
+     * stage A and slot j of layer l evaluates the list's j-th seed when j < len
+     * (alpha 0 otherwise). cover: the host's lists, read by the cycle model's
+     * stage A (NULL in a gate report, which needs no data).
+     */
+    unsigned cover_slots;
+    const struct np_hatch_cover *cover;
 } np_hatch_cfg;
 
 /* NULL when cfg is valid, else a static message naming the bad field. */
@@ -190,6 +202,9 @@ typedef struct np_hatch_sig {
     uint32_t al[NP_HATCH_LAYERS_MAX];
     uint32_t oms;           /* u17 Q1.16 */
     uint64_t ku, kv;        /* u33 Q9.24 */
+    /* coverage (cover_slots > 0): the point's lists, read in stage A */
+    uint8_t li[NP_HATCH_LAYERS_MAX][NP_HATCH_COVER_MAX]; /* seed indices, log2 N bits each */
+    uint8_t ln[NP_HATCH_LAYERS_MAX];                      /* list lengths, 0..8 */
     /* seed stages */
     uint32_t pos;           /* next seed: layer * N + i (a constant per bank in hardware) */
     uint32_t c;             /* u(F+1) Q1.F */
@@ -243,6 +258,8 @@ typedef struct np_hatch_cover {
 } np_hatch_cover;
 
 int np_hatch_cover_build(const np_hatch_cfg *cfg, np_hatch_cover *cv);
+/* The coverage unit's slots per layer for lists cv: the longest rounded up to a multiple of lanes. */
+unsigned np_hatch_cover_slots(const np_hatch_cfg *cfg, const np_hatch_cover *cv);
 void np_hatch_cover_free(np_hatch_cover *cv);
 /* The coverage-prefiltered unit: only the listed seeds; *cycles (may be NULL): sum of ceil(len / lanes), >= 1. */
 uint32_t np_hatch_eval_cover(const np_hatch_cfg *cfg, const np_hatch_cover *cv, uint64_t xu, uint64_t xv,
@@ -257,14 +274,26 @@ uint32_t np_hatch_eval_cover(const np_hatch_cfg *cfg, const np_hatch_cover *cv, 
  */
 uint64_t np_hatch_xs(np_u128 x_uv, int level);
 
-/* Cycle model: stages A, S0..S(G-1) (P = lanes seeds each, G = layers N / P; the last also rounds the output). */
+/*
+ * Cycle model: stages A, S0..S(G-1) (P = lanes seeds each, G = layers N / P;
+ * the last also rounds the output). Coverage (cover_slots > 0): G = layers
+ * cover_slots / P slot stages, stage A also reads the lists (cfg->cover).
+ */
 int np_hatch_pipe_init(np_pipe *p, const np_hatch_cfg *cfg);
 unsigned np_hatch_depth(const np_hatch_cfg *cfg);
 /* Declared widths that follow the configuration: k (u), q (s), Q (s). */
 unsigned np_hatch_k_bits(const np_hatch_cfg *cfg);
 unsigned np_hatch_q_bits(const np_hatch_cfg *cfg);
 unsigned np_hatch_bigq_bits(const np_hatch_cfg *cfg);
-/* Datapath declaration for the gate report (np_datapath.h): stages A and S (the G seed stages as one row). */
+/*
+ * Datapath declaration for the gate report (np_datapath.h): stages A and S
+ * (the G seed stages as one row). Brute force has no coverage logic;
+ * fade=smooth no smoothstep; only the configured layers. Coverage adds, per
+ * layer, the list memory (4 T^2 words of cover_slots log2 N + 4 bits: a RAM
+ * the host writes, priced as a ROM of its size), the lists carried down the
+ * banks, and per slot two N-bit rotators (W = rotl(b, i) for a variable i:
+ * log2 N levels of 2:1 multiplexers), the enable j < len and alpha's gate.
+ */
 size_t np_hatch_datapath(const np_hatch_cfg *cfg, np_op *ops, size_t max);
 
 #ifdef __cplusplus

@@ -18,3 +18,35 @@ set_tests_properties(hatch.cli_seeds_bad PROPERTIES
 add_test(NAME hatch.cli_seeds_usage COMMAND noisepipe seeds --order 4)
 set_tests_properties(hatch.cli_seeds_usage PROPERTIES
   PASS_REGULAR_EXPRESSION "noisepipe seeds: --order '4': expected a decimal number in 1\\.\\.3")
+# Scenes hatched through the G-buffer renderer (docs/hatch.md, "Scenes"): coverage against brute
+# force on the hatched cube (4 x 16 and 4 x 64 seeds), the host's level of detail, the scene keys.
+np_test_program(test_hatch_scene test_hatch_scene.c)
+target_link_libraries(test_hatch_scene PRIVATE np_render)
+target_compile_definitions(test_hatch_scene PRIVATE NP_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+np_add_cases(test_hatch_scene hatch scene_cover_identical scene_lod scene_keys scene_gates)
+# The command on the hatched cubes: every image against its golden hash, the hatched image's cycle
+# model and float reference checked by the command.
+add_test(NAME hatch.scene_golden COMMAND noisepipe render -o ${CMAKE_CURRENT_BINARY_DIR}/hatch-scenes
+  --hashes ${PROJECT_SOURCE_DIR}/vectors/images/hatch_hashes.txt
+  ${PROJECT_SOURCE_DIR}/vectors/scenes/hatch_wood.json ${PROJECT_SOURCE_DIR}/vectors/scenes/hatch_marble.json)
+set_tests_properties(hatch.scene_golden PROPERTIES
+  PASS_REGULAR_EXPRESSION "hash: hatch_wood hatch: matches.*hash: hatch_marble hatch: matches.*render: ok")
+# A rendered zoom sequence over 8 levels: every tracked stroke centre stays on its UV point, no alpha drops,
+# and in the rendered pixels each tracked stroke's centroid stays within a pixel of its UV centre.
+add_test(NAME hatch.scene_zoom COMMAND noisepipe render --no-cycles --zoom-frames 16 --zoom-levels 8
+  -o ${CMAKE_CURRENT_BINARY_DIR}/hatch-zoom ${PROJECT_SOURCE_DIR}/vectors/scenes/hatch_wood.json)
+set_tests_properties(hatch.scene_zoom PROPERTIES
+  PASS_REGULAR_EXPRESSION "levels -1 \\.\\. -9 on polygon.*16 stroke centres of layer 0 tracked: 0 frame-centres off their UV point, 0 alpha drops \\(0 frames without the polygon\\).*in the rendered frames, [1-9][0-9]* stroke-frames wholly on the face: the stroke's alpha-weighted centroid over its pixels at most 0\\.[0-9]+ px from its UV centre, 0 over 1 px, 0 without ink.*render: ok")
+# The gate report of a hatched scene: the unit configured from the scene, with its coverage logic.
+add_test(NAME hatch.scene_report_gates COMMAND noisepipe report gates --scene ${PROJECT_SOURCE_DIR}/vectors/scenes/hatch_wood.json)
+set_tests_properties(hatch.scene_report_gates PROPERTIES
+  PASS_REGULAR_EXPRESSION "also used:\\*\\* `hatch` `set=best16 layers=4 fade=smooth guard=9 lanes=1 rot=pin inv_len=1024 inv_wid=8533 mode=coverage slots=4`")
+# B16 / C16 / B64 / C64 on the hatched cube beside the paper's Table 1 (the command compares the images).
+add_test(NAME hatch.scene_table1 COMMAND noisepipe render --no-cycles --hatch-table
+  -o ${CMAKE_CURRENT_BINARY_DIR}/hatch-table ${PROJECT_SOURCE_DIR}/vectors/scenes/hatch_wood.json)
+set_tests_properties(hatch.scene_table1 PROPERTIES
+  PASS_REGULAR_EXPRESSION "\\| C16 \\| 4\\.903 \\| 1\\.226 \\(4\\) \\| 0 of 35136 \\|.*\\| C64 \\| 4\\.842 \\| 1\\.210 \\(4\\) \\| 0 of 35136 \\|.*units at 1 GHz.*coverage against brute force: bit-identical.*render: ok")
+# The hatch options on a scene without a "hatch" section: refused (exit 2), naming the scene.
+add_test(NAME hatch.scene_needs_hatch COMMAND noisepipe render --zoom-frames 2 -o ${CMAKE_CURRENT_BINARY_DIR}/hatch-none embedded:wood)
+set_tests_properties(hatch.scene_needs_hatch PROPERTIES
+  PASS_REGULAR_EXPRESSION "noisepipe render: wood: --hatch-table and --zoom-frames need a scene with a \"hatch\" section")

@@ -60,6 +60,10 @@ static void usage(FILE *f)
           "                       run time over each unit's sweeps, plots and images)\n"
           "  --bench              time the float reference and every unit's models side by side\n"
           "  --repeat N           runs per timing in --bench and --report (default 5 / 3)\n"
+          "  --hatch-table        a scene with \"hatch\": B16/C16/B64/C64 cycles a pixel beside the\n"
+          "                       paper's Table 1, coverage checked bit-identical to brute force\n"
+          "  --zoom-frames N      a scene with \"hatch\": also a zoom sequence of N frames (PNG),\n"
+          "                       the camera zoomed 2^L over it (--zoom-levels L, default 8)\n"
           "\n"
           "exit status: 0 ok, 1 a check failed, 2 bad usage or bad input\n",
           f);
@@ -73,7 +77,9 @@ typedef struct opts {
     char unit_spec[MAX_UNITS][UNIT_SPEC_MAX];
     np_unit_cfg ucfg[MAX_UNITS];
     double tolerance;
-    int check, cycles, ppm, bench, sized;
+    int check, cycles, ppm, bench, sized, hatch_table;
+    unsigned zoom_frames;
+    double zoom_levels;
     const char *hashes, *write_hashes, *report;
     unsigned repeat;
     const char *scenes[MAX_SCENES];
@@ -200,6 +206,7 @@ static int parse_opts(int argc, char **argv, opts *o)
     o->tolerance = 1.0;
     o->check = 1;
     o->cycles = 1;
+    o->zoom_levels = 8;
     for (int i = 1; i < argc; i++) {
         const char *v = NULL;
         int r;
@@ -250,6 +257,26 @@ static int parse_opts(int argc, char **argv, opts *o)
                 return -1;
             }
             o->repeat = (unsigned)n;
+        } else if ((r = opt_value(argc, argv, &i, "--zoom-frames", &v))) {
+            uint64_t n;
+            if (r < 0)
+                return -1;
+            if (np_parse_u64(v, 1, 4096, &n)) {
+                np_err(CMD, "--zoom-frames %s: expected an integer in 1..4096", v);
+                return -1;
+            }
+            o->zoom_frames = (unsigned)n;
+        } else if ((r = opt_value(argc, argv, &i, "--zoom-levels", &v))) {
+            char *end;
+            if (r < 0)
+                return -1;
+            o->zoom_levels = strtod(v, &end);
+            if (*v == '\0' || *end != '\0' || !(o->zoom_levels > 0 && o->zoom_levels <= 60)) {
+                np_err(CMD, "--zoom-levels %s: expected a number in (0, 60]", v);
+                return -1;
+            }
+        } else if (strcmp(argv[i], "--hatch-table") == 0) {
+            o->hatch_table = 1;
         } else if (strcmp(argv[i], "--no-check") == 0) {
             o->check = 0;
         } else if (strcmp(argv[i], "--sized") == 0) {
@@ -476,6 +503,15 @@ static int render_scene(const opts *o, const char *path, hash_list *hashes)
     for (int i = 0; i < nu; i++) {
         np_image_hash(sc.width, sc.height, runs[i].rgb, hex);
         np_render_hash_add(hashes, sc.name, us[i].u->name, hex, us[i].text);
+    }
+    if (sc.hatch.present) {
+        int h = np_render_hatch_scene(&sc, o->out, o->ppm, o->cycles, (unsigned)o->hatch_table, o->zoom_frames,
+                                      o->zoom_levels, hashes);
+        if (h != NP_EXIT_OK && (rc == NP_EXIT_OK || h == NP_EXIT_USAGE))
+            rc = h;
+    } else if (o->hatch_table || o->zoom_frames) {
+        np_err(CMD, "%s: --hatch-table and --zoom-frames need a scene with a \"hatch\" section", sc.name);
+        rc = NP_EXIT_USAGE;
     }
 out:
     free(ref8);

@@ -13,6 +13,7 @@
 #include "np_pareto.h"
 #include "np_render.h"
 #include "render_cli.h"
+#include "np_hatch.h"
 #include "np_report.h"
 #include "np_tradeoff.h"
 #include "np_report_dims.h"
@@ -333,8 +334,12 @@ static void scene_md(FILE *f, const np_scene *sc, const np_render_frame *fr, con
             fprintf(f, "%s `%s`", k++ ? "," : "", c[i].unit->name);
     for (size_t i = 0; i < n; i++)
         if (!su[i].renders)
-            fprintf(f, "\n- **also used:** `%s` `%s` (configured from the scene's section for it; "
-                       "c_d at a depth range of 1: the register's value, not the datapath)", c[i].unit->name, c[i].cfg);
+            fprintf(f, "\n- **also used:** `%s` `%s` (configured from the scene's section for it%s)", c[i].unit->name,
+                    c[i].cfg,
+                    strcmp(c[i].unit->name, "aacount") == 0 ? "; c_d at a depth range of 1: the register's value, not the datapath"
+                    : strcmp(c[i].unit->name, "hatch") == 0 ? "; coverage logic only with mode coverage, the smoothstep only "
+                                                              "with fade onebyone, only the scene's layers"
+                                                            : "");
     fprintf(f, "\n- **left out** (the scene does not use them):");
     for (size_t i = 0; i < nleft; i++)
         fprintf(f, "%s `%s`", i ? "," : "", left[i]->name);
@@ -629,6 +634,11 @@ static int write_scene(const char *dir, const char *path)
                 np_err("report", "%s: %s", u->name, err);
                 rc = NP_EXIT_USAGE;
             } else {
+                /* The hatching unit's coverage logic is set by the scene (not a key): say so in its configuration. */
+                const np_hatch_cfg *hc = (const void *)su[n].cfg.bytes;
+                if (strcmp(u->name, "hatch") == 0 && hc->cover_slots)
+                    snprintf(costs[n].cfg + strlen(costs[n].cfg), sizeof costs[n].cfg - strlen(costs[n].cfg),
+                             " mode=coverage slots=%u", hc->cover_slots);
                 if (u->stream && su[n].renders)
                     scene_frame(&su[n], &fr);
                 err[0] = '\0';

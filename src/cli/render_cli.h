@@ -49,6 +49,16 @@ int np_report_runtime(const char *dir, const char *const *scenes, unsigned n_sce
 /* mkdir -p. 0, or -1. */
 int np_mkdir_p(const char *dir);
 
+/*
+ * A scene with a "hatch" section: the hatched image through the unit hatch
+ * (render_hatch.c, docs/hatch.md "Scenes") into out, its hash appended;
+ * table: B16/C16/B64/C64 beside the paper's Table 1; frames > 0: a zoom
+ * sequence over levels levels. NP_EXIT_*.
+ */
+struct np_scene;
+int np_render_hatch_scene(const struct np_scene *sc, const char *out, int ppm, int cycles, unsigned table,
+                          unsigned frames, double levels, hash_list *hashes);
+
 /* noisepipe render --aa: the adaptive supersampling report (render_aa.c). */
 int np_render_aa_main(int argc, char **argv);
 

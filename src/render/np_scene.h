@@ -72,6 +72,20 @@ typedef struct np_scene_aa {
     unsigned tile;                       /* "tile": 0 (default, off) or 6: the 6x6 tile maximum (Fig. 6c) */
 } np_scene_aa;
 
+/*
+ * "hatch": the scene hatched by the unit hatch (seed 003; docs/hatch.md,
+ * "Scenes"): tone from the lit texture, level of detail per polygon.
+ */
+typedef struct np_scene_hatch {
+    int present;                         /* the scene has a "hatch" section */
+    unsigned set;                        /* "set": index into np_hatch_sets (default best16) */
+    unsigned layers;                     /* "layers": 1..4 (default 4) */
+    unsigned fade;                       /* "fade": "smooth" (0, default) or "onebyone" (1) */
+    unsigned coverage;                   /* "mode": "brute" (0) or "coverage" (1, default) */
+    unsigned lanes;                      /* "lanes": P, 1..16 (default 1) */
+    double tile_pixels;                  /* "tile_pixels": 1/F, a seed tile's size on screen (default 64) */
+} np_scene_hatch;
+
 typedef struct np_scene {
     char name[64];
     char path[512];
@@ -110,6 +124,7 @@ typedef struct np_scene {
      */
     int light_image;
     np_scene_aa aa;
+    np_scene_hatch hatch;
 } np_scene;
 
 /*

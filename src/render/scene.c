@@ -305,6 +305,44 @@ static int parse_aa(ctx *c, const cJSON *root, np_scene *s)
     return 0;
 }
 
+/* "hatch" (np_scene.h np_scene_hatch): the hatching unit's scene keys. */
+static int parse_hatch(ctx *c, const cJSON *root, np_scene *s)
+{
+    static const char *const keys[] = { "set", "layers", "fade", "mode", "lanes", "tile_pixels", NULL };
+    static const char *const sets[] = { "fkm16", "best16", "fkm64", "best64", NULL };
+    static const char *const fades[] = { "smooth", "onebyone", NULL };
+    static const char *const modes[] = { "brute", "coverage", NULL };
+    const cJSON *h = get(root, "hatch");
+    np_scene_hatch *q = &s->hatch;
+    int set = 1, fade = 0, mode = 1;
+    q->layers = 4;
+    q->lanes = 1;
+    q->tile_pixels = 64;
+    if (!h) {
+        q->set = 1;
+        q->coverage = 1;
+        return 0;
+    }
+    if (need_object(c, h, "hatch") || check_keys(c, h, "hatch", keys))
+        return -1;
+    q->present = 1;
+    if ((get(h, "set") && read_string(c, get(h, "set"), "hatch.set", sets, &set)) ||
+        (get(h, "fade") && read_string(c, get(h, "fade"), "hatch.fade", fades, &fade)) ||
+        (get(h, "mode") && read_string(c, get(h, "mode"), "hatch.mode", modes, &mode)) ||
+        (get(h, "layers") && read_uint(c, get(h, "layers"), "hatch.layers", 1, 4, &q->layers)) ||
+        (get(h, "lanes") && read_uint(c, get(h, "lanes"), "hatch.lanes", 1, 16, &q->lanes)) ||
+        (get(h, "tile_pixels") &&
+         read_number(c, get(h, "tile_pixels"), "hatch.tile_pixels", 1.0 / 1024.0, 1e6, &q->tile_pixels)))
+        return -1;
+    q->set = (unsigned)set;
+    q->fade = (unsigned)fade;
+    q->coverage = (unsigned)mode;
+    unsigned n = q->set >= 2 ? 64u : 16u;
+    if ((q->lanes & (q->lanes - 1u)) != 0 || n % q->lanes != 0)
+        return fail(c, "hatch.lanes", "%u: expected a power of two dividing the set's %u seeds", q->lanes, n);
+    return 0;
+}
+
 /* The explicit polygons grow by doubling: no cap but NP_SCENE_MAX_PRIMS over all ids. */
 static np_scene_poly *add_poly(ctx *c, np_scene *s, const char *field)
 {
@@ -691,7 +729,7 @@ static int parse_texture(ctx *c, const cJSON *root, np_scene *s)
 int np_scene_parse(const char *json, const char *name, np_scene *s, char *err, size_t errlen)
 {
     static const char *const keys[] = { "noisepipe_scene", "name", "description", "image", "camera",
-                                        "geometry", "texture", "probe_row", "allow_empty", "light", "aa", NULL };
+                                        "geometry", "texture", "probe_row", "allow_empty", "light", "aa", "hatch", NULL };
     ctx c = { name, err, errlen, 0, 0 };
     memset(s, 0, sizeof *s);
     snprintf(s->path, sizeof s->path, "%s", name);
@@ -748,7 +786,7 @@ int np_scene_parse(const char *json, const char *name, np_scene *s, char *err, s
         goto out;
     }
     if (parse_image(&c, root, s) || parse_camera(&c, root, s) || parse_light(&c, root, s) ||
-        parse_aa(&c, root, s) || parse_geometry(&c, root, s) || parse_texture(&c, root, s))
+        parse_aa(&c, root, s) || parse_hatch(&c, root, s) || parse_geometry(&c, root, s) || parse_texture(&c, root, s))
         goto out;
     s->probe_row = s->height / 2u;
     if (get(root, "probe_row"))

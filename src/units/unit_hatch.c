@@ -5,6 +5,7 @@
 
 #include "np_hatch.h"
 #include "np_ref.h"
+#include "np_scene.h"
 #include "np_unit.h"
 
 _Static_assert(sizeof(np_hatch_cfg) <= NP_UNIT_CFG_MAX, "configuration block too large");
@@ -234,6 +235,40 @@ static const char *const conformance_configs[] = { "set=fkm64,fade=onebyone,lane
                                                    "set=fkm16,layers=1,rot=1e-4,guard=12,lanes=16",
                                                    "set=best64,layers=2,rot=0,guard=6,lanes=8", NULL };
 
+/*
+ * The registry's hook: a scene with a "hatch" section (docs/hatch.md,
+ * "Scenes") uses the unit with its set, layers, fading and lanes, the other
+ * keys at their defaults; "mode": "coverage" adds the coverage logic with the
+ * host's lists for this configuration (slots: the longest list, rounded up to
+ * a multiple of the lanes), brute force leaves it out. The gate report
+ * (`report gates --scene`) prices the unit so.
+ */
+extern const np_unit np_unit_hatch;
+
+static int cfg_scene(void *cfg, const np_scene *sc, char *err, size_t errlen)
+{
+    const np_scene_hatch *h = &sc->hatch;
+    if (!h->present)
+        return 0;
+    np_hatch_cfg *c = cfg;
+    char spec[160];
+    snprintf(spec, sizeof spec, "set=%s,layers=%u,fade=%s,lanes=%u", np_hatch_sets[h->set].name, h->layers,
+             h->fade ? "onebyone" : "smooth", h->lanes);
+    if (np_unit_configure(&np_unit_hatch, c, spec, err, errlen) != 0)
+        return -1;
+    if (h->coverage) {
+        np_hatch_cover cv;
+        if (np_hatch_cover_build(c, &cv) != 0) {
+            np_hatch_cover_free(&cv);
+            snprintf(err, errlen, "hatch: a coverage list holds more than %d seeds", NP_HATCH_COVER_MAX);
+            return -1;
+        }
+        c->cover_slots = np_hatch_cover_slots(c, &cv);
+        np_hatch_cover_free(&cv);
+    }
+    return 1;
+}
+
 const np_unit np_unit_hatch = {
     .name = "hatch",
     .summary = "procedural hatching, de Bruijn seeds, 4 layers (Szecsi & Sziranyi, RPTAM)",
@@ -252,4 +287,5 @@ const np_unit np_unit_hatch = {
     .trace = trace,
     .timing = timing,
     .conformance_configs = conformance_configs,
+    .cfg_scene = cfg_scene,
 };
