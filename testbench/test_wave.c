@@ -313,6 +313,19 @@ static double folded_fraction(const np_wave_unit *u, double spacing, unsigned to
     return (double)folded / total;
 }
 
+/* Three aligned trains (lambda, lambda/2, lambda/3, kA 0.4 each): where 1 - sum kA cos th < 0 in double. */
+static double three_trains_theory(void)
+{
+    unsigned neg = 0, tot = 4096 * 8;
+    for (unsigned i = 0; i < tot; i++) {
+        double x = (double)i / 4096.0, j = 1.0; /* one period of the longest train */
+        for (unsigned q = 0; q < 3; q++)
+            j -= 0.4 * np_cos_turns((q + 1.0) * x + 1.234 * q / TWO_PI);
+        neg += j < 0.0;
+    }
+    return (double)neg / tot;
+}
+
 static np_wave_unit fold_unit(const double *kA, unsigned n, double lambda, double spacing)
 {
     np_wave_phys p;
@@ -361,15 +374,7 @@ static int fold(void)
     }
     const double three[3] = { 0.4, 0.4, 0.4 };
     np_wave_unit u = fold_unit(three, 3, lambda, spacing);
-    double got = folded_fraction(&u, spacing, 16384);
-    unsigned neg = 0, tot = 4096 * 8;
-    for (unsigned i = 0; i < tot; i++) {
-        double x = (double)i / 4096.0, j = 1.0; /* one period of the longest train */
-        for (unsigned q = 0; q < 3; q++)
-            j -= 0.4 * np_cos_turns((q + 1.0) * x + 1.234 * q / TWO_PI);
-        neg += j < 0.0;
-    }
-    double want = (double)neg / tot;
+    double got = folded_fraction(&u, spacing, 16384), want = three_trains_theory();
     printf("three aligned trains, sum kA = 1.2: folded %.4f, 1 - sum kA cos < 0 over %.4f\n", got, want);
     NP_CHECK(fabs(got - want) <= 0.01 && want > 0.0, "three trains: %.4f against %.4f", got, want);
     return 0;
@@ -550,27 +555,35 @@ static int recurrence(void)
     return 0;
 }
 
-/* The pipe delivers eval's outputs, one a clock after a latency of 6. */
-static int pipe(void)
+/*
+ * 64 random transactions through u's pipe (seed g0; v_lo: the smallest ray,
+ * so that the gain is not 0): the count of outputs that differ from
+ * np_wave_eval_jac's (y, dx, dz and, with normals or fold, the Jacobian's),
+ * the cycle of the first output and the folds seen.
+ */
+static unsigned pipe_run(const np_wave_unit *u, uint64_t g0, uint16_t v_lo, unsigned *first, unsigned *got,
+                         unsigned *folds)
 {
-    np_wave_unit u = unit_of(4, 4, 1, 1);
     np_pipe p;
-    NP_CHECK(np_wave_pipe_init(&p, &u) == 0, "init");
-    np_wave_sig in, want[64];
-    unsigned sent = 0, got = 0, bad = 0;
+    NP_CHECK(np_wave_pipe_init(&p, u) == 0, "init");
+    np_wave_sig in;
+    np_wave_out want[64];
+    np_wave_jac wj[64];
+    unsigned sent = 0, bad = 0;
+    *got = *folds = 0;
+    *first = ~0u;
     np_rng g;
-    np_rng_seed(&g, 5);
-    for (unsigned cyc = 0; got < 64 && cyc < 200; cyc++) {
+    np_rng_seed(&g, g0);
+    for (unsigned cyc = 0; *got < 64 && cyc < 200; cyc++) {
         np_pipe_port port;
         memset(&port, 0, sizeof port);
         memset(&in, 0, sizeof in);
         if (sent < 64) {
             uint64_t r = np_rng_next(&g);
             np_wave_in x = { (uint16_t)r, (uint16_t)(r >> 16), (uint32_t)(r >> 32), (uint32_t)r, (uint16_t)(r >> 8),
-                             (uint16_t)(r >> 40), (uint8_t)(r >> 3), (uint16_t)((r >> 20) & 0x7fff) };
+                             (uint16_t)(v_lo + (uint16_t)(r >> 40)), (uint8_t)(r >> 3), (uint16_t)((r >> 20) & 0x7fff) };
             in.in = x;
-            memset(&want[sent], 0, sizeof want[sent]);
-            np_wave_eval(&u, &x, &want[sent].out);
+            np_wave_eval_jac(u, &x, &want[sent], &wj[sent]);
             port.in_valid = 1;
             port.in_sig = &in;
         }
@@ -578,20 +591,31 @@ static int pipe(void)
         np_pipe_eval(&p, &port);
         if (port.out_valid) {
             const np_wave_sig *o = port.out_sig;
-            bad += o->out.y != want[got].out.y || o->out.dx != want[got].out.dx || o->out.dz != want[got].out.dz;
-            NP_CHECK(got != 0 || cyc == 6, "first output at cycle %u", cyc);
-            got++;
+            bad += o->out.y != want[*got].y || o->out.dx != want[*got].dx || o->out.dz != want[*got].dz ||
+                   (np_wave_has_jac(&u->c) && memcmp(&o->jac, &wj[*got], sizeof wj[*got]) != 0);
+            *folds += o->jac.fold;
+            if (*got == 0)
+                *first = cyc;
+            (*got)++;
         }
         if (port.in_valid && port.in_ready)
             sent++;
         np_pipe_clock(&p, &port);
     }
     np_pipe_free(&p);
+    return bad;
+}
+
+/* The pipe delivers eval's outputs, one a clock after a latency of 6. */
+static int pipe(void)
+{
+    np_wave_unit u = unit_of(4, 4, 1, 1);
+    unsigned first, got, folds, bad = pipe_run(&u, 5, 0, &first, &got, &folds);
+    NP_CHECK(first == 6, "first output at cycle %u", first);
     printf("pipe: 64 transactions, %u mismatches, latency %u\n", bad, np_wave_stage_count());
     NP_CHECK(bad == 0 && got == 64, "bad %u got %u", bad, got);
     return 0;
 }
-
 
 /* --- the host: boxes, rays, culling, the cycle model, the budget --- */
 
@@ -1072,6 +1096,187 @@ static int vector_regs(void)
     return 0;
 }
 
+/* --- normals and the fold flag (keys normals, fold) --- */
+
+/* A unit with the test register set of seed s for normals and fold (kmx, kmz drawn). */
+static np_wave_unit unit_jac(uint64_t s, unsigned n, unsigned irr, unsigned cap)
+{
+    np_wave_unit u = unit_of(s, n, irr, cap);
+    u.c.normals = u.c.fold = 1;
+    np_wave_regs_test_jac(s, n, &u.r);
+    return u;
+}
+
+/*
+ * The Jacobian terms, the normal and the fold flag against the double
+ * reference from the same registers (np_ref_wave_jac): 96^2 points at frames
+ * 0, 1 h, 1 year and 2^32 - 1 for 1 .. 4 trains with both effects: every term
+ * within its bound e[m] (internal signals: printed in LSB of s18 Q3.14), every
+ * normal component within nb (below 1 LSB of s20 Q9.10), and the fold flag equal to the
+ * reference's ny <= 0 wherever the reference's |ny| exceeds ny's bound (the
+ * points inside that band are counted, not excused silently).
+ */
+static int jac_vs_ref(void)
+{
+    static const uint32_t frames[] = { 0u, F_HOUR, F_YEAR, 0xffffffffu };
+    for (unsigned n = 1; n <= 4; n++) {
+        np_wave_unit u = unit_jac(10u + n, n, 1, 1);
+        NP_CHECK(np_wave_regs_check(&u.c, &u.r) == NULL, "test set %u refused: %s", n,
+                 np_wave_regs_check(&u.c, &u.r));
+        np_wave_jac_bound b = np_wave_jac_error_bound(&u);
+        double ej = 0.0, en = 0.0, bj = 0.0, bn = 0.0;
+        unsigned long folds = 0, band = 0, wrong = 0, pts = 0;
+        for (unsigned m = 0; m < NP_WAVE_NJ; m++)
+            bj = fmax(bj, b.e[m] * 16384.0);
+        for (unsigned m = 0; m < 3; m++)
+            bn = fmax(bn, b.nb[m] * 1024.0);
+        for (unsigned f = 0; f < 4; f++)
+            for (unsigned j = 0; j < 96; j++)
+                for (unsigned i = 0; i < 96; i++) {
+                    np_wave_in in = { (uint16_t)(i * 3u), (uint16_t)(j * 5u), frames[f], i * 7919u, (uint16_t)i,
+                                      (uint16_t)(8u + j), (uint8_t)(i + j), (uint16_t)(16384u + 64u * (i & 127u)) };
+                    np_wave_out o;
+                    np_wave_jac q;
+                    double rj[6], rn[3];
+                    np_wave_eval_jac(&u, &in, &o, &q);
+                    np_ref_wave_jac(&u, &in, rj, rn);
+                    for (unsigned m = 0; m < NP_WAVE_NJ; m++) {
+                        double d = fabs((double)q.j[m] / 16384.0 - rj[m]);
+                        ej = fmax(ej, d * 16384.0);
+                        NP_CHECK(d <= b.e[m], "n %u term %u: %.3g over its bound %.3g", n, m, d, b.e[m]);
+                    }
+                    const int32_t nv[3] = { q.nx, q.ny, q.nz };
+                    for (unsigned m = 0; m < 3; m++) {
+                        double d = fabs((double)nv[m] / 1024.0 - rn[m]);
+                        en = fmax(en, d * 1024.0);
+                        NP_CHECK(d <= b.nb[m], "n %u normal %u: %.3g over its bound %.3g", n, m, d, b.nb[m]);
+                    }
+                    int want = rn[1] <= 0.0;
+                    folds += q.fold;
+                    if (fabs(rn[1]) <= b.nb[1])
+                        band++;
+                    else
+                        wrong += (unsigned)want != q.fold;
+                    pts++;
+                }
+        printf("trains %u: terms max %.4f LSB (bound %.4f), normal max %.4f LSB (bound %.4f); fold on %lu of %lu "
+               "points, %lu disagree with the reference, %lu within ny's bound of 0\n",
+               n, ej, bj, en, bn, folds, pts, wrong, band);
+        NP_CHECK(bn < 1.0, "the normal's bound %.4f not below 1 LSB", bn);
+        NP_CHECK(wrong == 0, "%lu fold flags disagree", wrong);
+        NP_CHECK(folds > 0 && folds < pts, "the test set should fold at some points and not at others (%lu)", folds);
+    }
+    return 0;
+}
+
+/* The fold flag's fraction along x (16,384 steps sample the phase evenly; docs/wave.md). */
+static double fold_flag_fraction(const np_wave_unit *u, unsigned total)
+{
+    unsigned folded = 0;
+    for (unsigned i = 0; i < total; i++) {
+        np_wave_in in = { (uint16_t)i, 0, 0, 0, 0, 500, 0, 16384 };
+        np_wave_out o;
+        np_wave_jac q;
+        np_wave_eval_jac(u, &in, &o, &q);
+        folded += q.fold;
+    }
+    return (double)folded / total;
+}
+
+/*
+ * The fold flag on the named folding cases of wave.fold (the host's
+ * registers, kmx from k in rad/m): one train, kA = 0.5, 0.99: never; 1.0:
+ * within 1 % (theory 0); 1.01, 1.5: arccos(1/kA)/pi within +-1 %; three
+ * aligned trains with sum kA = 1.2 against 1 - sum kA cos < 0 in double.
+ */
+static int fold_flag(void)
+{
+    const double lambda = 26.9, spacing = lambda / 64.79;
+    static const double kas[] = { 0.5, 0.99, 1.0, 1.01, 1.5 };
+    for (unsigned q = 0; q < 5; q++) {
+        np_wave_unit u = fold_unit(&kas[q], 1, lambda, spacing);
+        u.c.fold = 1;
+        NP_CHECK(np_wave_regs_check(&u.c, &u.r) == NULL, "kA %.2f refused: %s", kas[q], np_wave_regs_check(&u.c, &u.r));
+        double got = fold_flag_fraction(&u, 16384), dx = folded_fraction(&u, spacing, 16384);
+        double want = kas[q] > 1.0 ? acos(1.0 / kas[q]) / (TWO_PI / 2.0) : 0.0;
+        printf("kA = %.2f (registers: A kmx = %.5f): fold flag on %.4f of the period, from dx %.4f, arccos(1/kA)/pi = "
+               "%.4f\n", kas[q], u.r.tr[0].amp / 1024.0 * u.r.tr[0].kmx / 4096.0, got, dx, want);
+        NP_CHECK(fabs(got - want) <= 0.01, "kA %.2f: %.4f against %.4f", kas[q], got, want);
+        if (kas[q] < 1.0)
+            NP_CHECK(got == 0.0, "kA %.2f folds at %.4f", kas[q], got);
+    }
+    const double three[3] = { 0.4, 0.4, 0.4 };
+    np_wave_unit u = fold_unit(three, 3, lambda, spacing);
+    u.c.fold = 1;
+    double got = fold_flag_fraction(&u, 16384), want = three_trains_theory();
+    printf("three aligned trains, sum kA = 1.2: fold flag on %.4f, 1 - sum kA cos < 0 over %.4f\n", got, want);
+    NP_CHECK(fabs(got - want) <= 0.01 && got > 0.0, "three trains: %.4f against %.4f", got, want);
+    return 0;
+}
+
+/* With normals and fold the pipe has a seventh stage: eval_jac's outputs, first at cycle 7, one a clock. */
+static int jac_pipe(void)
+{
+    np_wave_unit u = unit_jac(4, 4, 1, 1);
+    unsigned first, got, folds, bad = pipe_run(&u, 6, 64, &first, &got, &folds);
+    NP_CHECK(first == 7, "first output at cycle %u", first);
+    printf("pipe with normals and fold: 64 transactions, %u mismatches, latency %u (%u folded)\n", bad,
+           np_wave_stage_count_of(&u.c), folds);
+    NP_CHECK(bad == 0 && got == 64 && np_wave_stage_count_of(&u.c) == 7 && np_wave_stage_count() == 6, "bad %u got %u",
+             bad, got);
+    return 0;
+}
+
+/*
+ * The test register sets for normals and fold are accepted (seeds 0 .. 499,
+ * 1 .. 4 trains, every effect setting) and leave the other registers as the
+ * default set's; a set whose Jacobian reaches 8 or whose normal's bound
+ * reaches 1 LSB is refused by name.
+ */
+static int jac_regs(void)
+{
+    unsigned ok = 0, total = 0;
+    double worst = 0.0;
+    for (unsigned s = 0; s < 500; s++)
+        for (unsigned n = 1; n <= 4; n++)
+            for (unsigned fx = 0; fx < 4; fx++) {
+                np_wave_unit u = unit_jac(s, n, fx & 1u, fx >> 1);
+                np_wave_regs r0;
+                np_wave_regs_test(s, n, &r0);
+                for (unsigned k = 0; k < n; k++)
+                    r0.tr[k].kmx = u.r.tr[k].kmx, r0.tr[k].kmz = u.r.tr[k].kmz;
+                const char *why = np_wave_regs_check(&u.c, &u.r);
+                NP_CHECK(why == NULL, "seed %u trains %u fx %u: %s", s, n, fx, why);
+                NP_CHECK(memcmp(&r0, &u.r, sizeof r0) == 0, "seed %u: the other registers differ", s);
+                np_wave_jac_bound b = np_wave_jac_error_bound(&u);
+                for (unsigned m = 0; m < 3; m++)
+                    worst = fmax(worst, b.nb[m] * 1024.0);
+                ok += why == NULL;
+                total++;
+            }
+    printf("%u of %u test register sets for normals and fold accepted; largest normal bound %.4f LSB\n", ok, total,
+           worst);
+    np_wave_unit u = unit_jac(1, 1, 0, 0);
+    u.r.tr[0].kmx = INT16_MAX; /* A k far over 8 */
+    const char *why = np_wave_regs_check(&u.c, &u.r);
+    printf("kmx = 0x7fff: %s\n", why ? why : "(accepted)");
+    NP_CHECK(why && strstr(why, "Jacobian range"), "a Jacobian over 8 accepted");
+    u = unit_jac(1, 1, 0, 0);
+    /* One train along the diagonal, G A |k| = 4 at the cap: every term in range (2), the normal's bound over 1 LSB. */
+    u.r.tr[0].cx = u.r.tr[0].cz = 11585;
+    double km = 4.0 / (u.r.gcap / 16384.0 * u.r.tr[0].amp / 1024.0 * sqrt(2.0));
+    u.r.tr[0].kmx = u.r.tr[0].kmz = (int16_t)(km * 4096.0);
+    np_wave_jac_bound jb = np_wave_jac_error_bound(&u);
+    printf("one train along the diagonal, G A |k| = 4: jxx up to %.3f, ny's bound %.4f LSB\n", jb.m[0],
+           jb.nb[1] * 1024.0);
+    why = np_wave_regs_check(&u.c, &u.r);
+    printf("  %s\n", why ? why : "(accepted)");
+    NP_CHECK(why && strstr(why, "normal"), "a normal bound over 1 LSB accepted");
+    u.c.normals = u.c.fold = 0;
+    NP_CHECK(np_wave_regs_check(&u.c, &u.r) == NULL, "kmx is read only with normals or fold");
+    return 0;
+}
+
 static const np_test_case cases[] = {
     { "rom", rom },
     { "sincos_bound", sincos_bound },
@@ -1095,6 +1300,10 @@ static const np_test_case cases[] = {
     { "land", land },
     { "scene_refusals", scene_refusals },
     { "vector_regs", vector_regs },
+    { "jac_vs_ref", jac_vs_ref },
+    { "fold_flag", fold_flag },
+    { "jac_pipe", jac_pipe },
+    { "jac_regs", jac_regs },
     { NULL, NULL },
 };
 NP_TEST_MAIN(cases)
