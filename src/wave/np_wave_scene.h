@@ -74,6 +74,8 @@ typedef struct np_wave_scene {
     double dt;         /* s a frame */
     unsigned effects;  /* NP_WAVE_FX_* */
     int allow_fold;
+    int reads_normals; /* "normals": true: the scene reads the unit's nx, ny, nz (key normals=1) */
+    int reads_fold;    /* "fold": true: the scene reads the unit's fold flag (key fold=1) */
     unsigned lanes;    /* train lanes of the unit (1: one train a pass) */
     double noise_amp;  /* b, m */
     double noise_rate; /* rad/s at r = 1 (PIN 4) */
