@@ -131,7 +131,7 @@ double np_wave_sin_bound(unsigned rom_log2)
 
 np_wave_cfg np_wave_cfg_default(void)
 {
-    np_wave_cfg c = { 2u, 1u, 1u, NP_WAVE_ROM_DEF, 0u, 0u };
+    np_wave_cfg c = { 2u, 1u, 1u, NP_WAVE_ROM_DEF, 0u, 0u, NP_WAVE_SINCOS_ROM, NP_WAVE_RESET_DEF };
     return c;
 }
 
@@ -143,6 +143,14 @@ const char *np_wave_cfg_check(const np_wave_cfg *c)
         return "irr and cap are 0 or 1";
     if (c->normals > 1 || c->fold > 1)
         return "normals and fold are 0 or 1";
+    if (c->sincos > NP_WAVE_SINCOS_RECURRENCE)
+        return "sincos is rom or recurrence";
+    if (c->reset < 1 || c->reset > NP_WAVE_RESET_MAX)
+        return "reset out of range 1..65536";
+    if (c->sincos == NP_WAVE_SINCOS_ROM && c->reset != NP_WAVE_RESET_DEF)
+        return "reset is the recurrence's re-set-up interval: it needs sincos=recurrence";
+    if (c->sincos == NP_WAVE_SINCOS_RECURRENCE && c->reset < c->trains)
+        return "reset below trains: the lanes re-set up in turn, one a transaction (reset >= trains)";
     if (c->rom_log2 < NP_WAVE_ROM_MIN || c->rom_log2 > NP_WAVE_ROM_MAX)
         return "rom_log2 out of range 6..10";
     return NULL;
@@ -177,6 +185,12 @@ const char *np_wave_regs_check(const np_wave_cfg *c, const np_wave_regs *r)
         return "gcap or b over u15";
     if (np_wave_range_lsb(r, 1) > 0x7fff)
         return "output range: (gcap/2^14) sum (A + a) + b exceeds 32 m (s16 Q5.10)";
+    if (c->sincos == NP_WAVE_SINCOS_RECURRENCE) {
+        np_wave_unit u = { *c, *r };
+        if (np_wave_error_bound_lsb(&u) >= 1.0)
+            return "sincos=recurrence: the error bound against the reference reaches 1 LSB (a shorter reset, or "
+                   "smaller amplitudes)";
+    }
     if (np_wave_has_jac(c)) {
         int64_t jb[NP_WAVE_NJ];
         np_wave_jac_range_lsb(r, jb);
@@ -272,6 +286,70 @@ static inline np_wave_out out_of(const np_wave_regs *r, int64_t ys, int64_t xs, 
 }
 
 /*
+ * sincos=recurrence: lane k re-sets up from the ROM when (i + k) mod N = 0
+ * (N = reset; the lanes in turn, so one set-up a transaction) and otherwise
+ * rotates its (c, s), s32 Q1.30, by the step (dc, ds) once per step along i
+ * (np_wave_recur_step: c' = round((c dc - s ds) / 2^30), s' = round((s dc +
+ * c ds) / 2^30)). A transaction's value is that of a lane which walked the row
+ * from its last set-up, m = (i + k) mod N steps back, with this transaction's
+ * j, t and ph: the set-up phase is th - kx m (exact, mod 2^32), the set-up
+ * values the ROM's cos and sin times 2^13, and the outputs c, s = round(Q1.30
+ * / 2^13) clamped to [-2^17, 2^17] (s19 Q1.17). So every transaction is
+ * self-contained (vectors, verify), and a stream that walks rows along i with
+ * constant j, t and ph gets exactly what the stateful lane holds.
+ */
+static inline void lane_rec(const np_wave_unit *u, unsigned k, const np_wave_in *in, uint32_t th, int32_t *c,
+                            int32_t *s)
+{
+    const np_wave_train *t = &u->r.tr[k];
+    const unsigned L = u->c.rom_log2;
+    const uint32_t m = ((uint32_t)in->i + k) % u->c.reset;
+    const uint32_t th0 = th - (uint32_t)t->kx * m;
+    const int64_t up = INT64_C(1) << 13, one = INT64_C(1) << NP_WAVE_SIN_FRAC;
+    np_wave_recur q;
+    np_wave_recur_setup(&q, (int64_t)wave_sin(th0 + (UINT32_C(1) << 30), L) * up, (int64_t)wave_sin(th0, L) * up, t->dc,
+                        t->ds);
+    for (uint32_t n = 0; n < m; n++)
+        np_wave_recur_step(&q);
+    int64_t cv = np_shr_round_half_up(q.c, 13), sv = np_shr_round_half_up(q.s, 13);
+    *c = (int32_t)(cv > one ? one : cv < -one ? -one : cv);
+    *s = (int32_t)(sv > one ? one : sv < -one ? -one : sv);
+}
+
+/* A lane's cos and sin: the ROM's (np_wave_sin), or the recurrence's (lane_rec). */
+static inline void lane_cs(const np_wave_unit *u, unsigned k, const np_wave_in *in, uint32_t th, int32_t *c, int32_t *s)
+{
+    if (u->c.sincos == NP_WAVE_SINCOS_RECURRENCE) {
+        lane_rec(u, k, in, th, c, s);
+        return;
+    }
+    *c = wave_sin(th + (UINT32_C(1) << 30), u->c.rom_log2);
+    *s = wave_sin(th, u->c.rom_log2);
+}
+
+void np_wave_lane_sincos(const np_wave_unit *u, unsigned k, const np_wave_in *in, int32_t *c, int32_t *s)
+{
+    lane_cs(u, k, in, lane_phase(&u->r.tr[k], in), c, s);
+}
+
+double np_wave_recur_bound(unsigned rom_log2, uint64_t m)
+{
+    /*
+     * The set-up's error sqrt(2) e_s (a vector of two ROM values); each step
+     * adds at most 2^-30.5 (the two roundings) + 2^-30 |v| (the step's
+     * quantisation, |dc - cos|, |ds - sin| <= 2^-31) < 2^-29 while |v| < 1.29,
+     * and rotates the error without growing it; the output's rounding 2^-18.
+     */
+    return 1.4142135623730951 * np_wave_sin_bound(rom_log2) + (double)m * np_pow2i(-29) + np_pow2i(-18);
+}
+
+double np_wave_lane_bound(const np_wave_cfg *c)
+{
+    return c->sincos == NP_WAVE_SINCOS_RECURRENCE ? np_wave_recur_bound(c->rom_log2, c->reset - 1u)
+                                                  : np_wave_sin_bound(c->rom_log2);
+}
+
+/*
  * A lane's Jacobian products (normals or fold): yq = round(ap c / 2^17) s24
  * Q6.17 (the product ap c that yc rounds, rounded a second way), lj[0..3] =
  * round(yq e / 2^14) s40 Q10.29, lj[4], lj[5] = sa kmx, sa kmz s39 Q9.29 exact.
@@ -336,10 +414,8 @@ static void stage_s(const void *cfg, void *sv)
     const np_wave_unit *u = U(cfg);
     np_wave_sig *s = sv;
     unsigned L = u->c.rom_log2;
-    for (unsigned k = 0; k < u->c.trains; k++) {
-        s->c[k] = np_wave_cos(s->th[k], L);
-        s->s[k] = np_wave_sin(s->th[k], L);
-    }
+    for (unsigned k = 0; k < u->c.trains; k++)
+        lane_cs(u, k, &s->in, s->th[k], &s->c[k], &s->s[k]);
     s->s1 = u->c.irr ? np_wave_sin(s->p1, L) : 0;
     s->s2 = u->c.irr ? np_wave_sin(s->p2, L) : 0;
     s->sc = u->c.cap ? np_wave_sin(s->pc, L) : 0;
@@ -436,7 +512,7 @@ static inline int32_t irr_w(const np_wave_regs *r, const np_wave_in *in, unsigne
  * lanes beyond the register set's n contribute 0, as in the pipe.
  */
 static inline void eval_gen(const np_wave_unit *u, const np_wave_in *in, np_wave_out *out, unsigned irr, unsigned cap,
-                            unsigned n)
+                            unsigned n, unsigned rec)
 {
     const np_wave_regs *r = &u->r;
     const unsigned L = u->c.rom_log2;
@@ -446,8 +522,15 @@ static inline void eval_gen(const np_wave_unit *u, const np_wave_in *in, np_wave
         const np_wave_train *t = &r->tr[k];
         uint32_t th = lane_phase(t, in);
         int64_t ap = lane_amp(t, irr, w);
-        int64_t sa = np_shr_round_half_up(ap * wave_sin(th, L), NP_WAVE_SIN_FRAC);
-        ys += np_shr_round_half_up(ap * wave_sin(th + (UINT32_C(1) << 30), L), 7);
+        int32_t cv, sv;
+        if (rec) {
+            lane_rec(u, k, in, th, &cv, &sv);
+        } else {
+            sv = wave_sin(th, L);
+            cv = wave_sin(th + (UINT32_C(1) << 30), L);
+        }
+        int64_t sa = np_shr_round_half_up(ap * sv, NP_WAVE_SIN_FRAC);
+        ys += np_shr_round_half_up(ap * cv, 7);
         xs -= sa * t->cx;
         zs -= sa * t->cz;
     }
@@ -459,7 +542,7 @@ static inline unsigned lanes_of(const np_wave_unit *u) { return u->r.n < u->c.tr
 
 static inline void eval_one(const np_wave_unit *u, const np_wave_in *in, np_wave_out *out)
 {
-    eval_gen(u, in, out, u->c.irr, u->c.cap, lanes_of(u));
+    eval_gen(u, in, out, u->c.irr, u->c.cap, lanes_of(u), u->c.sincos == NP_WAVE_SINCOS_RECURRENCE);
 }
 
 void np_wave_eval(const np_wave_unit *u, const np_wave_in *in, np_wave_out *out) { eval_one(u, in, out); }
@@ -479,8 +562,10 @@ void np_wave_eval_jac(const np_wave_unit *u, const np_wave_in *in, np_wave_out *
         const np_wave_train *t = &r->tr[k];
         uint32_t th = lane_phase(t, in);
         int64_t ap = lane_amp(t, u->c.irr, w), lj[NP_WAVE_NJ], yq;
-        int64_t sa = np_shr_round_half_up(ap * wave_sin(th, L), NP_WAVE_SIN_FRAC);
-        lane_jac(t, ap, wave_sin(th + (UINT32_C(1) << 30), L), sa, lj, &yq);
+        int32_t cv, sv;
+        lane_cs(u, k, in, th, &cv, &sv);
+        int64_t sa = np_shr_round_half_up(ap * sv, NP_WAVE_SIN_FRAC);
+        lane_jac(t, ap, cv, sa, lj, &yq);
         for (unsigned m = 0; m < NP_WAVE_NJ; m++)
             js[m] -= lj[m];
     }
@@ -499,6 +584,7 @@ np_wave_jac_bound np_wave_jac_error_bound(const np_wave_unit *u)
      */
     const np_wave_regs *r = &u->r;
     const double es = np_wave_sin_bound(u->c.rom_log2), gm = (double)r->gcap * np_pow2i(-NP_WAVE_GAIN_FRAC);
+    const double el = np_wave_lane_bound(&u->c); /* the lanes' cos and sin: the ROM's, or the recurrence's */
     const double q = np_pow2i(-18);
     np_wave_jac_bound b;
     memset(&b, 0, sizeof b);
@@ -515,7 +601,7 @@ np_wave_jac_bound np_wave_jac_error_bound(const np_wave_unit *u)
         double a = (double)(t->amp + t->airr) * np_pow2i(-NP_WAVE_AMP_FRAC);
         double dap = u->c.irr ? (double)t->airr * np_pow2i(-NP_WAVE_AMP_FRAC) * (2.0 * es + q) + q : 0.0;
         for (unsigned m = 0; m < NP_WAVE_NJ; m++) {
-            b.e[m] += gm * (f[m] * (a * es + dap + q) + (m < 4 ? np_pow2i(-30) : 0.0));
+            b.e[m] += gm * (f[m] * (a * el + dap + q) + (m < 4 ? np_pow2i(-30) : 0.0));
             b.m[m] += gm * a * f[m];
         }
     }
@@ -537,14 +623,14 @@ np_wave_jac_bound np_wave_jac_error_bound(const np_wave_unit *u)
 #define RUN_OF(IRR, CAP, N)                                                                                        \
     do {                                                                                                           \
         for (size_t k = 0; k < n; k++)                                                                             \
-            eval_gen(u, &in[k], &out[k], IRR, CAP, N);                                                             \
+            eval_gen(u, &in[k], &out[k], IRR, CAP, N, 0);                                                             \
         return;                                                                                                    \
     } while (0)
 
 void np_wave_eval_n(const np_wave_unit *u, const np_wave_in *in, np_wave_out *out, size_t n)
 {
     const unsigned m = lanes_of(u);
-    if (!u->c.irr && !u->c.cap) {
+    if (!u->c.irr && !u->c.cap && u->c.sincos == NP_WAVE_SINCOS_ROM) {
         if (m == 1)
             RUN_OF(0, 0, 1);
         if (m == 2)
@@ -559,6 +645,7 @@ double np_wave_error_bound_lsb(const np_wave_unit *u)
 {
     const np_wave_regs *r = &u->r;
     double es = np_wave_sin_bound(u->c.rom_log2), gm = (double)r->gcap * np_pow2i(-NP_WAVE_GAIN_FRAC);
+    double el = np_wave_lane_bound(&u->c); /* the lanes' cos and sin: e_s from the ROM, or the recurrence's bound */
     double sa = 0.0, si = 0.0, q = np_pow2i(-18);
     for (unsigned k = 0; k < r->n; k++) {
         sa += (double)(r->tr[k].amp + r->tr[k].airr) * np_pow2i(-NP_WAVE_AMP_FRAC);
@@ -566,9 +653,9 @@ double np_wave_error_bound_lsb(const np_wave_unit *u)
             si += (double)r->tr[k].airr * np_pow2i(-NP_WAVE_AMP_FRAC);
     }
     double n = (double)r->n;
-    double ey = gm * (sa * es + si * (2.0 * es + q) + n * (q + np_pow2i(-28))) +
+    double ey = gm * (sa * el + si * (2.0 * es + q) + n * (q + np_pow2i(-28))) +
                 (u->c.cap ? (double)r->b * np_pow2i(-NP_WAVE_AMP_FRAC) * es : 0.0);
-    double ed = gm * (sa * es + si * (2.0 * es + q) + n * 2.0 * q);
+    double ed = gm * (sa * el + si * (2.0 * es + q) + n * 2.0 * q);
     double e = ey > ed ? ey : ed;
     return 0.5 + e * np_pow2i(NP_WAVE_AMP_FRAC);
 }
@@ -671,15 +758,26 @@ size_t np_wave_datapath(const np_wave_unit *u, np_op *ops, size_t max)
 {
     np_dp d = { ops, max, 0 };
     const unsigned n = u->c.trains, L = u->c.rom_log2, ml = u->r.mlog2;
-    const unsigned nsin = 2u * n + (u->c.irr ? 2u : 0u) + (u->c.cap ? 1u : 0u);
+    /*
+     * sincos=recurrence: one phase datapath and one ROM cos/sin pair serve the
+     * lane that re-sets up this transaction (the lanes in turn), instead of a
+     * phase and two interpolated sines a lane; each lane rotates its state.
+     */
+    const unsigned rec = u->c.sincos == NP_WAVE_SINCOS_RECURRENCE, nl = rec ? 1u : n;
+    const unsigned nfx = (u->c.irr ? 2u : 0u) + (u->c.cap ? 1u : 0u), nsin = 2u * nl + nfx;
     wave_bounds b = bounds_of(u);
     unsigned wap = ubits(b.ap), wyc = sbits(b.yc), wsa = sbits(b.sa), wxp = sbits(b.xp);
     unsigned wys = sbits(b.ys), wxs = sbits(b.xs), wgm = ubits(b.gm), wbc = u->c.cap ? sbits(b.bc) : 0u;
     /* P: per train a train lane's phase: kx i, kz j (32 x 16, low 32 bits), om t (32 x 32, low 32), three adds. */
-    OP("P", NULL, NP_OP_MUL, 2u * n, 32, 16, 0, 0, 0);
-    OP("P", NULL, NP_OP_MUL, n, 32, 32, 0, 0, 0);
-    OP("P", NULL, NP_OP_ADD, 2u * n, 32, 0, 0, 0, 1);
-    OP("P", "th", NP_OP_ADD, n, 32, 0, 32, 0, 2);
+    OP("P", NULL, NP_OP_MUL, 2u * nl, 32, 16, 0, 0, 0);
+    OP("P", NULL, NP_OP_MUL, nl, 32, 32, 0, 0, 0);
+    OP("P", NULL, NP_OP_ADD, 2u * nl, 32, 0, 0, 0, 1);
+    OP("P", "th", NP_OP_ADD, nl, 32, 0, 32, 0, 2);
+    if (rec) {
+        OP("P", NULL, NP_OP_MUX, 4, 32, n, 0, 0, 0); /* kx, kz, phi, om of the lane setting up */
+        OP("P", NULL, NP_OP_ADD, 1, 17, 0, 0, 0, 0); /* the set-up counter, i mod N */
+        OP("P", NULL, NP_OP_CMP, n, 17, 0, 0, 0, 1); /* which lane sets up: (i + k) mod N = 0 */
+    }
     if (u->c.irr) {
         OP("P", NULL, NP_OP_MUL, 2, 32, 16, 0, 0, 0); /* pu u, pv v */
         OP("P", NULL, NP_OP_MUL, 1, 32, 32, 0, 0, 0); /* pt t */
@@ -693,7 +791,7 @@ size_t np_wave_datapath(const np_wave_unit *u, np_op *ops, size_t max)
     OP("P", NULL, NP_OP_ADD, 1, 16, 0, 0, 0, 0);
     OP("P", NULL, NP_OP_CMP, 2, 16, 0, 0, 0, 1);
     OP("P", "sm", NP_OP_MUX, 1, ml + 1u, 2, ml + 1u, 0, 2);
-    OP("P", NULL, NP_OP_REG, 1, 32u * (n + 2u) + (ml + 1u) + 15u + 1u, 0, 0, 0, 0); /* phases, sm, g, valid */
+    OP("P", NULL, NP_OP_REG, 1, 32u * (nl + 2u) + (rec ? n : 0u) + (ml + 1u) + 15u + 1u, 0, 0, 0, 0); /* phases, sm, g, valid */
     /* S: per sine the mirror, the ROM pair, the chord's difference, product and sum, the sign. */
     OP("S", NULL, NP_OP_NEG, nsin, 30, 0, 0, 0, 0);
     OP("S", NULL, NP_OP_ROM, 2u * nsin, L, 18, 0, 0, 1);
@@ -701,7 +799,16 @@ size_t np_wave_datapath(const np_wave_unit *u, np_op *ops, size_t max)
     OP("S", NULL, NP_OP_MUL, nsin, 12, NP_WAVE_IFRAC, 0, 0, 3);
     OP("S", NULL, NP_OP_ADD, nsin, 18, 0, 0, 0, 4);
     OP("S", "cs", NP_OP_NEG, nsin, 19, 0, 19, 1, 5);
-    OP("S", NULL, NP_OP_REG, 1, 19u * nsin + (ml + 1u) + 15u + 1u, 0, 0, 0, 0);
+    if (rec) {
+        /* Per lane: (c dc - s ds, s dc + c ds) in one clock (the state's loop), rounded, the set-up mux, the state. */
+        OP("S", NULL, NP_OP_MUL, 4u * n, 31, 31, 0, 0, 0);
+        OP("S", NULL, NP_OP_ADD, 2u * n, 62, 0, 0, 0, 1);
+        OP("S", NULL, NP_OP_ADD, 2u * n, 31, 0, 0, 0, 2);
+        OP("S", NULL, NP_OP_MUX, 2u * n, 31, 2, 0, 0, 3);
+        OP("S", NULL, NP_OP_REG, 1, 2u * 31u * n, 0, 0, 0, 0);
+        OP("S", NULL, NP_OP_ADD, 2u * n, 19, 0, 0, 0, 4); /* round to Q1.17 and clamp */
+    }
+    OP("S", NULL, NP_OP_REG, 1, 19u * (2u * n + nfx) + (ml + 1u) + 15u + 1u, 0, 0, 0, 0);
     /* A: w = s1 s2, ap = amp 2^7 - airr w per train; G = sm min(g, gcap). */
     if (u->c.irr) {
         OP("A", "w", NP_OP_MUL, 1, 19, 19, 19, 1, 0);

@@ -160,7 +160,11 @@ typedef struct np_wave_cfg {
     unsigned rom_log2; /* L: 2^L ROM words a quarter wave */
     unsigned normals;  /* 1: the outputs nx, ny, nz (the displaced surface's normal, unnormalised) */
     unsigned fold;     /* 1: the output fold (det J <= 0) */
+    unsigned sincos;   /* NP_WAVE_SINCOS_ROM (0) or NP_WAVE_SINCOS_RECURRENCE (1): the trains' sin and cos */
+    unsigned reset;    /* recurrence: the re-set-up interval N along i, trains .. 65536 (default 64) */
 } np_wave_cfg;
+
+enum { NP_WAVE_SINCOS_ROM = 0, NP_WAVE_SINCOS_RECURRENCE = 1, NP_WAVE_RESET_DEF = 64, NP_WAVE_RESET_MAX = 65536 };
 
 typedef struct np_wave_train {
     int32_t kx, kz;
@@ -168,6 +172,7 @@ typedef struct np_wave_train {
     uint16_t amp, airr;
     int16_t cx, cz;
     int16_t kmx, kmz; /* s16 Q3.12 rad/m: read only with normals or fold */
+    int32_t dc, ds;   /* s32 Q1.30: cos, sin of the step 2 pi kx / 2^32 along i; read only with sincos=recurrence */
 } np_wave_train;
 
 typedef struct np_wave_regs {
@@ -246,6 +251,16 @@ static inline int32_t np_wave_cos(uint32_t th, unsigned rom_log2)
 }
 /* The bound e_s of |np_wave_sin - sin| (above), in units of 1. */
 double np_wave_sin_bound(unsigned rom_log2);
+/*
+ * sincos=recurrence: the trains' cos and sin (s19 Q1.17) as lane k holds
+ * them at this transaction (np_wave_lane_sincos; docs/wave.md), and the bound
+ * of their error after m rotations: sqrt(2) e_s + m 2^-29 + 2^-18
+ * (np_wave_recur_bound); np_wave_lane_bound(c) is its largest, m = N - 1,
+ * and e_s itself with the ROM.
+ */
+void np_wave_lane_sincos(const np_wave_unit *u, unsigned k, const np_wave_in *in, int32_t *c, int32_t *s);
+double np_wave_recur_bound(unsigned rom_log2, uint64_t m);
+double np_wave_lane_bound(const np_wave_cfg *c);
 
 /* Bit-exact model of one transaction. */
 void np_wave_eval(const np_wave_unit *u, const np_wave_in *in, np_wave_out *out);
@@ -299,10 +314,10 @@ void np_wave_regs_test(uint64_t seed, unsigned n, np_wave_regs *r);
 void np_wave_regs_test_jac(uint64_t seed, unsigned n, np_wave_regs *r);
 
 /*
- * sincos=recurrence (an alternative to the ROM per point, for a lane that
- * walks a ray): (c, s) rotated by a fixed step d each point, in s32 Q1.30,
- * re-set up exactly from the phase every `every` steps. The state drifts by
- * at most 2^-30 (2 + |step products|) a step (docs/wave.md).
+ * The rotation of sincos=recurrence (np_wave_lane_sincos above): (c, s) in
+ * s32 Q1.30 rotated by the step (dc, ds), c' = round((c dc - s ds) / 2^30),
+ * s' = round((s dc + c ds) / 2^30); set up from the ROM (times 2^13) when
+ * (i + k) mod reset = 0. docs/wave.md gives the drift bound.
  */
 typedef struct np_wave_recur {
     int64_t c, s;   /* s32 Q1.30 */

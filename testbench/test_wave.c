@@ -16,6 +16,7 @@
 #include "np_math.h"
 #include "np_rng.h"
 #include "np_test.h"
+#include "np_unit.h"
 #include "np_wave.h"
 #include "np_wave_host.h"
 #include "np_wave_ref.h"
@@ -1277,6 +1278,145 @@ static int jac_regs(void)
     return 0;
 }
 
+/* --- sincos=recurrence (keys sincos, reset) --- */
+
+/* The wave unit as the registry configures it from spec (its block starts with the np_wave_unit); NULL if refused. */
+static const np_wave_unit *registry_unit(const char *spec, np_unit_cfg *cfg, char *err, size_t len)
+{
+    const np_unit *w = np_unit_find("wave");
+    if (!w || np_unit_configure(w, cfg, spec, err, len) != 0)
+        return NULL;
+    return (const np_wave_unit *)(const void *)cfg;
+}
+
+/* The ROM's set-up and the stateful walk of lane k along i from i0 (what lane_rec's value must equal). */
+static void walk_setup(const np_wave_unit *u, unsigned k, const np_wave_in *in, np_wave_recur *q)
+{
+    const np_wave_train *t = &u->r.tr[k];
+    uint32_t th = (uint32_t)t->kx * in->i + (uint32_t)t->kz * in->j + t->phi + in->ph - t->om * in->t;
+    np_wave_recur_setup(q, (int64_t)np_wave_cos(th, u->c.rom_log2) * 8192, (int64_t)np_wave_sin(th, u->c.rom_log2) * 8192,
+                        t->dc, t->ds);
+}
+
+static int32_t q17(int64_t v)
+{
+    int64_t r = (v + 4096) >> 13; /* round half up, Q1.30 to Q1.17 */
+    return (int32_t)(r > 131072 ? 131072 : r < -131072 ? -131072 : r);
+}
+
+/*
+ * The recurrence as the unit computes it, per transaction, equals a lane
+ * that walks the row: at reset = 64 for every point of a 4,096-point row and
+ * both lanes (the lanes re-set up in turn, (i + k) mod N = 0). Its drift over
+ * 65,536 steps (reset = 65,536, one set-up a row) against the exact sin and
+ * cos of the exact phase stays within np_wave_recur_bound(m) = sqrt(2) e_s +
+ * m 2^-29 + 2^-18 at every step m (the per-transaction model checked at 40
+ * points of that walk). With the registry's test set the outputs stay within
+ * 1 LSB of the reference up to the largest reset the check accepts.
+ */
+static int recur_unit(void)
+{
+    np_unit_cfg cfg;
+    char err[256] = "";
+    const np_wave_unit *ru = registry_unit("sincos=recurrence", &cfg, err, sizeof err);
+    NP_CHECK(ru != NULL, "sincos=recurrence refused: %s", err);
+    if (!ru)
+        return 0;
+    np_wave_unit u = *ru;
+    unsigned bad = 0;
+    for (unsigned k = 0; k < 2; k++) {
+        np_wave_recur q;
+        for (unsigned i = 0; i < 4096; i++) {
+            np_wave_in in = { (uint16_t)i, 77, 4321, 0x9e3779b9u, 0, 100, 0, 16384 };
+            if ((i + k) % 64 == 0 || i == 0) {
+                if (i == 0) { /* the walk's first set-up is m = (0 + k) mod 64 steps before i = 0: start there */
+                    np_wave_in b = in;
+                    b.ph = in.ph - (uint32_t)u.r.tr[k].kx * (k % 64u);
+                    walk_setup(&u, k, &b, &q);
+                    for (unsigned m = 0; m < k % 64u; m++)
+                        np_wave_recur_step(&q);
+                } else {
+                    walk_setup(&u, k, &in, &q);
+                }
+            } else {
+                np_wave_recur_step(&q);
+            }
+            int32_t c, s;
+            np_wave_lane_sincos(&u, k, &in, &c, &s);
+            bad += c != q17(q.c) || s != q17(q.s);
+        }
+    }
+    printf("reset 64: %u of 8,192 lane values differ from a lane walking the row\n", bad);
+    NP_CHECK(bad == 0, "%u differ", bad);
+
+    /* 65,536 steps: one set-up at i = 0, lane 0. */
+    u.c.reset = NP_WAVE_RESET_MAX;
+    np_wave_recur q;
+    np_wave_in in = { 0, 5, 1234, 0, 0, 100, 0, 16384 };
+    walk_setup(&u, 0, &in, &q);
+    double worst = 0.0, at1k = 0.0, ratio = 0.0;
+    unsigned diff = 0;
+    for (unsigned i = 0; i < 65536; i++) {
+        if (i)
+            np_wave_recur_step(&q);
+        in.i = (uint16_t)i;
+        int32_t c = q17(q.c), s = q17(q.s);
+        if (i % 1681u == 0 || i == 65535) { /* the per-transaction model at 40 points of the walk */
+            int32_t c2, s2;
+            np_wave_lane_sincos(&u, 0, &in, &c2, &s2);
+            diff += c2 != c || s2 != s;
+        }
+        const np_wave_train *t = &u.r.tr[0];
+        uint32_t th = (uint32_t)t->kx * in.i + (uint32_t)t->kz * in.j + t->phi + in.ph - t->om * in.t;
+        double es, ec;
+        np_sincos_turns(ldexp((double)th, -32), &es, &ec);
+        double e = fmax(fabs(c / 131072.0 - ec), fabs(s / 131072.0 - es)), lim = np_wave_recur_bound(8, i);
+        worst = fmax(worst, e);
+        ratio = fmax(ratio, e / lim);
+        if (i == 1024)
+            at1k = worst;
+        NP_CHECK(e <= lim, "step %u: %.3g over its bound %.3g", i, e, lim);
+        if (e > lim)
+            break;
+    }
+    printf("reset 65,536: max |error| %.3g by step 1,024 (bound %.3g), %.3g by step 65,535 (bound %.3g); largest "
+           "error / bound %.3f; the unit's per-transaction values differ from the walk at %u of 40 points\n",
+           at1k, np_wave_recur_bound(8, 1024), worst, np_wave_recur_bound(8, 65535), ratio, diff);
+    NP_CHECK(diff == 0, "per transaction and walk differ at %u points", diff);
+
+    /* The largest reset the check accepts for the test set (regs=1, 2 trains), and the outputs there. */
+    unsigned lo = 64, hi = NP_WAVE_RESET_MAX + 1u;
+    while (hi - lo > 1) {
+        unsigned mid = (lo + hi) / 2;
+        char spec[64];
+        snprintf(spec, sizeof spec, "sincos=recurrence,reset=%u", mid);
+        if (registry_unit(spec, &cfg, err, sizeof err))
+            lo = mid;
+        else
+            hi = mid;
+    }
+    printf("the check accepts reset up to %u for the test set (%s for %u)\n", lo, err, hi);
+    NP_CHECK(hi <= NP_WAVE_RESET_MAX && strstr(err, "recurrence"), "reset 65536 accepted, or refused for another reason");
+    static const unsigned resets[] = { 64, 0 };
+    for (unsigned r = 0; r < 2; r++) {
+        char spec[64];
+        snprintf(spec, sizeof spec, "sincos=recurrence,reset=%u", resets[r] ? resets[r] : lo);
+        const np_wave_unit *vu = registry_unit(spec, &cfg, err, sizeof err);
+        NP_CHECK(vu != NULL, "%s: %s", spec, err);
+        if (!vu)
+            continue;
+        err_stats e;
+        memset(&e, 0, sizeof e);
+        grid_errors(vu, 128, 0, 0, &e);
+        grid_errors(vu, 128, F_YEAR, 0, &e);
+        double bound = np_wave_error_bound_lsb(vu);
+        printf("%s: max |model - reference| %.4f LSB over %llu outputs (bound %.6f)\n", spec, e.max,
+               (unsigned long long)e.n, bound);
+        NP_CHECK(e.max <= bound && bound < 1.0, "%s: %.4f against %.4f", spec, e.max, bound);
+    }
+    return 0;
+}
+
 static const np_test_case cases[] = {
     { "rom", rom },
     { "sincos_bound", sincos_bound },
@@ -1304,6 +1444,7 @@ static const np_test_case cases[] = {
     { "fold_flag", fold_flag },
     { "jac_pipe", jac_pipe },
     { "jac_regs", jac_regs },
+    { "recur_unit", recur_unit },
     { NULL, NULL },
 };
 NP_TEST_MAIN(cases)

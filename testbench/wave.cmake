@@ -9,7 +9,7 @@ target_compile_definitions(test_wave PRIVATE NP_WAVE_SCENES="${PROJECT_SOURCE_DI
   NP_WAVE_VECTORS="${PROJECT_SOURCE_DIR}/vectors/wave")
 np_add_cases(test_wave wave
   rom sincos_bound vs_ref hist_year freq_drift fold nyquist a_gt_A range shallow wind frame_wrap recurrence pipe
-  ray_partition culling scaling budget overlap land scene_refusals vector_regs jac_vs_ref fold_flag jac_pipe jac_regs)
+  ray_partition culling scaling budget overlap land scene_refusals vector_regs jac_vs_ref fold_flag jac_pipe jac_regs recur_unit)
 # The command: a folding scene is refused with exit 2 and a message naming allow_fold.
 add_test(NAME wave.cli_fold_refused COMMAND sh -c
   "\"$0\" wave \"$1\" 2>&1; test $? -eq 2" $<TARGET_FILE:noisepipe> ${PROJECT_SOURCE_DIR}/vectors/scenes/wave_fold.json)

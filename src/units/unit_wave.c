@@ -16,6 +16,7 @@
 
 #include "np_unit.h"
 #include "np_wave.h"
+#include "np_wave_host.h"
 #include "np_wave_ref.h"
 
 typedef struct wave_block {
@@ -35,12 +36,29 @@ static void complete(const void *cfg, unsigned seed)
         np_wave_regs_test_jac(seed, n, &b->u.r);
     else
         np_wave_regs_test(seed, n, &b->u.r);
+    if (b->u.c.sincos == NP_WAVE_SINCOS_RECURRENCE) {
+        /*
+         * The recurrence's bound is larger than the ROM's (sqrt(2) e_s + the
+         * drift): amp and airr halved (floor) keep the error under 1 LSB up to
+         * a reset of a few thousand; the step registers from kx (np_wave_steps).
+         */
+        for (unsigned k = 0; k < n; k++) {
+            b->u.r.tr[k].amp = (uint16_t)(b->u.r.tr[k].amp >> 1);
+            b->u.r.tr[k].airr = (uint16_t)(b->u.r.tr[k].airr >> 1);
+        }
+        np_wave_steps(&b->u.r);
+    }
 }
 
 static unsigned regs_default(const void *cfg)
 {
     complete(cfg, REGS_DEFAULT);
     return REGS_DEFAULT;
+}
+
+static const char *sincos_word(unsigned v)
+{
+    return v == NP_WAVE_SINCOS_ROM ? "rom" : v == NP_WAVE_SINCOS_RECURRENCE ? "recurrence" : NULL;
 }
 
 static const np_unit_key keys[] = {
@@ -52,6 +70,11 @@ static const np_unit_key keys[] = {
     NP_UNIT_KEY_ADDED_LATER("normals", wave_block, u.c.normals, 0, 1, 0,
                 "1: outputs nx, ny, nz, the displaced surface's normal (s20 Q9.10, not normalised)"),
     NP_UNIT_KEY_ADDED_LATER("fold", wave_block, u.c.fold, 0, 1, 0, "1: output fold, det J <= 0 exact on the Jacobian terms"),
+    NP_UNIT_KEY_WORDS("sincos", wave_block, u.c.sincos, NP_WAVE_SINCOS_ROM, NP_WAVE_SINCOS_RECURRENCE,
+                      NP_WAVE_SINCOS_ROM, "the trains' sin and cos: rom (interpolated) or recurrence (rotated along i)",
+                      sincos_word, NP_UNIT_KEY_ADDED),
+    NP_UNIT_KEY_ADDED_LATER("reset", wave_block, u.c.reset, 1, NP_WAVE_RESET_MAX, NP_WAVE_RESET_DEF,
+                            "N: with sincos=recurrence, a lane re-sets up from the ROM every N points along i"),
     NP_UNIT_KEY_DERIVED("regs", wave_block, regs, 0, 65535, regs_default,
                         "seed of the test register set the tools run (scenes load their own)"),
     NP_UNIT_KEY_END,
@@ -261,16 +284,21 @@ static size_t regs(const void *cfg, np_unit_reg *out, size_t max)
     np_unit_set_reg(&g[n++], "n", 3, r->n, "u3");
     for (unsigned k = 0; k < r->n && k < NP_WAVE_MAX_TRAINS; k++) {
         const np_wave_train *t = &r->tr[k];
-        static const char *const nm[] = { "kx", "kz", "phi", "om", "amp", "airr", "cx", "cz", "kmx", "kmz" };
-        const uint64_t v[] = { (uint64_t)(int64_t)t->kx, (uint64_t)(int64_t)t->kz, t->phi, t->om, t->amp,
+        static const char *const nm[] = { "kx", "kz", "phi", "om", "amp", "airr", "cx", "cz", "kmx", "kmz", "dc", "ds" };
+        const uint64_t v[] = { (uint64_t)(int64_t)t->kx,  (uint64_t)(int64_t)t->kz,  t->phi, t->om, t->amp,
                                t->airr, (uint64_t)(int64_t)t->cx, (uint64_t)(int64_t)t->cz,
-                               (uint64_t)(int64_t)t->kmx, (uint64_t)(int64_t)t->kmz };
-        static const unsigned bits[] = { 32, 32, 32, 32, 15, 15, 16, 16, 16, 16 };
-        static const char *const fmt[] = { "s32 Q0.32", "s32 Q0.32", "u32 Q0.32", "u32 Q0.32", "u15 Q5.10",
-                                           "u15 Q5.10", "s16 Q1.14", "s16 Q1.14", "s16 Q3.12", "s16 Q3.12" };
-        /* kmx, kmz only with normals or fold (the default configuration's lines are as they were). */
-        const unsigned nreg = np_wave_has_jac(&((const wave_block *)cfg)->u.c) ? 10u : 8u;
-        for (unsigned m = 0; m < nreg; m++) {
+                               (uint64_t)(int64_t)t->kmx, (uint64_t)(int64_t)t->kmz, (uint64_t)(int64_t)t->dc,
+                               (uint64_t)(int64_t)t->ds };
+        static const unsigned bits[] = { 32, 32, 32, 32, 15, 15, 16, 16, 16, 16, 32, 32 };
+        static const char *const fmt[] = { "s32 Q0.32", "s32 Q0.32", "u32 Q0.32", "u32 Q0.32", "u15 Q5.10", "u15 Q5.10",
+                                           "s16 Q1.14", "s16 Q1.14", "s16 Q3.12", "s16 Q3.12", "s32 Q1.30", "s32 Q1.30" };
+        /* kmx, kmz only with normals or fold, dc, ds only with recurrence (the default's lines are as they were). */
+        const np_wave_cfg *c = &((const wave_block *)cfg)->u.c;
+        for (unsigned m = 0; m < 12; m++) {
+            if ((m == 8 || m == 9) && !np_wave_has_jac(c))
+                continue;
+            if ((m == 10 || m == 11) && c->sincos != NP_WAVE_SINCOS_RECURRENCE)
+                continue;
             snprintf(name, sizeof name, "tr%u.%s", k, nm[m]);
             np_unit_set_reg(&g[n++], name, bits[m], v[m], fmt[m]);
         }
@@ -289,7 +317,8 @@ static size_t regs(const void *cfg, np_unit_reg *out, size_t max)
 
 static const char *const conformance_configs[] = { "trains=1,irr=0,cap=0", "trains=4,regs=7", "rom_log2=6",
                                                    "rom_log2=10,trains=3,regs=2", "normals=1,fold=1",
-                                                   "trains=3,irr=0,fold=1,regs=5", NULL };
+                                                   "trains=3,irr=0,fold=1,regs=5", "sincos=recurrence",
+                                                   "sincos=recurrence,reset=7,trains=3,regs=2,normals=1", NULL };
 
 const np_unit np_unit_wave = {
     .name = "wave",

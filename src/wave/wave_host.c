@@ -64,6 +64,16 @@ static int16_t q312(double k)
     return v < -32768.0 ? INT16_MIN : v > 32767.0 ? INT16_MAX : (int16_t)v;
 }
 
+void np_wave_steps(np_wave_regs *r)
+{
+    for (unsigned k = 0; k < r->n && k < NP_WAVE_MAX_TRAINS; k++) {
+        double s, c;
+        np_sincos_turns(ldexp((double)r->tr[k].kx, -32), &s, &c);
+        r->tr[k].dc = (int32_t)floor(c * 1073741824.0 + 0.5);
+        r->tr[k].ds = (int32_t)floor(s * 1073741824.0 + 0.5);
+    }
+}
+
 unsigned np_wave_quantise(const np_wave_phys *p, np_wave_regs *r, unsigned *dropped)
 {
     unsigned n = 0, drop = 0;
@@ -95,6 +105,7 @@ unsigned np_wave_quantise(const np_wave_phys *p, np_wave_regs *r, unsigned *drop
         }
     }
     r->n = n;
+    np_wave_steps(r); /* read by the unit only with sincos=recurrence */
     if (dropped)
         *dropped = drop;
     return n;
