@@ -59,6 +59,7 @@ typedef struct np_wave_box {
     double hmax;           /* the OBB's half height: own and overlapping boxes' 1.3 sum (A + a), plus noise */
     double grow;           /* the OBB's sideways growth, m */
     np_wave_pt *pts;       /* its grid points in ray order */
+    np_wave_pt *gpts;      /* the same points in grid order (j, then i): np_wave_frame's order, for locality */
     size_t npts;
 } np_wave_box;
 
