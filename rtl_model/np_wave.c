@@ -2,6 +2,7 @@
 /* The Gerstner wave unit: bit-exact model, pipe, datapath declaration (np_wave.h). */
 #include "np_wave.h"
 
+#include <math.h>
 #include <string.h>
 
 NP_STATIC_ASSERT((-1 >> 1) == -1, "arithmetic right shift");
@@ -130,7 +131,7 @@ double np_wave_sin_bound(unsigned rom_log2)
 
 np_wave_cfg np_wave_cfg_default(void)
 {
-    np_wave_cfg c = { 2u, 1u, 1u, NP_WAVE_ROM_DEF };
+    np_wave_cfg c = { 2u, 1u, 1u, NP_WAVE_ROM_DEF, 0u, 0u, NP_WAVE_SINCOS_ROM, NP_WAVE_RESET_DEF };
     return c;
 }
 
@@ -140,6 +141,16 @@ const char *np_wave_cfg_check(const np_wave_cfg *c)
         return "trains out of range 1..4";
     if (c->irr > 1 || c->cap > 1)
         return "irr and cap are 0 or 1";
+    if (c->normals > 1 || c->fold > 1)
+        return "normals and fold are 0 or 1";
+    if (c->sincos > NP_WAVE_SINCOS_RECURRENCE)
+        return "sincos is rom or recurrence";
+    if (c->reset < 1 || c->reset > NP_WAVE_RESET_MAX)
+        return "reset out of range 1..65536";
+    if (c->sincos == NP_WAVE_SINCOS_ROM && c->reset != NP_WAVE_RESET_DEF)
+        return "reset is the recurrence's re-set-up interval: it needs sincos=recurrence";
+    if (c->sincos == NP_WAVE_SINCOS_RECURRENCE && c->reset < c->trains)
+        return "reset below trains: the lanes re-set up in turn, one a transaction (reset >= trains)";
     if (c->rom_log2 < NP_WAVE_ROM_MIN || c->rom_log2 > NP_WAVE_ROM_MAX)
         return "rom_log2 out of range 6..10";
     return NULL;
@@ -174,7 +185,63 @@ const char *np_wave_regs_check(const np_wave_cfg *c, const np_wave_regs *r)
         return "gcap or b over u15";
     if (np_wave_range_lsb(r, 1) > 0x7fff)
         return "output range: (gcap/2^14) sum (A + a) + b exceeds 32 m (s16 Q5.10)";
+    if (c->sincos == NP_WAVE_SINCOS_RECURRENCE) {
+        np_wave_unit u = { *c, *r };
+        if (np_wave_error_bound_lsb(&u) >= 1.0)
+            return "sincos=recurrence: the error bound against the reference reaches 1 LSB (a shorter reset, or "
+                   "smaller amplitudes)";
+    }
+    if (np_wave_has_jac(c)) {
+        int64_t jb[NP_WAVE_NJ];
+        np_wave_jac_range_lsb(r, jb);
+        for (unsigned q = 0; q < NP_WAVE_NJ; q++)
+            if (jb[q] > (INT64_C(1) << (NP_WAVE_JAC_BITS - 1)) - 1)
+                return "Jacobian range: (gcap/2^14) sum (A + a) |c km| or |km| reaches 8 (s18 Q3.14)";
+        np_wave_unit u = { *c, *r };
+        np_wave_jac_bound b = np_wave_jac_error_bound(&u);
+        double w = 0.0; /* the outputs' bound (the terms are internal: their own bounds need not be under an LSB) */
+        for (unsigned q = 0; q < 3; q++)
+            w = fmax(w, b.nb[q] * np_pow2i(NP_WAVE_N_FRAC));
+        if (w >= 1.0)
+            return "normal: the error bound against the reference reaches 1 LSB of s20 Q9.10: "
+                   "the waves are too steep for the normal's formats";
+    }
     return NULL;
+}
+
+/* The register products e of train t: cx kmx, cx kmz, cz kmx, cz kmz (s31 Q4.26, exact). */
+static inline void lane_e(const np_wave_train *t, int64_t e[4])
+{
+    e[0] = (int64_t)t->cx * t->kmx;
+    e[1] = (int64_t)t->cx * t->kmz;
+    e[2] = (int64_t)t->cz * t->kmx;
+    e[3] = (int64_t)t->cz * t->kmz;
+}
+
+void np_wave_jac_range_lsb(const np_wave_regs *r, int64_t jb[NP_WAVE_NJ])
+{
+    /*
+     * In LSB of Q3.14: (gcap/2^14) sum (amp + airr)/2^10 |e|/2^26 2^14 =
+     * gcap sum (amp + airr) |e| / 2^36 (and gcap sum (amp + airr) |km| / 2^22
+     * for yx, yz), rounded up, plus 1 LSB for the roundings (the final 1/2 and
+     * the lanes' n Gm 2^-30, i.e. n Gm 2^-16 LSB): |ap| <= amp + airr, |yq| <=
+     * |ap| + 2^-18, |c|, |s| <= 1.
+     */
+    np_u128 acc[NP_WAVE_NJ] = { 0 };
+    for (unsigned k = 0; k < r->n && k < NP_WAVE_MAX_TRAINS; k++) {
+        const np_wave_train *t = &r->tr[k];
+        int64_t e[4], a = (int64_t)t->amp + t->airr;
+        lane_e(t, e);
+        for (unsigned q = 0; q < 4; q++)
+            acc[q] += (np_u128)(uint64_t)(a * (e[q] < 0 ? -e[q] : e[q]));
+        acc[4] += (np_u128)(uint64_t)(a * (t->kmx < 0 ? -t->kmx : t->kmx));
+        acc[5] += (np_u128)(uint64_t)(a * (t->kmz < 0 ? -t->kmz : t->kmz));
+    }
+    for (unsigned q = 0; q < NP_WAVE_NJ; q++) {
+        unsigned sh = q < 4 ? 36u : 22u;
+        np_u128 v = acc[q] * r->gcap;
+        jb[q] = (int64_t)((v + (((np_u128)1 << sh) - 1u)) >> sh) + 1;
+    }
 }
 
 /* --- the datapath's pieces, shared by the stages and np_wave_eval --- */
@@ -218,6 +285,113 @@ static inline np_wave_out out_of(const np_wave_regs *r, int64_t ys, int64_t xs, 
     return o;
 }
 
+/*
+ * sincos=recurrence: lane k re-sets up from the ROM when (i + k) mod N = 0
+ * (N = reset; the lanes in turn, so one set-up a transaction) and otherwise
+ * rotates its (c, s), s32 Q1.30, by the step (dc, ds) once per step along i
+ * (np_wave_recur_step: c' = round((c dc - s ds) / 2^30), s' = round((s dc +
+ * c ds) / 2^30)). A transaction's value is that of a lane which walked the row
+ * from its last set-up, m = (i + k) mod N steps back, with this transaction's
+ * j, t and ph: the set-up phase is th - kx m (exact, mod 2^32), the set-up
+ * values the ROM's cos and sin times 2^13, and the outputs c, s = round(Q1.30
+ * / 2^13) clamped to [-2^17, 2^17] (s19 Q1.17). So every transaction is
+ * self-contained (vectors, verify), and a stream that walks rows along i with
+ * constant j, t and ph gets exactly what the stateful lane holds.
+ */
+static inline void lane_rec(const np_wave_unit *u, unsigned k, const np_wave_in *in, uint32_t th, int32_t *c,
+                            int32_t *s)
+{
+    const np_wave_train *t = &u->r.tr[k];
+    const unsigned L = u->c.rom_log2;
+    const uint32_t m = ((uint32_t)in->i + k) % u->c.reset;
+    const uint32_t th0 = th - (uint32_t)t->kx * m;
+    const int64_t up = INT64_C(1) << 13, one = INT64_C(1) << NP_WAVE_SIN_FRAC;
+    np_wave_recur q;
+    np_wave_recur_setup(&q, (int64_t)wave_sin(th0 + (UINT32_C(1) << 30), L) * up, (int64_t)wave_sin(th0, L) * up, t->dc,
+                        t->ds);
+    for (uint32_t n = 0; n < m; n++)
+        np_wave_recur_step(&q);
+    int64_t cv = np_shr_round_half_up(q.c, 13), sv = np_shr_round_half_up(q.s, 13);
+    *c = (int32_t)(cv > one ? one : cv < -one ? -one : cv);
+    *s = (int32_t)(sv > one ? one : sv < -one ? -one : sv);
+}
+
+/* A lane's cos and sin: the ROM's (np_wave_sin), or the recurrence's (lane_rec). */
+static inline void lane_cs(const np_wave_unit *u, unsigned k, const np_wave_in *in, uint32_t th, int32_t *c, int32_t *s)
+{
+    if (u->c.sincos == NP_WAVE_SINCOS_RECURRENCE) {
+        lane_rec(u, k, in, th, c, s);
+        return;
+    }
+    *c = wave_sin(th + (UINT32_C(1) << 30), u->c.rom_log2);
+    *s = wave_sin(th, u->c.rom_log2);
+}
+
+void np_wave_lane_sincos(const np_wave_unit *u, unsigned k, const np_wave_in *in, int32_t *c, int32_t *s)
+{
+    lane_cs(u, k, in, lane_phase(&u->r.tr[k], in), c, s);
+}
+
+double np_wave_recur_bound(unsigned rom_log2, uint64_t m)
+{
+    /*
+     * The set-up's error sqrt(2) e_s (a vector of two ROM values); each step
+     * adds at most 2^-30.5 (the two roundings) + 2^-30 |v| (the step's
+     * quantisation, |dc - cos|, |ds - sin| <= 2^-31) < 2^-29 while |v| < 1.29,
+     * and rotates the error without growing it; the output's rounding 2^-18.
+     */
+    return 1.4142135623730951 * np_wave_sin_bound(rom_log2) + (double)m * np_pow2i(-29) + np_pow2i(-18);
+}
+
+double np_wave_lane_bound(const np_wave_cfg *c)
+{
+    return c->sincos == NP_WAVE_SINCOS_RECURRENCE ? np_wave_recur_bound(c->rom_log2, c->reset - 1u)
+                                                  : np_wave_sin_bound(c->rom_log2);
+}
+
+/*
+ * A lane's Jacobian products (normals or fold): yq = round(ap c / 2^17) s24
+ * Q6.17 (the product ap c that yc rounds, rounded a second way), lj[0..3] =
+ * round(yq e / 2^14) s40 Q10.29, lj[4], lj[5] = sa kmx, sa kmz s39 Q9.29 exact.
+ */
+static inline void lane_jac(const np_wave_train *t, int64_t ap, int64_t c, int64_t sa, int64_t lj[NP_WAVE_NJ],
+                            int64_t *yq)
+{
+    int64_t e[4];
+    lane_e(t, e);
+    int64_t q = np_shr_round_half_up(ap * c, NP_WAVE_SIN_FRAC);
+    for (unsigned m = 0; m < 4; m++)
+        lj[m] = np_shr_round_half_up(q * e[m], 14);
+    lj[4] = sa * t->kmx;
+    lj[5] = sa * t->kmz;
+    *yq = q;
+}
+
+/* The terms: j = round(js G / 2^(29 + mlog2)), s18 Q3.14 (a 128-bit product: no overflow if the check is bypassed). */
+static inline void jac_terms(const np_wave_regs *r, const int64_t js[NP_WAVE_NJ], uint32_t gm, np_wave_jac *j)
+{
+    const unsigned sh = 29u + r->mlog2;
+    const int64_t hi = (INT64_C(1) << (NP_WAVE_JAC_BITS - 1)) - 1;
+    for (unsigned m = 0; m < NP_WAVE_NJ; m++) {
+        np_s128 v = ((np_s128)js[m] * gm + ((np_s128)1 << (sh - 1u))) >> sh;
+        j->j[m] = (int32_t)(v > hi ? hi : v < -hi - 1 ? -hi - 1 : (int64_t)v);
+    }
+}
+
+/* Stage N: the normal dP/dz0 x dP/dx0 from the terms (exact in Q8.28, then s20 Q9.10) and the fold flag Ny <= 0. */
+static inline void jac_normal(np_wave_jac *j)
+{
+    const int64_t a = (INT64_C(1) << NP_WAVE_JAC_FRAC) + j->j[NP_WAVE_JXX];
+    const int64_t d = (INT64_C(1) << NP_WAVE_JAC_FRAC) + j->j[NP_WAVE_JZZ];
+    const int64_t xz = j->j[NP_WAVE_JXZ], zx = j->j[NP_WAVE_JZX], yx = j->j[NP_WAVE_YX], yz = j->j[NP_WAVE_YZ];
+    const unsigned sh = 2u * NP_WAVE_JAC_FRAC - NP_WAVE_N_FRAC;
+    j->ny28 = a * d - xz * zx;
+    j->nx = (int32_t)np_sat_s(np_shr_round_half_up(yz * zx - d * yx, sh), NP_WAVE_N_BITS);
+    j->ny = (int32_t)np_sat_s(np_shr_round_half_up(j->ny28, sh), NP_WAVE_N_BITS);
+    j->nz = (int32_t)np_sat_s(np_shr_round_half_up(xz * yx - yz * a, sh), NP_WAVE_N_BITS);
+    j->fold = j->ny28 <= 0;
+}
+
 /* --- stages --- */
 
 static const np_wave_unit *U(const void *cfg) { return cfg; }
@@ -240,10 +414,8 @@ static void stage_s(const void *cfg, void *sv)
     const np_wave_unit *u = U(cfg);
     np_wave_sig *s = sv;
     unsigned L = u->c.rom_log2;
-    for (unsigned k = 0; k < u->c.trains; k++) {
-        s->c[k] = np_wave_cos(s->th[k], L);
-        s->s[k] = np_wave_sin(s->th[k], L);
-    }
+    for (unsigned k = 0; k < u->c.trains; k++)
+        lane_cs(u, k, &s->in, s->th[k], &s->c[k], &s->s[k]);
     s->s1 = u->c.irr ? np_wave_sin(s->p1, L) : 0;
     s->s2 = u->c.irr ? np_wave_sin(s->p2, L) : 0;
     s->sc = u->c.cap ? np_wave_sin(s->pc, L) : 0;
@@ -268,6 +440,8 @@ static void stage_m(const void *cfg, void *sv)
         s->sa[k] = np_shr_round_half_up((int64_t)s->ap[k] * s->s[k], NP_WAVE_SIN_FRAC);
         s->xp[k] = s->sa[k] * u->r.tr[k].cx;
         s->zp[k] = s->sa[k] * u->r.tr[k].cz;
+        if (np_wave_has_jac(&u->c))
+            lane_jac(&u->r.tr[k], s->ap[k], s->c[k], s->sa[k], s->lj[k], &s->yq[k]);
     }
     s->bc = u->c.cap ? (int64_t)u->r.b * s->sc : 0;
 }
@@ -285,6 +459,13 @@ static void stage_t(const void *cfg, void *sv)
     s->ys = y;
     s->xs = x;
     s->zs = z;
+    if (np_wave_has_jac(&u->c))
+        for (unsigned m = 0; m < NP_WAVE_NJ; m++) {
+            int64_t v = 0;
+            for (unsigned k = 0; k < u->c.trains; k++)
+                v -= s->lj[k][m];
+            s->js[m] = v;
+        }
 }
 
 static void stage_g(const void *cfg, void *sv)
@@ -292,19 +473,37 @@ static void stage_g(const void *cfg, void *sv)
     const np_wave_unit *u = U(cfg);
     np_wave_sig *s = sv;
     s->out = out_of(&u->r, s->ys, s->xs, s->zs, s->bc, s->gm);
+    if (np_wave_has_jac(&u->c))
+        jac_terms(&u->r, s->js, s->gm, &s->jac);
+}
+
+static void stage_n(const void *cfg, void *sv)
+{
+    (void)cfg;
+    jac_normal(&((np_wave_sig *)sv)->jac);
 }
 
 static const np_stage_desc stages[] = {
-    { "P", stage_p }, { "S", stage_s }, { "A", stage_a }, { "M", stage_m }, { "T", stage_t }, { "G", stage_g },
+    { "P", stage_p }, { "S", stage_s }, { "A", stage_a }, { "M", stage_m },
+    { "T", stage_t }, { "G", stage_g }, { "N", stage_n },
 };
-enum { N_STAGES = sizeof stages / sizeof stages[0] };
+enum { N_STAGES = 6, N_STAGES_JAC = sizeof stages / sizeof stages[0] };
 
 const np_stage_desc *np_wave_stage_table(void) { return stages; }
 unsigned np_wave_stage_count(void) { return N_STAGES; }
+unsigned np_wave_stage_count_of(const np_wave_cfg *c) { return np_wave_has_jac(c) ? N_STAGES_JAC : N_STAGES; }
 
 int np_wave_pipe_init(np_pipe *p, const np_wave_unit *u)
 {
-    return np_pipe_init(p, stages, N_STAGES, sizeof(np_wave_sig), u);
+    return np_pipe_init(p, stages, np_wave_stage_count_of(&u->c), sizeof(np_wave_sig), u);
+}
+
+/* Eq. (8)'s w = round(sin(p1) sin(p2) / 2^17), s19 Q1.17. */
+static inline int32_t irr_w(const np_wave_regs *r, const np_wave_in *in, unsigned L)
+{
+    return (int32_t)np_shr_round_half_up((int64_t)wave_sin(r->pu * in->u + r->pt * in->t, L) *
+                                             wave_sin(r->pv * in->v, L),
+                                         NP_WAVE_SIN_FRAC);
 }
 
 /*
@@ -313,22 +512,25 @@ int np_wave_pipe_init(np_pipe *p, const np_wave_unit *u)
  * lanes beyond the register set's n contribute 0, as in the pipe.
  */
 static inline void eval_gen(const np_wave_unit *u, const np_wave_in *in, np_wave_out *out, unsigned irr, unsigned cap,
-                            unsigned n)
+                            unsigned n, unsigned rec)
 {
     const np_wave_regs *r = &u->r;
     const unsigned L = u->c.rom_log2;
-    int32_t w = 0;
-    if (irr)
-        w = (int32_t)np_shr_round_half_up((int64_t)wave_sin(r->pu * in->u + r->pt * in->t, L) *
-                                              wave_sin(r->pv * in->v, L),
-                                          NP_WAVE_SIN_FRAC);
+    const int32_t w = irr ? irr_w(r, in, L) : 0;
     int64_t ys = 0, xs = 0, zs = 0;
     for (unsigned k = 0; k < n; k++) {
         const np_wave_train *t = &r->tr[k];
         uint32_t th = lane_phase(t, in);
         int64_t ap = lane_amp(t, irr, w);
-        int64_t sa = np_shr_round_half_up(ap * wave_sin(th, L), NP_WAVE_SIN_FRAC);
-        ys += np_shr_round_half_up(ap * wave_sin(th + (UINT32_C(1) << 30), L), 7);
+        int32_t cv, sv;
+        if (rec) {
+            lane_rec(u, k, in, th, &cv, &sv);
+        } else {
+            sv = wave_sin(th, L);
+            cv = wave_sin(th + (UINT32_C(1) << 30), L);
+        }
+        int64_t sa = np_shr_round_half_up(ap * sv, NP_WAVE_SIN_FRAC);
+        ys += np_shr_round_half_up(ap * cv, 7);
         xs -= sa * t->cx;
         zs -= sa * t->cz;
     }
@@ -340,23 +542,95 @@ static inline unsigned lanes_of(const np_wave_unit *u) { return u->r.n < u->c.tr
 
 static inline void eval_one(const np_wave_unit *u, const np_wave_in *in, np_wave_out *out)
 {
-    eval_gen(u, in, out, u->c.irr, u->c.cap, lanes_of(u));
+    eval_gen(u, in, out, u->c.irr, u->c.cap, lanes_of(u), u->c.sincos == NP_WAVE_SINCOS_RECURRENCE);
 }
 
 void np_wave_eval(const np_wave_unit *u, const np_wave_in *in, np_wave_out *out) { eval_one(u, in, out); }
+
+void np_wave_eval_jac(const np_wave_unit *u, const np_wave_in *in, np_wave_out *out, np_wave_jac *jac)
+{
+    eval_one(u, in, out);
+    memset(jac, 0, sizeof *jac);
+    if (!np_wave_has_jac(&u->c))
+        return;
+    /* The lanes again, through the same pieces as the stages (so eval_jac and the pipe cannot differ). */
+    const np_wave_regs *r = &u->r;
+    const unsigned L = u->c.rom_log2, n = lanes_of(u);
+    const int32_t w = u->c.irr ? irr_w(r, in, L) : 0;
+    int64_t js[NP_WAVE_NJ] = { 0 };
+    for (unsigned k = 0; k < n; k++) {
+        const np_wave_train *t = &r->tr[k];
+        uint32_t th = lane_phase(t, in);
+        int64_t ap = lane_amp(t, u->c.irr, w), lj[NP_WAVE_NJ], yq;
+        int32_t cv, sv;
+        lane_cs(u, k, in, th, &cv, &sv);
+        int64_t sa = np_shr_round_half_up(ap * sv, NP_WAVE_SIN_FRAC);
+        lane_jac(t, ap, cv, sa, lj, &yq);
+        for (unsigned m = 0; m < NP_WAVE_NJ; m++)
+            js[m] -= lj[m];
+    }
+    jac_terms(r, js, gain_of(r, smoothing(r, in->v), in->g), jac);
+    jac_normal(jac);
+}
+
+np_wave_jac_bound np_wave_jac_error_bound(const np_wave_unit *u)
+{
+    /*
+     * docs/wave.md, "Normals and the fold flag". Term m's error: its final
+     * rounding 2^-15 plus G times, per lane, the lane's factor f (|e_m| for
+     * jxx .. jzz, |kmx| or |kmz| for yx, yz) times ap c's (or ap s's) error
+     * ((A + a) e_s + ap's error + yq's or sa's rounding 2^-18), plus the
+     * lane rounding 2^-30 for jxx .. jzz. Its magnitude: G sum (A + a) f.
+     */
+    const np_wave_regs *r = &u->r;
+    const double es = np_wave_sin_bound(u->c.rom_log2), gm = (double)r->gcap * np_pow2i(-NP_WAVE_GAIN_FRAC);
+    const double el = np_wave_lane_bound(&u->c); /* the lanes' cos and sin: the ROM's, or the recurrence's */
+    const double q = np_pow2i(-18);
+    np_wave_jac_bound b;
+    memset(&b, 0, sizeof b);
+    for (unsigned m = 0; m < NP_WAVE_NJ; m++)
+        b.e[m] = np_pow2i(-NP_WAVE_JAC_FRAC - 1);
+    for (unsigned k = 0; k < r->n; k++) {
+        const np_wave_train *t = &r->tr[k];
+        int64_t e[4];
+        lane_e(t, e);
+        const double f[NP_WAVE_NJ] = { fabs((double)e[0]) * np_pow2i(-26), fabs((double)e[1]) * np_pow2i(-26),
+                                       fabs((double)e[2]) * np_pow2i(-26), fabs((double)e[3]) * np_pow2i(-26),
+                                       fabs((double)t->kmx) * np_pow2i(-NP_WAVE_KM_FRAC),
+                                       fabs((double)t->kmz) * np_pow2i(-NP_WAVE_KM_FRAC) };
+        double a = (double)(t->amp + t->airr) * np_pow2i(-NP_WAVE_AMP_FRAC);
+        double dap = u->c.irr ? (double)t->airr * np_pow2i(-NP_WAVE_AMP_FRAC) * (2.0 * es + q) + q : 0.0;
+        for (unsigned m = 0; m < NP_WAVE_NJ; m++) {
+            b.e[m] += gm * (f[m] * (a * el + dap + q) + (m < 4 ? np_pow2i(-30) : 0.0));
+            b.m[m] += gm * a * f[m];
+        }
+    }
+    /* |xy - x'y'| <= |x| dy + |y| dx + dx dy over each product of the normal, |x| <= m + 1 for 1 + jxx, 1 + jzz. */
+    const double *E = b.e, *M = b.m;
+#define PB(x, y) (M[x] * E[y] + M[y] * E[x] + E[x] * E[y])
+#define PB1(x, y) ((1.0 + M[x]) * E[y] + M[y] * E[x] + E[x] * E[y])
+    b.nb[0] = PB(NP_WAVE_YZ, NP_WAVE_JZX) + PB1(NP_WAVE_JZZ, NP_WAVE_YX);
+    b.nb[1] = PB1(NP_WAVE_JXX, NP_WAVE_JZZ) + E[NP_WAVE_JXX] + PB(NP_WAVE_JXZ, NP_WAVE_JZX); /* (1 + M) both */
+    b.nb[2] = PB(NP_WAVE_JXZ, NP_WAVE_YX) + PB1(NP_WAVE_JXX, NP_WAVE_YZ);
+#undef PB
+#undef PB1
+    for (unsigned m = 0; m < 3; m++)
+        b.nb[m] += np_pow2i(-NP_WAVE_N_FRAC - 1); /* the normal's one rounding */
+    return b;
+}
 
 /* Runs of the commonest shapes with the lanes and effects as constants (the compiler specialises eval_gen). */
 #define RUN_OF(IRR, CAP, N)                                                                                        \
     do {                                                                                                           \
         for (size_t k = 0; k < n; k++)                                                                             \
-            eval_gen(u, &in[k], &out[k], IRR, CAP, N);                                                             \
+            eval_gen(u, &in[k], &out[k], IRR, CAP, N, 0);                                                             \
         return;                                                                                                    \
     } while (0)
 
 void np_wave_eval_n(const np_wave_unit *u, const np_wave_in *in, np_wave_out *out, size_t n)
 {
     const unsigned m = lanes_of(u);
-    if (!u->c.irr && !u->c.cap) {
+    if (!u->c.irr && !u->c.cap && u->c.sincos == NP_WAVE_SINCOS_ROM) {
         if (m == 1)
             RUN_OF(0, 0, 1);
         if (m == 2)
@@ -371,6 +645,7 @@ double np_wave_error_bound_lsb(const np_wave_unit *u)
 {
     const np_wave_regs *r = &u->r;
     double es = np_wave_sin_bound(u->c.rom_log2), gm = (double)r->gcap * np_pow2i(-NP_WAVE_GAIN_FRAC);
+    double el = np_wave_lane_bound(&u->c); /* the lanes' cos and sin: e_s from the ROM, or the recurrence's bound */
     double sa = 0.0, si = 0.0, q = np_pow2i(-18);
     for (unsigned k = 0; k < r->n; k++) {
         sa += (double)(r->tr[k].amp + r->tr[k].airr) * np_pow2i(-NP_WAVE_AMP_FRAC);
@@ -378,9 +653,9 @@ double np_wave_error_bound_lsb(const np_wave_unit *u)
             si += (double)r->tr[k].airr * np_pow2i(-NP_WAVE_AMP_FRAC);
     }
     double n = (double)r->n;
-    double ey = gm * (sa * es + si * (2.0 * es + q) + n * (q + np_pow2i(-28))) +
+    double ey = gm * (sa * el + si * (2.0 * es + q) + n * (q + np_pow2i(-28))) +
                 (u->c.cap ? (double)r->b * np_pow2i(-NP_WAVE_AMP_FRAC) * es : 0.0);
-    double ed = gm * (sa * es + si * (2.0 * es + q) + n * 2.0 * q);
+    double ed = gm * (sa * el + si * (2.0 * es + q) + n * 2.0 * q);
     double e = ey > ed ? ey : ed;
     return 0.5 + e * np_pow2i(NP_WAVE_AMP_FRAC);
 }
@@ -421,19 +696,88 @@ static unsigned ubits(int64_t m) { return np_bits_for_range(0, m, 0); }
 
 #define OP(st, sig, kind, cnt, a, b, out, sg, lv) np_dp_op(&d, st, sig, kind, cnt, a, b, out, sg, lv)
 
+/*
+ * Normals or fold: per lane the four register products e (a set-up could
+ * share them; priced per lane), yq (the second rounding of ap c), the four
+ * products yq e and, with normals, sa kmx and sa kmz; in T the terms' adder
+ * trees; in G their gain products and roundings; stage N: 1 + jxx, 1 + jzz,
+ * the normal's six products (ny's two with fold only) and the fold compare.
+ * The widths follow the register set's bounds (as the trains' do).
+ */
+static void jac_datapath(np_dp *dp, const np_wave_unit *u, unsigned n, unsigned wsa, unsigned wgm)
+{
+    np_dp d = *dp;
+    const unsigned nrm = u->c.normals, nt = nrm ? 6u : 4u;
+    int64_t mlj = 0, mly = 0, sum[NP_WAVE_NJ] = { 0 }, jb[NP_WAVE_NJ];
+    for (unsigned k = 0; k < u->r.n; k++) {
+        const np_wave_train *t = &u->r.tr[k];
+        int64_t e[4], ap = ((int64_t)t->amp + (u->c.irr ? t->airr : 0)) << (NP_WAVE_SIN_FRAC - NP_WAVE_AMP_FRAC);
+        lane_e(t, e);
+        for (unsigned m = 0; m < 4; m++) {
+            int64_t v = ((ap + 1) * iabs64(e[m])) >> 14;
+            mlj = v > mlj ? v : mlj;
+            sum[m] += v;
+        }
+        int64_t vx = ap * iabs64(t->kmx), vz = ap * iabs64(t->kmz);
+        mly = vx > mly ? vx : mly;
+        mly = vz > mly ? vz : mly;
+        sum[4] += vx;
+        sum[5] += vz;
+    }
+    np_wave_jac_range_lsb(&u->r, jb);
+    unsigned wlj = sbits(mlj), wly = sbits(mly), wjs = 0, wj = 0;
+    for (unsigned m = 0; m < nt; m++) {
+        wjs = sbits(sum[m]) > wjs ? sbits(sum[m]) : wjs;
+        wj = sbits(jb[m]) > wj ? sbits(jb[m]) : wj;
+    }
+    OP("M", NULL, NP_OP_MUL, 4u * n, 16, 16, 0, 0, 0); /* e: cx kmx, cx kmz, cz kmx, cz kmz */
+    OP("M", "yq", NP_OP_ADD, n, wsa, 0, wsa, 1, 1);    /* round(ap c / 2^17) from the product yc rounds */
+    OP("M", "lj", NP_OP_MUL, 4u * n, wsa, 31, wlj, 1, 2);
+    if (nrm)
+        OP("M", "ly", NP_OP_MUL, 2u * n, wsa, 16, wly, 1, 1);
+    OP("M", NULL, NP_OP_REG, 1, n * (4u * wlj + (nrm ? 2u * wly : 0u)), 0, 0, 0, 0);
+    for (unsigned m = 0; m < nt; m++)
+        np_dp_add_tree(&d, "T", "js", n, wjs, 1, 0);
+    OP("T", NULL, NP_OP_REG, 1, nt * wjs, 0, 0, 0, 0);
+    OP("G", NULL, NP_OP_MUL, nt, wjs, wgm, 0, 0, 0);
+    OP("G", "jac", NP_OP_ADD, nt, wj, 0, wj, 1, 2);
+    OP("G", NULL, NP_OP_REG, 1, 3u * 16u + nt * wj + 1u, 0, 0, 0, 0);
+    /* N: a, d; ny = a d - jxz jzx (fold); with normals nx, nz too. */
+    OP("N", NULL, NP_OP_ADD, 2, wj + 1u, 0, 0, 0, 0);
+    OP("N", NULL, NP_OP_MUL, nrm ? 6u : 2u, wj + 1u, wj + 1u, 0, 0, 1);
+    OP("N", NULL, NP_OP_ADD, nrm ? 3u : 1u, 2u * (wj + 1u), 0, 0, 0, 2); /* exact differences, Q8.28 */
+    if (nrm)
+        OP("N", NULL, NP_OP_ADD, 3, NP_WAVE_N_BITS, 0, 0, 0, 3); /* the roundings to s20 Q9.10 */
+    if (u->c.fold)
+        OP("N", NULL, NP_OP_CMP, 1, 2u * (wj + 1u), 0, 0, 0, 3); /* Ny <= 0 */
+    OP("N", NULL, NP_OP_REG, 1, 3u * 16u + (nrm ? 3u * NP_WAVE_N_BITS : 0u) + u->c.fold + 1u, 0, 0, 0, 0);
+    *dp = d;
+}
+
 size_t np_wave_datapath(const np_wave_unit *u, np_op *ops, size_t max)
 {
     np_dp d = { ops, max, 0 };
     const unsigned n = u->c.trains, L = u->c.rom_log2, ml = u->r.mlog2;
-    const unsigned nsin = 2u * n + (u->c.irr ? 2u : 0u) + (u->c.cap ? 1u : 0u);
+    /*
+     * sincos=recurrence: one phase datapath and one ROM cos/sin pair serve the
+     * lane that re-sets up this transaction (the lanes in turn), instead of a
+     * phase and two interpolated sines a lane; each lane rotates its state.
+     */
+    const unsigned rec = u->c.sincos == NP_WAVE_SINCOS_RECURRENCE, nl = rec ? 1u : n;
+    const unsigned nfx = (u->c.irr ? 2u : 0u) + (u->c.cap ? 1u : 0u), nsin = 2u * nl + nfx;
     wave_bounds b = bounds_of(u);
     unsigned wap = ubits(b.ap), wyc = sbits(b.yc), wsa = sbits(b.sa), wxp = sbits(b.xp);
     unsigned wys = sbits(b.ys), wxs = sbits(b.xs), wgm = ubits(b.gm), wbc = u->c.cap ? sbits(b.bc) : 0u;
     /* P: per train a train lane's phase: kx i, kz j (32 x 16, low 32 bits), om t (32 x 32, low 32), three adds. */
-    OP("P", NULL, NP_OP_MUL, 2u * n, 32, 16, 0, 0, 0);
-    OP("P", NULL, NP_OP_MUL, n, 32, 32, 0, 0, 0);
-    OP("P", NULL, NP_OP_ADD, 2u * n, 32, 0, 0, 0, 1);
-    OP("P", "th", NP_OP_ADD, n, 32, 0, 32, 0, 2);
+    OP("P", NULL, NP_OP_MUL, 2u * nl, 32, 16, 0, 0, 0);
+    OP("P", NULL, NP_OP_MUL, nl, 32, 32, 0, 0, 0);
+    OP("P", NULL, NP_OP_ADD, 2u * nl, 32, 0, 0, 0, 1);
+    OP("P", "th", NP_OP_ADD, nl, 32, 0, 32, 0, 2);
+    if (rec) {
+        OP("P", NULL, NP_OP_MUX, 4, 32, n, 0, 0, 0); /* kx, kz, phi, om of the lane setting up */
+        OP("P", NULL, NP_OP_ADD, 1, 17, 0, 0, 0, 0); /* the set-up counter, i mod N */
+        OP("P", NULL, NP_OP_CMP, n, 17, 0, 0, 0, 1); /* which lane sets up: (i + k) mod N = 0 */
+    }
     if (u->c.irr) {
         OP("P", NULL, NP_OP_MUL, 2, 32, 16, 0, 0, 0); /* pu u, pv v */
         OP("P", NULL, NP_OP_MUL, 1, 32, 32, 0, 0, 0); /* pt t */
@@ -447,7 +791,7 @@ size_t np_wave_datapath(const np_wave_unit *u, np_op *ops, size_t max)
     OP("P", NULL, NP_OP_ADD, 1, 16, 0, 0, 0, 0);
     OP("P", NULL, NP_OP_CMP, 2, 16, 0, 0, 0, 1);
     OP("P", "sm", NP_OP_MUX, 1, ml + 1u, 2, ml + 1u, 0, 2);
-    OP("P", NULL, NP_OP_REG, 1, 32u * (n + 2u) + (ml + 1u) + 15u + 1u, 0, 0, 0, 0); /* phases, sm, g, valid */
+    OP("P", NULL, NP_OP_REG, 1, 32u * (nl + 2u) + (rec ? n : 0u) + (ml + 1u) + 15u + 1u, 0, 0, 0, 0); /* phases, sm, g, valid */
     /* S: per sine the mirror, the ROM pair, the chord's difference, product and sum, the sign. */
     OP("S", NULL, NP_OP_NEG, nsin, 30, 0, 0, 0, 0);
     OP("S", NULL, NP_OP_ROM, 2u * nsin, L, 18, 0, 0, 1);
@@ -455,7 +799,16 @@ size_t np_wave_datapath(const np_wave_unit *u, np_op *ops, size_t max)
     OP("S", NULL, NP_OP_MUL, nsin, 12, NP_WAVE_IFRAC, 0, 0, 3);
     OP("S", NULL, NP_OP_ADD, nsin, 18, 0, 0, 0, 4);
     OP("S", "cs", NP_OP_NEG, nsin, 19, 0, 19, 1, 5);
-    OP("S", NULL, NP_OP_REG, 1, 19u * nsin + (ml + 1u) + 15u + 1u, 0, 0, 0, 0);
+    if (rec) {
+        /* Per lane: (c dc - s ds, s dc + c ds) in one clock (the state's loop), rounded, the set-up mux, the state. */
+        OP("S", NULL, NP_OP_MUL, 4u * n, 31, 31, 0, 0, 0);
+        OP("S", NULL, NP_OP_ADD, 2u * n, 62, 0, 0, 0, 1);
+        OP("S", NULL, NP_OP_ADD, 2u * n, 31, 0, 0, 0, 2);
+        OP("S", NULL, NP_OP_MUX, 2u * n, 31, 2, 0, 0, 3);
+        OP("S", NULL, NP_OP_REG, 1, 2u * 31u * n, 0, 0, 0, 0);
+        OP("S", NULL, NP_OP_ADD, 2u * n, 19, 0, 0, 0, 4); /* round to Q1.17 and clamp */
+    }
+    OP("S", NULL, NP_OP_REG, 1, 19u * (2u * n + nfx) + (ml + 1u) + 15u + 1u, 0, 0, 0, 0);
     /* A: w = s1 s2, ap = amp 2^7 - airr w per train; G = sm min(g, gcap). */
     if (u->c.irr) {
         OP("A", "w", NP_OP_MUL, 1, 19, 19, 19, 1, 0);
@@ -482,7 +835,10 @@ size_t np_wave_datapath(const np_wave_unit *u, np_op *ops, size_t max)
     if (u->c.cap)
         OP("G", NULL, NP_OP_ADD, 1, wys + wgm, 0, 0, 0, 1);
     OP("G", "out", NP_OP_ADD, 3, 16, 0, 16, 1, 2);
-    OP("G", NULL, NP_OP_REG, 1, 3u * 16u + 1u, 0, 0, 0, 0);
+    if (np_wave_has_jac(&u->c))
+        jac_datapath(&d, u, n, wsa, wgm);
+    else
+        OP("G", NULL, NP_OP_REG, 1, 3u * 16u + 1u, 0, 0, 0, 0);
     return d.n;
 }
 
@@ -530,16 +886,30 @@ void np_wave_trace(const np_wave_unit *u, unsigned k, const np_wave_sig *s, np_t
             tr(t, n, "xp", s->zp[q]);
         }
         tr(t, n, "bc", s->bc);
+        if (np_wave_has_jac(&u->c))
+            for (unsigned q = 0; q < m; q++) {
+                tr(t, n, "yq", s->yq[q]);
+                for (unsigned e = 0; e < 4; e++)
+                    tr(t, n, "lj", s->lj[q][e]);
+                tr(t, n, "ly", s->lj[q][4]);
+                tr(t, n, "ly", s->lj[q][5]);
+            }
         break;
     case 4:
         tr(t, n, "ys", s->ys);
         tr(t, n, "xs", s->xs);
         tr(t, n, "xs", s->zs);
+        if (np_wave_has_jac(&u->c))
+            for (unsigned q = 0; q < (u->c.normals ? 6u : 4u); q++)
+                tr(t, n, "js", s->js[q]);
         break;
     case 5:
         tr(t, n, "out", s->out.y);
         tr(t, n, "out", s->out.dx);
         tr(t, n, "out", s->out.dz);
+        if (np_wave_has_jac(&u->c))
+            for (unsigned q = 0; q < (u->c.normals ? 6u : 4u); q++)
+                tr(t, n, "jac", s->jac.j[q]);
         break;
     default:
         break;
@@ -571,7 +941,7 @@ static void direction(uint64_t *x, int16_t *cx, int16_t *cz)
     }
 }
 
-void np_wave_regs_test(uint64_t seed, unsigned n, np_wave_regs *r)
+static void regs_test(uint64_t seed, unsigned n, np_wave_regs *r, int jac)
 {
     uint64_t x = seed * UINT64_C(0x2545f4914f6cdd1d) + 17u;
     memset(r, 0, sizeof *r);
@@ -611,7 +981,31 @@ void np_wave_regs_test(uint64_t seed, unsigned n, np_wave_regs *r)
     /* Train 0 points along x, c = (1, 0), so that sa cx reaches its bound. */
     r->tr[0].cx = (int16_t)(1 << NP_WAVE_DIR_FRAC);
     r->tr[0].cz = 0;
+    if (!jac)
+        return;
+    /*
+     * normals or fold: kmx, kmz drawn after everything above (so the other
+     * registers are the same set's). Train 0 (c = (1, 0)) is steep along x:
+     * kmx = st 2^24 / (gcap (amp + airr)), st = 5734 + (D() >> 53) in Q.12
+     * (1.4 .. 1.9 at the gain cap, 1.08 .. 1.46 at gain 1), kmz = 0, so the
+     * surface folds where its cos is near 1 and not elsewhere; the other
+     * trains k >= 1 draw kmx, kmz uniform in [-K, K] (D() mod (2K + 1) - K each),
+     * K = 2^10 2^24 / (gcap sum_{k>=1} (amp + airr)) (0.25 at the cap).
+     */
+    int64_t st = 5734 + (int64_t)(splitmix(&x) >> 53), so = 0;
+    r->tr[0].kmx = (int16_t)((st << 24) / ((int64_t)r->gcap * ((int64_t)r->tr[0].amp + r->tr[0].airr)));
+    r->tr[0].kmz = 0;
+    for (unsigned k = 1; k < n; k++)
+        so += (int64_t)r->tr[k].amp + r->tr[k].airr;
+    int64_t K = so ? (INT64_C(1) << 34) / ((int64_t)r->gcap * so) : 0;
+    for (unsigned k = 1; k < n; k++) {
+        r->tr[k].kmx = (int16_t)((int64_t)(splitmix(&x) % (uint64_t)(2 * K + 1)) - K);
+        r->tr[k].kmz = (int16_t)((int64_t)(splitmix(&x) % (uint64_t)(2 * K + 1)) - K);
+    }
 }
+
+void np_wave_regs_test(uint64_t seed, unsigned n, np_wave_regs *r) { regs_test(seed, n, r, 0); }
+void np_wave_regs_test_jac(uint64_t seed, unsigned n, np_wave_regs *r) { regs_test(seed, n, r, 1); }
 
 /* --- sincos=recurrence --- */
 

@@ -56,6 +56,34 @@
  *      dx, dz  s16 Q5.10  round(X G / 2^(35+mlog2)), likewise Z
  * round() is np_shr_round_half_up (ties toward +infinity).
  *
+ * Normals and the fold flag (keys normals=1, fold=1; absent otherwise). Two
+ * more registers per train, read only then: kmx, kmz s16 Q3.12, the wave
+ * vector in radians per metre (a scene's host sets k = 2 pi K / spacing; the
+ * test sets draw them). The displaced surface P = p0 + G sum_k (-c_k ap_k sin,
+ * ap_k cos, ...) has, with G and ap held constant over the point (the gain,
+ * the smoothing and eq. (8)'s amplitude vary per ray and step: their slopes are
+ * not in the terms), the Jacobian terms
+ *   jxx = d(dx)/dx0 = -G sum ap c cx kmx,  jxz = d(dx)/dz0 = -G sum ap c cx kmz,
+ *   jzx = d(dz)/dx0 = -G sum ap c cz kmx,  jzz = d(dz)/dz0 = -G sum ap c cz kmz,
+ *   yx  = dy/dx0    = -G sum ap s kmx,     yz  = dy/dz0    = -G sum ap s kmz,
+ * from the lane's products ap c and ap s:
+ *   M: yq[k]     s24 Q6.17   round(ap c / 2^17)        (the same product ap c as yc, a second rounding)
+ *      e[k]      s31 Q4.26   cx kmx, cx kmz, cz kmx, cz kmz   exact (register products)
+ *      lj[k][0..3] s40 Q10.29  round(yq e / 2^14)
+ *      lj[k][4,5]  s39 Q9.29   sa kmx, sa kmz            exact
+ *   T: js[0..5]  s42 Q12.29  -sum over the lanes         exact
+ *   G: j[0..5]   s18 Q3.14   round(js G / 2^(29+mlog2))  one rounding each
+ *   N: (stage 7) a = 2^14 + jxx, d = 2^14 + jzz (s19 Q4.14); exact products and differences in Q8.28:
+ *      Nx = yz jzx - d yx,  Ny = a d - jxz jzx,  Nz = jxz yx - yz a     s38 Q9.28 (exact)
+ *      nx, ny, nz = round(N / 2^18)                                    s20 Q9.10, one rounding each
+ *      fold = (Ny <= 0), on the exact Ny                                u1
+ * (nx, ny, nz) = dP/dz0 x dP/dx0, the upward normal, not normalised (Ny is
+ * det J of the horizontal map); fold is exact on the terms' integers. The
+ * check refuses a register set whose terms could reach 8 (G sum (A + a) |e|,
+ * G sum (A + a) |km|: the s18 Q3.14 range) or whose normal's error bound
+ * against the double reference (np_wave_jac_error_bound) reaches 1 LSB of
+ * s20 Q9.10 (the terms are internal; their bounds are stated, not held to an LSB).
+ *
  * sin from the ROM (np_wave_sin). The ROM holds R[a] = round(2^17 sin(2 pi a / 2^(L+2))),
  * a = 0 .. 2^L - 1 (L = rom_log2, default 8: 2^8 x 18 bits), R[2^L] = 2^17 is a constant.
  * For a phase th: quadrant q = th[31:30], x = th[29:0]; quadrants 0 and 2
@@ -115,7 +143,13 @@ enum {
     NP_WAVE_OUT_BITS = 16,
     NP_WAVE_GCAP_DEF = 21299, /* round(1.3 * 2^14) */
     NP_WAVE_MLOG2_DEF = 3,    /* PIN: an 8-ray smoothing margin */
-    NP_WAVE_MLOG2_MAX = 6
+    NP_WAVE_MLOG2_MAX = 6,
+    NP_WAVE_KM_FRAC = 12,   /* kmx, kmz: s16 Q3.12 rad/m */
+    NP_WAVE_JAC_FRAC = 14,  /* the Jacobian terms jxx .. yz: s18 Q3.14 */
+    NP_WAVE_JAC_BITS = 18,
+    NP_WAVE_LJ_FRAC = 29,   /* a lane's Jacobian products and their sums: Q.29 */
+    NP_WAVE_N_FRAC = 10,    /* the normal nx, ny, nz: s20 Q9.10 */
+    NP_WAVE_N_BITS = 20
 };
 
 /* The datapath's configuration (the registry's keys). */
@@ -124,13 +158,21 @@ typedef struct np_wave_cfg {
     unsigned irr;      /* 1: eq. (8) irregular height present */
     unsigned cap;      /* 1: eq. (9) capillary noise present */
     unsigned rom_log2; /* L: 2^L ROM words a quarter wave */
+    unsigned normals;  /* 1: the outputs nx, ny, nz (the displaced surface's normal, unnormalised) */
+    unsigned fold;     /* 1: the output fold (det J <= 0) */
+    unsigned sincos;   /* NP_WAVE_SINCOS_ROM (0) or NP_WAVE_SINCOS_RECURRENCE (1): the trains' sin and cos */
+    unsigned reset;    /* recurrence: the re-set-up interval N along i, trains .. 65536 (default 64) */
 } np_wave_cfg;
+
+enum { NP_WAVE_SINCOS_ROM = 0, NP_WAVE_SINCOS_RECURRENCE = 1, NP_WAVE_RESET_DEF = 64, NP_WAVE_RESET_MAX = 65536 };
 
 typedef struct np_wave_train {
     int32_t kx, kz;
     uint32_t phi, om;
     uint16_t amp, airr;
     int16_t cx, cz;
+    int16_t kmx, kmz; /* s16 Q3.12 rad/m: read only with normals or fold */
+    int32_t dc, ds;   /* s32 Q1.30: cos, sin of the step 2 pi kx / 2^32 along i; read only with sincos=recurrence */
 } np_wave_train;
 
 typedef struct np_wave_regs {
@@ -160,6 +202,15 @@ typedef struct np_wave_out {
     int16_t y, dx, dz; /* s16 Q5.10 */
 } np_wave_out;
 
+/* The Jacobian's outputs, with normals or fold (np_wave_eval_jac). */
+enum { NP_WAVE_JXX, NP_WAVE_JXZ, NP_WAVE_JZX, NP_WAVE_JZZ, NP_WAVE_YX, NP_WAVE_YZ, NP_WAVE_NJ };
+typedef struct np_wave_jac {
+    int32_t j[NP_WAVE_NJ]; /* s18 Q3.14: jxx, jxz, jzx, jzz, yx, yz (internal signals; traced) */
+    int64_t ny28;          /* s38 Q8.28: det J exact from the terms (internal) */
+    int32_t nx, ny, nz;    /* s20 Q9.10: outputs with normals */
+    unsigned fold;         /* u1: ny28 <= 0: output with fold */
+} np_wave_jac;
+
 /* The pipe's signal bundle. */
 typedef struct np_wave_sig {
     np_wave_in in;
@@ -170,7 +221,10 @@ typedef struct np_wave_sig {
     uint32_t gm;
     int64_t yc[NP_WAVE_MAX_TRAINS], sa[NP_WAVE_MAX_TRAINS], xp[NP_WAVE_MAX_TRAINS], zp[NP_WAVE_MAX_TRAINS], bc;
     int64_t ys, xs, zs;
+    int64_t yq[NP_WAVE_MAX_TRAINS], lj[NP_WAVE_MAX_TRAINS][6]; /* normals or fold: stage M */
+    int64_t js[6];                                               /* stage T */
     np_wave_out out;
+    np_wave_jac jac; /* stages G (the terms) and N */
 } np_wave_sig;
 
 np_wave_cfg np_wave_cfg_default(void);
@@ -184,6 +238,8 @@ const char *np_wave_cfg_check(const np_wave_cfg *c);
 const char *np_wave_regs_check(const np_wave_cfg *c, const np_wave_regs *r);
 /* The proven output bound (LSB of Q5.10) of y (with_b) or dx, dz. */
 int64_t np_wave_range_lsb(const np_wave_regs *r, int with_b);
+/* The proven bounds (LSB of Q3.12) of the Jacobian terms jxx, jxz, jzx, jzz, yx, yz; <= 0x7fff when accepted. */
+void np_wave_jac_range_lsb(const np_wave_regs *r, int64_t jb[NP_WAVE_NJ]);
 
 /* The ROM word a (0 .. 2^10), u18 Q1.17, at the finest resolution; R_L[a] = np_wave_rom(a << (10 - L)). */
 uint32_t np_wave_rom(unsigned a);
@@ -195,17 +251,46 @@ static inline int32_t np_wave_cos(uint32_t th, unsigned rom_log2)
 }
 /* The bound e_s of |np_wave_sin - sin| (above), in units of 1. */
 double np_wave_sin_bound(unsigned rom_log2);
+/*
+ * sincos=recurrence: the trains' cos and sin (s19 Q1.17) as lane k holds
+ * them at this transaction (np_wave_lane_sincos; docs/wave.md), and the bound
+ * of their error after m rotations: sqrt(2) e_s + m 2^-29 + 2^-18
+ * (np_wave_recur_bound); np_wave_lane_bound(c) is its largest, m = N - 1,
+ * and e_s itself with the ROM.
+ */
+void np_wave_lane_sincos(const np_wave_unit *u, unsigned k, const np_wave_in *in, int32_t *c, int32_t *s);
+double np_wave_recur_bound(unsigned rom_log2, uint64_t m);
+double np_wave_lane_bound(const np_wave_cfg *c);
 
 /* Bit-exact model of one transaction. */
 void np_wave_eval(const np_wave_unit *u, const np_wave_in *in, np_wave_out *out);
 /* The same for n transactions (the host's frames: one call a run of points). */
 void np_wave_eval_n(const np_wave_unit *u, const np_wave_in *in, np_wave_out *out, size_t n);
+/* The same with the Jacobian's outputs (jac: zeros when the configuration has neither normals nor fold). */
+void np_wave_eval_jac(const np_wave_unit *u, const np_wave_in *in, np_wave_out *out, np_wave_jac *jac);
 /* The error bound against the double reference from the same registers, LSB (max over y, dx, dz). */
 double np_wave_error_bound_lsb(const np_wave_unit *u);
 
-/* Cycle-accurate model: stages P S A M T G over np_wave_sig; cfg = the np_wave_unit. */
+/*
+ * Cycle-accurate model: stages P S A M T G over np_wave_sig; cfg = the
+ * np_wave_unit. With normals or fold a seventh stage N follows G (the
+ * normal's products and the fold compare), so the latency is 7 there;
+ * np_wave_stage_count() is the default configuration's 6.
+ */
 const np_stage_desc *np_wave_stage_table(void);
 unsigned np_wave_stage_count(void);
+unsigned np_wave_stage_count_of(const np_wave_cfg *c);
+/* 1 when the configuration has the Jacobian (normals or fold). */
+static inline unsigned np_wave_has_jac(const np_wave_cfg *c) { return c->normals || c->fold; }
+/*
+ * The bounds against the double reference from the same registers, in units
+ * of 1 (not LSB): e[m] of the Jacobian term m (jxx, jxz, jzx, jzz, yx, yz),
+ * m[m] its largest magnitude, nb[0..2] of nx, ny, nz (each with its rounding).
+ */
+typedef struct np_wave_jac_bound {
+    double e[NP_WAVE_NJ], m[NP_WAVE_NJ], nb[3];
+} np_wave_jac_bound;
+np_wave_jac_bound np_wave_jac_error_bound(const np_wave_unit *u);
 int np_wave_pipe_init(np_pipe *p, const np_wave_unit *u);
 
 /* Datapath declaration (np_datapath.h) for the unit's lanes and registers. */
@@ -225,12 +310,14 @@ void np_wave_trace(const np_wave_unit *u, unsigned k, const np_wave_sig *s, np_t
  * as '# reg' header lines (np_unit.regs), which are its specification.
  */
 void np_wave_regs_test(uint64_t seed, unsigned n, np_wave_regs *r);
+/* The same set with kmx, kmz drawn after it (for normals or fold; docs/wave.md gives the draws). */
+void np_wave_regs_test_jac(uint64_t seed, unsigned n, np_wave_regs *r);
 
 /*
- * sincos=recurrence (an alternative to the ROM per point, for a lane that
- * walks a ray): (c, s) rotated by a fixed step d each point, in s32 Q1.30,
- * re-set up exactly from the phase every `every` steps. The state drifts by
- * at most 2^-30 (2 + |step products|) a step (docs/wave.md).
+ * The rotation of sincos=recurrence (np_wave_lane_sincos above): (c, s) in
+ * s32 Q1.30 rotated by the step (dc, ds), c' = round((c dc - s ds) / 2^30),
+ * s' = round((s dc + c ds) / 2^30); set up from the ROM (times 2^13) when
+ * (i + k) mod reset = 0. docs/wave.md gives the drift bound.
  */
 typedef struct np_wave_recur {
     int64_t c, s;   /* s32 Q1.30 */

@@ -16,6 +16,7 @@
 #include "np_math.h"
 #include "np_rng.h"
 #include "np_test.h"
+#include "np_unit.h"
 #include "np_wave.h"
 #include "np_wave_host.h"
 #include "np_wave_ref.h"
@@ -313,6 +314,19 @@ static double folded_fraction(const np_wave_unit *u, double spacing, unsigned to
     return (double)folded / total;
 }
 
+/* Three aligned trains (lambda, lambda/2, lambda/3, kA 0.4 each): where 1 - sum kA cos th < 0 in double. */
+static double three_trains_theory(void)
+{
+    unsigned neg = 0, tot = 4096 * 8;
+    for (unsigned i = 0; i < tot; i++) {
+        double x = (double)i / 4096.0, j = 1.0; /* one period of the longest train */
+        for (unsigned q = 0; q < 3; q++)
+            j -= 0.4 * np_cos_turns((q + 1.0) * x + 1.234 * q / TWO_PI);
+        neg += j < 0.0;
+    }
+    return (double)neg / tot;
+}
+
 static np_wave_unit fold_unit(const double *kA, unsigned n, double lambda, double spacing)
 {
     np_wave_phys p;
@@ -361,15 +375,7 @@ static int fold(void)
     }
     const double three[3] = { 0.4, 0.4, 0.4 };
     np_wave_unit u = fold_unit(three, 3, lambda, spacing);
-    double got = folded_fraction(&u, spacing, 16384);
-    unsigned neg = 0, tot = 4096 * 8;
-    for (unsigned i = 0; i < tot; i++) {
-        double x = (double)i / 4096.0, j = 1.0; /* one period of the longest train */
-        for (unsigned q = 0; q < 3; q++)
-            j -= 0.4 * np_cos_turns((q + 1.0) * x + 1.234 * q / TWO_PI);
-        neg += j < 0.0;
-    }
-    double want = (double)neg / tot;
+    double got = folded_fraction(&u, spacing, 16384), want = three_trains_theory();
     printf("three aligned trains, sum kA = 1.2: folded %.4f, 1 - sum kA cos < 0 over %.4f\n", got, want);
     NP_CHECK(fabs(got - want) <= 0.01 && want > 0.0, "three trains: %.4f against %.4f", got, want);
     return 0;
@@ -550,27 +556,35 @@ static int recurrence(void)
     return 0;
 }
 
-/* The pipe delivers eval's outputs, one a clock after a latency of 6. */
-static int pipe(void)
+/*
+ * 64 random transactions through u's pipe (seed g0; v_lo: the smallest ray,
+ * so that the gain is not 0): the count of outputs that differ from
+ * np_wave_eval_jac's (y, dx, dz and, with normals or fold, the Jacobian's),
+ * the cycle of the first output and the folds seen.
+ */
+static unsigned pipe_run(const np_wave_unit *u, uint64_t g0, uint16_t v_lo, unsigned *first, unsigned *got,
+                         unsigned *folds)
 {
-    np_wave_unit u = unit_of(4, 4, 1, 1);
     np_pipe p;
-    NP_CHECK(np_wave_pipe_init(&p, &u) == 0, "init");
-    np_wave_sig in, want[64];
-    unsigned sent = 0, got = 0, bad = 0;
+    NP_CHECK(np_wave_pipe_init(&p, u) == 0, "init");
+    np_wave_sig in;
+    np_wave_out want[64];
+    np_wave_jac wj[64];
+    unsigned sent = 0, bad = 0;
+    *got = *folds = 0;
+    *first = ~0u;
     np_rng g;
-    np_rng_seed(&g, 5);
-    for (unsigned cyc = 0; got < 64 && cyc < 200; cyc++) {
+    np_rng_seed(&g, g0);
+    for (unsigned cyc = 0; *got < 64 && cyc < 200; cyc++) {
         np_pipe_port port;
         memset(&port, 0, sizeof port);
         memset(&in, 0, sizeof in);
         if (sent < 64) {
             uint64_t r = np_rng_next(&g);
             np_wave_in x = { (uint16_t)r, (uint16_t)(r >> 16), (uint32_t)(r >> 32), (uint32_t)r, (uint16_t)(r >> 8),
-                             (uint16_t)(r >> 40), (uint8_t)(r >> 3), (uint16_t)((r >> 20) & 0x7fff) };
+                             (uint16_t)(v_lo + (uint16_t)(r >> 40)), (uint8_t)(r >> 3), (uint16_t)((r >> 20) & 0x7fff) };
             in.in = x;
-            memset(&want[sent], 0, sizeof want[sent]);
-            np_wave_eval(&u, &x, &want[sent].out);
+            np_wave_eval_jac(u, &x, &want[sent], &wj[sent]);
             port.in_valid = 1;
             port.in_sig = &in;
         }
@@ -578,20 +592,31 @@ static int pipe(void)
         np_pipe_eval(&p, &port);
         if (port.out_valid) {
             const np_wave_sig *o = port.out_sig;
-            bad += o->out.y != want[got].out.y || o->out.dx != want[got].out.dx || o->out.dz != want[got].out.dz;
-            NP_CHECK(got != 0 || cyc == 6, "first output at cycle %u", cyc);
-            got++;
+            bad += o->out.y != want[*got].y || o->out.dx != want[*got].dx || o->out.dz != want[*got].dz ||
+                   (np_wave_has_jac(&u->c) && memcmp(&o->jac, &wj[*got], sizeof wj[*got]) != 0);
+            *folds += o->jac.fold;
+            if (*got == 0)
+                *first = cyc;
+            (*got)++;
         }
         if (port.in_valid && port.in_ready)
             sent++;
         np_pipe_clock(&p, &port);
     }
     np_pipe_free(&p);
+    return bad;
+}
+
+/* The pipe delivers eval's outputs, one a clock after a latency of 6. */
+static int pipe(void)
+{
+    np_wave_unit u = unit_of(4, 4, 1, 1);
+    unsigned first, got, folds, bad = pipe_run(&u, 5, 0, &first, &got, &folds);
+    NP_CHECK(first == 6, "first output at cycle %u", first);
     printf("pipe: 64 transactions, %u mismatches, latency %u\n", bad, np_wave_stage_count());
     NP_CHECK(bad == 0 && got == 64, "bad %u got %u", bad, got);
     return 0;
 }
-
 
 /* --- the host: boxes, rays, culling, the cycle model, the budget --- */
 
@@ -1072,6 +1097,326 @@ static int vector_regs(void)
     return 0;
 }
 
+/* --- normals and the fold flag (keys normals, fold) --- */
+
+/* A unit with the test register set of seed s for normals and fold (kmx, kmz drawn). */
+static np_wave_unit unit_jac(uint64_t s, unsigned n, unsigned irr, unsigned cap)
+{
+    np_wave_unit u = unit_of(s, n, irr, cap);
+    u.c.normals = u.c.fold = 1;
+    np_wave_regs_test_jac(s, n, &u.r);
+    return u;
+}
+
+/*
+ * The Jacobian terms, the normal and the fold flag against the double
+ * reference from the same registers (np_ref_wave_jac): 96^2 points at frames
+ * 0, 1 h, 1 year and 2^32 - 1 for 1 .. 4 trains with both effects: every term
+ * within its bound e[m] (internal signals: printed in LSB of s18 Q3.14), every
+ * normal component within nb (below 1 LSB of s20 Q9.10), and the fold flag equal to the
+ * reference's ny <= 0 wherever the reference's |ny| exceeds ny's bound (the
+ * points inside that band are counted, not excused silently).
+ */
+static int jac_vs_ref(void)
+{
+    static const uint32_t frames[] = { 0u, F_HOUR, F_YEAR, 0xffffffffu };
+    for (unsigned n = 1; n <= 4; n++) {
+        np_wave_unit u = unit_jac(10u + n, n, 1, 1);
+        NP_CHECK(np_wave_regs_check(&u.c, &u.r) == NULL, "test set %u refused: %s", n,
+                 np_wave_regs_check(&u.c, &u.r));
+        np_wave_jac_bound b = np_wave_jac_error_bound(&u);
+        double ej = 0.0, en = 0.0, bj = 0.0, bn = 0.0;
+        unsigned long folds = 0, band = 0, wrong = 0, pts = 0;
+        for (unsigned m = 0; m < NP_WAVE_NJ; m++)
+            bj = fmax(bj, b.e[m] * 16384.0);
+        for (unsigned m = 0; m < 3; m++)
+            bn = fmax(bn, b.nb[m] * 1024.0);
+        for (unsigned f = 0; f < 4; f++)
+            for (unsigned j = 0; j < 96; j++)
+                for (unsigned i = 0; i < 96; i++) {
+                    np_wave_in in = { (uint16_t)(i * 3u), (uint16_t)(j * 5u), frames[f], i * 7919u, (uint16_t)i,
+                                      (uint16_t)(8u + j), (uint8_t)(i + j), (uint16_t)(16384u + 64u * (i & 127u)) };
+                    np_wave_out o;
+                    np_wave_jac q;
+                    double rj[6], rn[3];
+                    np_wave_eval_jac(&u, &in, &o, &q);
+                    np_ref_wave_jac(&u, &in, rj, rn);
+                    for (unsigned m = 0; m < NP_WAVE_NJ; m++) {
+                        double d = fabs((double)q.j[m] / 16384.0 - rj[m]);
+                        ej = fmax(ej, d * 16384.0);
+                        NP_CHECK(d <= b.e[m], "n %u term %u: %.3g over its bound %.3g", n, m, d, b.e[m]);
+                    }
+                    const int32_t nv[3] = { q.nx, q.ny, q.nz };
+                    for (unsigned m = 0; m < 3; m++) {
+                        double d = fabs((double)nv[m] / 1024.0 - rn[m]);
+                        en = fmax(en, d * 1024.0);
+                        NP_CHECK(d <= b.nb[m], "n %u normal %u: %.3g over its bound %.3g", n, m, d, b.nb[m]);
+                    }
+                    int want = rn[1] <= 0.0;
+                    folds += q.fold;
+                    if (fabs(rn[1]) <= b.nb[1])
+                        band++;
+                    else
+                        wrong += (unsigned)want != q.fold;
+                    pts++;
+                }
+        printf("trains %u: terms max %.4f LSB (bound %.4f), normal max %.4f LSB (bound %.4f); fold on %lu of %lu "
+               "points, %lu disagree with the reference, %lu within ny's bound of 0\n",
+               n, ej, bj, en, bn, folds, pts, wrong, band);
+        NP_CHECK(bn < 1.0, "the normal's bound %.4f not below 1 LSB", bn);
+        NP_CHECK(wrong == 0, "%lu fold flags disagree", wrong);
+        NP_CHECK(folds > 0 && folds < pts, "the test set should fold at some points and not at others (%lu)", folds);
+    }
+    return 0;
+}
+
+/* The fold flag's fraction along x (16,384 steps sample the phase evenly; docs/wave.md). */
+static double fold_flag_fraction(const np_wave_unit *u, unsigned total)
+{
+    unsigned folded = 0;
+    for (unsigned i = 0; i < total; i++) {
+        np_wave_in in = { (uint16_t)i, 0, 0, 0, 0, 500, 0, 16384 };
+        np_wave_out o;
+        np_wave_jac q;
+        np_wave_eval_jac(u, &in, &o, &q);
+        folded += q.fold;
+    }
+    return (double)folded / total;
+}
+
+/*
+ * The fold flag on the named folding cases of wave.fold (the host's
+ * registers, kmx from k in rad/m): one train, kA = 0.5, 0.99: never; 1.0:
+ * within 1 % (theory 0); 1.01, 1.5: arccos(1/kA)/pi within +-1 %; three
+ * aligned trains with sum kA = 1.2 against 1 - sum kA cos < 0 in double.
+ */
+static int fold_flag(void)
+{
+    const double lambda = 26.9, spacing = lambda / 64.79;
+    static const double kas[] = { 0.5, 0.99, 1.0, 1.01, 1.5 };
+    for (unsigned q = 0; q < 5; q++) {
+        np_wave_unit u = fold_unit(&kas[q], 1, lambda, spacing);
+        u.c.fold = 1;
+        NP_CHECK(np_wave_regs_check(&u.c, &u.r) == NULL, "kA %.2f refused: %s", kas[q], np_wave_regs_check(&u.c, &u.r));
+        double got = fold_flag_fraction(&u, 16384), dx = folded_fraction(&u, spacing, 16384);
+        double want = kas[q] > 1.0 ? acos(1.0 / kas[q]) / (TWO_PI / 2.0) : 0.0;
+        printf("kA = %.2f (registers: A kmx = %.5f): fold flag on %.4f of the period, from dx %.4f, arccos(1/kA)/pi = "
+               "%.4f\n", kas[q], u.r.tr[0].amp / 1024.0 * u.r.tr[0].kmx / 4096.0, got, dx, want);
+        NP_CHECK(fabs(got - want) <= 0.01, "kA %.2f: %.4f against %.4f", kas[q], got, want);
+        if (kas[q] < 1.0)
+            NP_CHECK(got == 0.0, "kA %.2f folds at %.4f", kas[q], got);
+    }
+    const double three[3] = { 0.4, 0.4, 0.4 };
+    np_wave_unit u = fold_unit(three, 3, lambda, spacing);
+    u.c.fold = 1;
+    double got = fold_flag_fraction(&u, 16384), want = three_trains_theory();
+    printf("three aligned trains, sum kA = 1.2: fold flag on %.4f, 1 - sum kA cos < 0 over %.4f\n", got, want);
+    NP_CHECK(fabs(got - want) <= 0.01 && got > 0.0, "three trains: %.4f against %.4f", got, want);
+    return 0;
+}
+
+/* With normals and fold the pipe has a seventh stage: eval_jac's outputs, first at cycle 7, one a clock. */
+static int jac_pipe(void)
+{
+    np_wave_unit u = unit_jac(4, 4, 1, 1);
+    unsigned first, got, folds, bad = pipe_run(&u, 6, 64, &first, &got, &folds);
+    NP_CHECK(first == 7, "first output at cycle %u", first);
+    printf("pipe with normals and fold: 64 transactions, %u mismatches, latency %u (%u folded)\n", bad,
+           np_wave_stage_count_of(&u.c), folds);
+    NP_CHECK(bad == 0 && got == 64 && np_wave_stage_count_of(&u.c) == 7 && np_wave_stage_count() == 6, "bad %u got %u",
+             bad, got);
+    return 0;
+}
+
+/*
+ * The test register sets for normals and fold are accepted (seeds 0 .. 499,
+ * 1 .. 4 trains, every effect setting) and leave the other registers as the
+ * default set's; a set whose Jacobian reaches 8 or whose normal's bound
+ * reaches 1 LSB is refused by name.
+ */
+static int jac_regs(void)
+{
+    unsigned ok = 0, total = 0;
+    double worst = 0.0;
+    for (unsigned s = 0; s < 500; s++)
+        for (unsigned n = 1; n <= 4; n++)
+            for (unsigned fx = 0; fx < 4; fx++) {
+                np_wave_unit u = unit_jac(s, n, fx & 1u, fx >> 1);
+                np_wave_regs r0;
+                np_wave_regs_test(s, n, &r0);
+                for (unsigned k = 0; k < n; k++)
+                    r0.tr[k].kmx = u.r.tr[k].kmx, r0.tr[k].kmz = u.r.tr[k].kmz;
+                const char *why = np_wave_regs_check(&u.c, &u.r);
+                NP_CHECK(why == NULL, "seed %u trains %u fx %u: %s", s, n, fx, why);
+                NP_CHECK(memcmp(&r0, &u.r, sizeof r0) == 0, "seed %u: the other registers differ", s);
+                np_wave_jac_bound b = np_wave_jac_error_bound(&u);
+                for (unsigned m = 0; m < 3; m++)
+                    worst = fmax(worst, b.nb[m] * 1024.0);
+                ok += why == NULL;
+                total++;
+            }
+    printf("%u of %u test register sets for normals and fold accepted; largest normal bound %.4f LSB\n", ok, total,
+           worst);
+    np_wave_unit u = unit_jac(1, 1, 0, 0);
+    u.r.tr[0].kmx = INT16_MAX; /* A k far over 8 */
+    const char *why = np_wave_regs_check(&u.c, &u.r);
+    printf("kmx = 0x7fff: %s\n", why ? why : "(accepted)");
+    NP_CHECK(why && strstr(why, "Jacobian range"), "a Jacobian over 8 accepted");
+    u = unit_jac(1, 1, 0, 0);
+    /* One train along the diagonal, G A |k| = 4 at the cap: every term in range (2), the normal's bound over 1 LSB. */
+    u.r.tr[0].cx = u.r.tr[0].cz = 11585;
+    double km = 4.0 / (u.r.gcap / 16384.0 * u.r.tr[0].amp / 1024.0 * sqrt(2.0));
+    u.r.tr[0].kmx = u.r.tr[0].kmz = (int16_t)(km * 4096.0);
+    np_wave_jac_bound jb = np_wave_jac_error_bound(&u);
+    printf("one train along the diagonal, G A |k| = 4: jxx up to %.3f, ny's bound %.4f LSB\n", jb.m[0],
+           jb.nb[1] * 1024.0);
+    why = np_wave_regs_check(&u.c, &u.r);
+    printf("  %s\n", why ? why : "(accepted)");
+    NP_CHECK(why && strstr(why, "normal"), "a normal bound over 1 LSB accepted");
+    u.c.normals = u.c.fold = 0;
+    NP_CHECK(np_wave_regs_check(&u.c, &u.r) == NULL, "kmx is read only with normals or fold");
+    return 0;
+}
+
+/* --- sincos=recurrence (keys sincos, reset) --- */
+
+/* The wave unit as the registry configures it from spec (its block starts with the np_wave_unit); NULL if refused. */
+static const np_wave_unit *registry_unit(const char *spec, np_unit_cfg *cfg, char *err, size_t len)
+{
+    const np_unit *w = np_unit_find("wave");
+    if (!w || np_unit_configure(w, cfg, spec, err, len) != 0)
+        return NULL;
+    return (const np_wave_unit *)(const void *)cfg;
+}
+
+/* The ROM's set-up and the stateful walk of lane k along i from i0 (what lane_rec's value must equal). */
+static void walk_setup(const np_wave_unit *u, unsigned k, const np_wave_in *in, np_wave_recur *q)
+{
+    const np_wave_train *t = &u->r.tr[k];
+    uint32_t th = (uint32_t)t->kx * in->i + (uint32_t)t->kz * in->j + t->phi + in->ph - t->om * in->t;
+    np_wave_recur_setup(q, (int64_t)np_wave_cos(th, u->c.rom_log2) * 8192, (int64_t)np_wave_sin(th, u->c.rom_log2) * 8192,
+                        t->dc, t->ds);
+}
+
+static int32_t q17(int64_t v)
+{
+    int64_t r = (v + 4096) >> 13; /* round half up, Q1.30 to Q1.17 */
+    return (int32_t)(r > 131072 ? 131072 : r < -131072 ? -131072 : r);
+}
+
+/*
+ * The recurrence as the unit computes it, per transaction, equals a lane
+ * that walks the row: at reset = 64 for every point of a 4,096-point row and
+ * both lanes (the lanes re-set up in turn, (i + k) mod N = 0). Its drift over
+ * 65,536 steps (reset = 65,536, one set-up a row) against the exact sin and
+ * cos of the exact phase stays within np_wave_recur_bound(m) = sqrt(2) e_s +
+ * m 2^-29 + 2^-18 at every step m (the per-transaction model checked at 40
+ * points of that walk). With the registry's test set the outputs stay within
+ * 1 LSB of the reference up to the largest reset the check accepts.
+ */
+static int recur_unit(void)
+{
+    np_unit_cfg cfg;
+    char err[256] = "";
+    const np_wave_unit *ru = registry_unit("sincos=recurrence", &cfg, err, sizeof err);
+    NP_CHECK(ru != NULL, "sincos=recurrence refused: %s", err);
+    if (!ru)
+        return 0;
+    np_wave_unit u = *ru;
+    unsigned bad = 0;
+    for (unsigned k = 0; k < 2; k++) {
+        np_wave_recur q;
+        for (unsigned i = 0; i < 4096; i++) {
+            np_wave_in in = { (uint16_t)i, 77, 4321, 0x9e3779b9u, 0, 100, 0, 16384 };
+            if ((i + k) % 64 == 0 || i == 0) {
+                if (i == 0) { /* the walk's first set-up is m = (0 + k) mod 64 steps before i = 0: start there */
+                    np_wave_in b = in;
+                    b.ph = in.ph - (uint32_t)u.r.tr[k].kx * (k % 64u);
+                    walk_setup(&u, k, &b, &q);
+                    for (unsigned m = 0; m < k % 64u; m++)
+                        np_wave_recur_step(&q);
+                } else {
+                    walk_setup(&u, k, &in, &q);
+                }
+            } else {
+                np_wave_recur_step(&q);
+            }
+            int32_t c, s;
+            np_wave_lane_sincos(&u, k, &in, &c, &s);
+            bad += c != q17(q.c) || s != q17(q.s);
+        }
+    }
+    printf("reset 64: %u of 8,192 lane values differ from a lane walking the row\n", bad);
+    NP_CHECK(bad == 0, "%u differ", bad);
+
+    /* 65,536 steps: one set-up at i = 0, lane 0. */
+    u.c.reset = NP_WAVE_RESET_MAX;
+    np_wave_recur q;
+    np_wave_in in = { 0, 5, 1234, 0, 0, 100, 0, 16384 };
+    walk_setup(&u, 0, &in, &q);
+    double worst = 0.0, at1k = 0.0, ratio = 0.0;
+    unsigned diff = 0;
+    for (unsigned i = 0; i < 65536; i++) {
+        if (i)
+            np_wave_recur_step(&q);
+        in.i = (uint16_t)i;
+        int32_t c = q17(q.c), s = q17(q.s);
+        if (i % 1681u == 0 || i == 65535) { /* the per-transaction model at 40 points of the walk */
+            int32_t c2, s2;
+            np_wave_lane_sincos(&u, 0, &in, &c2, &s2);
+            diff += c2 != c || s2 != s;
+        }
+        const np_wave_train *t = &u.r.tr[0];
+        uint32_t th = (uint32_t)t->kx * in.i + (uint32_t)t->kz * in.j + t->phi + in.ph - t->om * in.t;
+        double es, ec;
+        np_sincos_turns(ldexp((double)th, -32), &es, &ec);
+        double e = fmax(fabs(c / 131072.0 - ec), fabs(s / 131072.0 - es)), lim = np_wave_recur_bound(8, i);
+        worst = fmax(worst, e);
+        ratio = fmax(ratio, e / lim);
+        if (i == 1024)
+            at1k = worst;
+        NP_CHECK(e <= lim, "step %u: %.3g over its bound %.3g", i, e, lim);
+        if (e > lim)
+            break;
+    }
+    printf("reset 65,536: max |error| %.3g by step 1,024 (bound %.3g), %.3g by step 65,535 (bound %.3g); largest "
+           "error / bound %.3f; the unit's per-transaction values differ from the walk at %u of 40 points\n",
+           at1k, np_wave_recur_bound(8, 1024), worst, np_wave_recur_bound(8, 65535), ratio, diff);
+    NP_CHECK(diff == 0, "per transaction and walk differ at %u points", diff);
+
+    /* The largest reset the check accepts for the test set (regs=1, 2 trains), and the outputs there. */
+    unsigned lo = 64, hi = NP_WAVE_RESET_MAX + 1u;
+    while (hi - lo > 1) {
+        unsigned mid = (lo + hi) / 2;
+        char spec[64];
+        snprintf(spec, sizeof spec, "sincos=recurrence,reset=%u", mid);
+        if (registry_unit(spec, &cfg, err, sizeof err))
+            lo = mid;
+        else
+            hi = mid;
+    }
+    printf("the check accepts reset up to %u for the test set (%s for %u)\n", lo, err, hi);
+    NP_CHECK(hi <= NP_WAVE_RESET_MAX && strstr(err, "recurrence"), "reset 65536 accepted, or refused for another reason");
+    static const unsigned resets[] = { 64, 0 };
+    for (unsigned r = 0; r < 2; r++) {
+        char spec[64];
+        snprintf(spec, sizeof spec, "sincos=recurrence,reset=%u", resets[r] ? resets[r] : lo);
+        const np_wave_unit *vu = registry_unit(spec, &cfg, err, sizeof err);
+        NP_CHECK(vu != NULL, "%s: %s", spec, err);
+        if (!vu)
+            continue;
+        err_stats e;
+        memset(&e, 0, sizeof e);
+        grid_errors(vu, 128, 0, 0, &e);
+        grid_errors(vu, 128, F_YEAR, 0, &e);
+        double bound = np_wave_error_bound_lsb(vu);
+        printf("%s: max |model - reference| %.4f LSB over %llu outputs (bound %.6f)\n", spec, e.max,
+               (unsigned long long)e.n, bound);
+        NP_CHECK(e.max <= bound && bound < 1.0, "%s: %.4f against %.4f", spec, e.max, bound);
+    }
+    return 0;
+}
+
 static const np_test_case cases[] = {
     { "rom", rom },
     { "sincos_bound", sincos_bound },
@@ -1095,6 +1440,11 @@ static const np_test_case cases[] = {
     { "land", land },
     { "scene_refusals", scene_refusals },
     { "vector_regs", vector_regs },
+    { "jac_vs_ref", jac_vs_ref },
+    { "fold_flag", fold_flag },
+    { "jac_pipe", jac_pipe },
+    { "jac_regs", jac_regs },
+    { "recur_unit", recur_unit },
     { NULL, NULL },
 };
 NP_TEST_MAIN(cases)

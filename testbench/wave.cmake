@@ -9,7 +9,7 @@ target_compile_definitions(test_wave PRIVATE NP_WAVE_SCENES="${PROJECT_SOURCE_DI
   NP_WAVE_VECTORS="${PROJECT_SOURCE_DIR}/vectors/wave")
 np_add_cases(test_wave wave
   rom sincos_bound vs_ref hist_year freq_drift fold nyquist a_gt_A range shallow wind frame_wrap recurrence pipe
-  ray_partition culling scaling budget overlap land scene_refusals vector_regs)
+  ray_partition culling scaling budget overlap land scene_refusals vector_regs jac_vs_ref fold_flag jac_pipe jac_regs recur_unit)
 # The command: a folding scene is refused with exit 2 and a message naming allow_fold.
 add_test(NAME wave.cli_fold_refused COMMAND sh -c
   "\"$0\" wave \"$1\" 2>&1; test $? -eq 2" $<TARGET_FILE:noisepipe> ${PROJECT_SOURCE_DIR}/vectors/scenes/wave_fold.json)
@@ -37,8 +37,28 @@ add_test(NAME wave.report_scene COMMAND sh -c "
   sed 's/\"target\": \\[512, 0, 520\\]/\"target\": [512, 1800, -1500]/' \"$sc\" >\"$d/away.json\"
   \"$np\" report gates --scene \"$d/away.json\" >\"$d/a.md\"
   grep -q '0 visible, 7 culled' \"$d/a.md\"; grep -q 'Frame:\\*\\* 42 cycles' \"$d/a.md\"
-  sed 's/\"irregular\": false, \"noise\": false/\"irregular\": true, \"noise\": true/' \"$sc\" >\"$d/fx.json\"
+  sed 's/\"irregular\": false, \"noise\": false/\"irregular\": true, \"noise\": true/; s/\"fps\": 60,/\"fps\": 60, \"normals\": true, \"fold\": true,/' \"$sc\" >\"$d/fx.json\"
   \"$np\" report gates --scene \"$d/fx.json\" >\"$d/f.md\"
-  grep -q 'wave. trains=1 irr=1 cap=1 ' \"$d/f.md\"; grep -q ': 0 left out' \"$d/f.md\"
-  grep -h 'boxes:\\|gates:\\|Frame:' \"$d/r.md\" \"$d/a.md\" \"$d/f.md\""
+  grep -q 'wave. trains=1 irr=1 cap=1 rom_log2=8 normals=1 fold=1 ' \"$d/f.md\"; grep -q ': 0 left out' \"$d/f.md\"
+  grep -q 'normals nx, ny, nz [*]*left out' \"$d/r.md\"; grep -q 'fold flag [*]*left out' \"$d/r.md\"
+  grep -h 'boxes:\\|gates:\\|Frame:\\|outputs read' \"$d/r.md\" \"$d/a.md\" \"$d/f.md\""
   $<TARGET_FILE:noisepipe> ${PROJECT_SOURCE_DIR}/vectors/scenes/wave_scenario2.json ${CMAKE_CURRENT_BINARY_DIR}/wave_report_scene)
+# --scene leaves out what the scene does not read: scenario 2 reading the fold flag alone has fold=1 and
+# normals=0 (the normals' datapath left out, fewer gates than with both), and reading neither has neither.
+add_test(NAME wave.report_scene_outputs COMMAND sh -c "
+  set -e; np=\"$0\"; sc=\"$1\"; d=\"$2\"; mkdir -p \"$d\"
+  sed 's/\"fps\": 60,/\"fps\": 60, \"fold\": true,/' \"$sc\" >\"$d/fold.json\"
+  sed 's/\"fps\": 60,/\"fps\": 60, \"normals\": true, \"fold\": true,/' \"$sc\" >\"$d/both.json\"
+  \"$np\" report gates --scene \"$sc\" >\"$d/none.md\"
+  \"$np\" report gates --scene \"$d/fold.json\" >\"$d/fold.md\"
+  \"$np\" report gates --scene \"$d/both.json\" >\"$d/both.md\"
+  grep -q 'wave. trains=1 irr=0 cap=0 rom_log2=8 regs=1 ' \"$d/none.md\"
+  grep -q 'wave. trains=1 irr=0 cap=0 rom_log2=8 fold=1 regs=1 ' \"$d/fold.md\"; grep -q 'normals nx, ny, nz [*]*left out' \"$d/fold.md\"
+  grep -q 'fold flag read' \"$d/fold.md\"
+  grep -q 'wave. trains=1 irr=0 cap=0 rom_log2=8 normals=1 fold=1 regs=1 ' \"$d/both.md\"
+  g() { sed -n 's/.*gates:.. \\([0-9]*\\) for what.*/\\1/p' \"$1\"; }
+  n=$(g \"$d/none.md\"); f=$(g \"$d/fold.md\"); b=$(g \"$d/both.md\")
+  echo \"gates: reads neither $n, the fold flag $f, both $b\"
+  test \"$n\" -lt \"$f\"; test \"$f\" -lt \"$b\""
+  $<TARGET_FILE:noisepipe> ${PROJECT_SOURCE_DIR}/vectors/scenes/wave_scenario2.json ${CMAKE_CURRENT_BINARY_DIR}/wave_report_scene_outputs)
+set_tests_properties(wave.report_scene_outputs PROPERTIES PASS_REGULAR_EXPRESSION "gates: reads neither [0-9]+, the fold flag [0-9]+, both [0-9]+")

@@ -456,8 +456,8 @@ static void scene_json(FILE *f, const np_scene *sc, const np_render_frame *fr, c
  * the wave unit configured from what the scene uses - lanes = its `lanes`,
  * irr and cap only when it has irregular height or capillary noise (the
  * effects it does not use are left out of the datapath; refraction and round
- * waves are per-ray phases, no unit gates); the unit has no normal or fold
- * outputs, so none are counted - and the frame's cycles with the culled boxes
+ * waves are per-ray phases, no unit gates); the normals and the fold flag
+ * only when the scene reads them ("normals", "fold") - and the frame's cycles with the culled boxes
  * left out (each costs its 6 plane tests, nothing per point). Widths are
  * priced at the registry's test register set (regs=1), which fills the output
  * range: an upper bound for a scene's registers.
@@ -486,8 +486,8 @@ static void wave_scene_md(FILE *f, const char *path, const np_wave_scene *s, con
             fx & NP_WAVE_FX_NOISE ? "used" : "**left out** (cap=0)");
     fprintf(f, "- **effects on the host, no unit gates:** refraction %s, round waves %s (per-ray phase ph)\n",
             fx & NP_WAVE_FX_REFRACTION ? "used" : "not used", fx & NP_WAVE_FX_ROUND ? "used" : "not used");
-    fprintf(f, "- **outputs read:** y, dx, dz; normals and a fold flag are not unit outputs (the renderer takes "
-               "normals from the triangles), so no datapath for them is counted\n");
+    fprintf(f, "- **outputs read:** y, dx, dz; normals nx, ny, nz %s; fold flag %s\n",
+            s->reads_normals ? "read" : "**left out** (normals=0)", s->reads_fold ? "read" : "**left out** (fold=0)");
     fprintf(f, "- **boxes:** %u, %u visible, %u culled%s\n", s->nbox, vis, culled,
             s->has_camera ? " by the camera's frustum" : " (no camera: every box visible)");
     fprintf(f, "- **gates:** %.0f for what the scene uses; %.0f with every effect (`%s`): %.0f left out\n\n",
@@ -543,14 +543,15 @@ static int write_wave_scene(const char *dir, const char *path)
     np_wave_plan p;
     np_wave_plan_full(&s, &p);
     int rc = NP_EXIT_OK;
-    snprintf(spec, sizeof spec, "trains=%u,irr=%u,cap=%u", s.lanes, (s.effects & NP_WAVE_FX_IRREGULAR) ? 1u : 0u,
-             (s.effects & NP_WAVE_FX_NOISE) ? 1u : 0u);
+    snprintf(spec, sizeof spec, "trains=%u,irr=%u,cap=%u,normals=%u,fold=%u", s.lanes,
+             (s.effects & NP_WAVE_FX_IRREGULAR) ? 1u : 0u, (s.effects & NP_WAVE_FX_NOISE) ? 1u : 0u,
+             s.reads_normals ? 1u : 0u, s.reads_fold ? 1u : 0u);
     if (!u || np_unit_configure(u, &cu, spec, err, sizeof err) != 0 ||
         np_unit_cost_compute(u, &cu, &np_cost_default, &used, err, sizeof err) != 0) {
         np_err("report", "%s: wave %s: %s", path, spec, u ? err : "no wave unit");
         rc = NP_EXIT_USAGE;
     }
-    snprintf(spec, sizeof spec, "trains=%u,irr=1,cap=1", s.lanes);
+    snprintf(spec, sizeof spec, "trains=%u,irr=1,cap=1,normals=1,fold=1", s.lanes);
     if (rc == NP_EXIT_OK && (np_unit_configure(u, &cf, spec, err, sizeof err) != 0 ||
                              np_unit_cost_compute(u, &cf, &np_cost_default, &full, err, sizeof err) != 0)) {
         np_err("report", "%s: wave %s: %s", path, spec, err);

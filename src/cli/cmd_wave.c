@@ -449,6 +449,35 @@ static double time_frame(const np_wave_scene *s, const np_wave_plan *p, int32_t 
     return best;
 }
 
+/*
+ * The model's CPU time a frame for the linearity: best of reps runs of k
+ * frames each (k frames of a small grid are about as much work as one frame
+ * of 512^2). Each frame starts with cold caches, as a 512^2 frame does (its
+ * points and grids are larger than the caches): an untimed write over 32 MB
+ * before each, so a small grid repeated is not timed from a warm cache.
+ */
+static double time_frames(const np_wave_scene *s, const np_wave_plan *p, int32_t *y, int32_t *dx, int32_t *dz,
+                          unsigned k, unsigned reps)
+{
+    enum { FLUSH = 32u << 20 };
+    static unsigned char *junk;
+    if (!junk)
+        junk = malloc(FLUSH);
+    double best = 1e30;
+    for (unsigned r = 0; r < reps; r++) {
+        double e = 0.0;
+        for (unsigned f = 0; f < k; f++) {
+            if (junk)
+                memset(junk, (int)(f + r) & 0xff, FLUSH);
+            double t0 = cpu_now();
+            np_wave_frame(s, p, 1000u + f, y, dx, dz);
+            e += cpu_now() - t0;
+        }
+        best = e < best ? e : best;
+    }
+    return best / k;
+}
+
 static int cmd_bench(int argc, char **argv)
 {
     const char *sc[2] = { NULL, NULL }, *dir = NULL;
@@ -476,6 +505,7 @@ static int cmd_bench(int argc, char **argv)
     printf("Scenario 1 (%s): cycles and model time against points x trains (paper's Table 1: WC)\n", sc[0]);
     printf("| grid | points x trains | cycles | cycles / (points x trains) | model ms | ns / (point x train) | paper WC ms |\n");
     printf("| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    double nspt[4];
     for (unsigned g = 64, q = 0; g <= 512; g *= 2, q++) {
         if (load(sc[0], &s, NULL, g) != 0)
             return NP_EXIT_USAGE;
@@ -485,13 +515,22 @@ static int cmd_bench(int argc, char **argv)
         for (unsigned k = 0; k < s.nbox; k++)
             pt += (uint64_t)s.box[k].npts * s.box[k].unit.r.n;
         uint64_t cyc = np_wave_plan_cycles(&s, &p);
-        double ms = time_frame(&s, &p, y, dx, dz, 3) * 1e3;
+        double ms = time_frames(&s, &p, y, dx, dz, (512u / g) * (512u / g), 5) * 1e3;
+        nspt[q] = ms * 1e6 / (double)pt;
         printf("| %u^2 | %llu | %llu | %.4f | %.2f | %.1f | %.2f |\n", g, (unsigned long long)pt, (unsigned long long)cyc,
-               (double)cyc / (double)pt, ms, ms * 1e6 / (double)pt, paper_wc[q]);
+               (double)cyc / (double)pt, ms, nspt[q], paper_wc[q]);
         if (g == 512)
             printf("512^2: the bit-exact model takes %.2f ms a frame, %.1fx faster than the paper's 199 ms\n", ms, 199.0 / ms);
         np_wave_scene_free(&s);
     }
+    /* Model time linear in points x trains: each grid's ns a point and train against their mean. */
+    double mean = (nspt[0] + nspt[1] + nspt[2] + nspt[3]) / 4.0, dev = 0.0;
+    for (unsigned q = 0; q < 4; q++)
+        dev = fmax(dev, fabs(nspt[q] / mean - 1.0));
+    printf("model time linearity, 64^2 .. 512^2 (thread CPU time, best of 5 runs of 64, 16, 4, 1 frames, each from "
+           "cold caches): "
+           "%.1f %.1f %.1f %.1f ns a point and train, mean %.1f; largest deviation %+.1f %%: %s\n",
+           nspt[0], nspt[1], nspt[2], nspt[3], mean, 100.0 * dev, dev <= 0.10 ? "within +-10 %" : "NOT within +-10 %");
     /* Scenario 2: all visible against none visible; the saving per culled box. */
     if (load(sc[1], &s, NULL, 256) != 0)
         return NP_EXIT_USAGE;

@@ -39,6 +39,13 @@ void np_ref_wave(const np_wave_unit *u, const np_wave_in *in, double out[3]);
  * (i, j), frame number frame, plus a phase shift ph_turns; no gain, no
  * effects (the Gerstner sum alone).
  */
+/*
+ * The Jacobian terms jxx, jxz, jzx, jzz, yx, yz (np_wave.h, normals or fold)
+ * and the normal (nx, ny, nz) = dP/dz0 x dP/dx0 in double from the same
+ * registers (ny = det J: the surface folds where ny <= 0).
+ */
+void np_ref_wave_jac(const np_wave_unit *u, const np_wave_in *in, double j[6], double n[3]);
+
 void np_ref_wave_phys(const np_wave_phys *p, double i, double j, double frame, double ph_turns, double out[3]);
 
 #ifdef __cplusplus

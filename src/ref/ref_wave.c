@@ -21,26 +21,39 @@ static const double NP_TWO_PI = 6.283185307179586; /* 2 pi rounded to double */
 
 static double turns(uint32_t th) { return ldexp((double)th, -32); }
 
-void np_ref_wave(const np_wave_unit *u, const np_wave_in *in, double out[3])
+/* The gain G = min(d, M)/M min(g, gcap) in double, and eq. (8)'s w = sin(p1) sin(p2) (0 without irr). */
+static double ref_gain(const np_wave_unit *u, const np_wave_in *in, double *w)
 {
     const np_wave_regs *r = &u->r;
-    double w = 0.0;
+    *w = 0.0;
     if (u->c.irr)
-        w = np_sin_turns(turns(r->pu * in->u + r->pt * in->t)) * np_sin_turns(turns(r->pv * in->v));
+        *w = np_sin_turns(turns(r->pu * in->u + r->pt * in->t)) * np_sin_turns(turns(r->pv * in->v));
     unsigned d = 0, m = 1u << r->mlog2;
     if (in->v < r->width) {
         unsigned a = in->v, b = (unsigned)r->width - 1u - in->v;
         d = a < b ? a : b;
     }
     double g = (double)(in->g < r->gcap ? in->g : r->gcap) / 16384.0;
-    double gain = (double)(d < m ? d : m) / (double)m * g;
+    return (double)(d < m ? d : m) / (double)m * g;
+}
+
+/* A train's exact phase, its sin and cos in double, and its amplitude ap = A - a w. */
+static double ref_lane(const np_wave_unit *u, const np_wave_train *t, const np_wave_in *in, double w, double *s,
+                       double *c)
+{
+    uint32_t th = (uint32_t)t->kx * in->i + (uint32_t)t->kz * in->j + t->phi + in->ph - t->om * in->t;
+    np_sincos_turns(turns(th), s, c);
+    return (double)t->amp / 1024.0 - (u->c.irr ? (double)t->airr / 1024.0 * w : 0.0);
+}
+
+void np_ref_wave(const np_wave_unit *u, const np_wave_in *in, double out[3])
+{
+    const np_wave_regs *r = &u->r;
+    double w, gain = ref_gain(u, in, &w);
     double y = 0.0, x = 0.0, z = 0.0;
     for (unsigned k = 0; k < r->n; k++) {
         const np_wave_train *t = &r->tr[k];
-        uint32_t th = (uint32_t)t->kx * in->i + (uint32_t)t->kz * in->j + t->phi + in->ph - t->om * in->t;
-        double s, c;
-        np_sincos_turns(turns(th), &s, &c);
-        double ap = (double)t->amp / 1024.0 - (u->c.irr ? (double)t->airr / 1024.0 * w : 0.0);
+        double s, c, ap = ref_lane(u, t, in, w, &s, &c);
         y += ap * c;
         x -= ap * s * ((double)t->cx / 16384.0);
         z -= ap * s * ((double)t->cz / 16384.0);
@@ -50,6 +63,33 @@ void np_ref_wave(const np_wave_unit *u, const np_wave_in *in, double out[3])
         out[0] += (double)r->b / 1024.0 * np_sin_turns(turns((uint32_t)in->r * r->omc * in->t));
     out[1] = gain * x;
     out[2] = gain * z;
+}
+
+void np_ref_wave_jac(const np_wave_unit *u, const np_wave_in *in, double j[6], double n[3])
+{
+    /* The same G, ap and phases as np_ref_wave; the terms of np_wave.h in double, then the normal. */
+    const np_wave_regs *r = &u->r;
+    double w, gain = ref_gain(u, in, &w);
+    for (unsigned q = 0; q < 6; q++)
+        j[q] = 0.0;
+    for (unsigned k = 0; k < r->n; k++) {
+        const np_wave_train *t = &r->tr[k];
+        double s, c, ap = ref_lane(u, t, in, w, &s, &c);
+        double cx = (double)t->cx / 16384.0, cz = (double)t->cz / 16384.0;
+        double kx = (double)t->kmx / 4096.0, kz = (double)t->kmz / 4096.0;
+        j[0] -= ap * c * cx * kx;
+        j[1] -= ap * c * cx * kz;
+        j[2] -= ap * c * cz * kx;
+        j[3] -= ap * c * cz * kz;
+        j[4] -= ap * s * kx;
+        j[5] -= ap * s * kz;
+    }
+    for (unsigned q = 0; q < 6; q++)
+        j[q] *= gain;
+    double a = 1.0 + j[0], dd = 1.0 + j[3];
+    n[0] = j[5] * j[2] - dd * j[4];
+    n[1] = a * dd - j[1] * j[2];
+    n[2] = j[1] * j[4] - j[5] * a;
 }
 
 void np_ref_wave_phys(const np_wave_phys *p, double i, double j, double frame, double ph_turns, double out[3])

@@ -143,7 +143,14 @@ enum {
      * a design choice, so a render's configuration text leaves it out
      * (NP_UNIT_FMT_NO_SCENE) and --unit-config refuses it.
      */
-    NP_UNIT_KEY_SCENE = 1u
+    NP_UNIT_KEY_SCENE = 1u,
+    /*
+     * A key added to a unit after its vector files, KAT and image hashes were
+     * checked in: the configuration text leaves it out while it holds its
+     * default, and a '# config' line without it means the default, so the
+     * existing files stay byte-identical (a fixed default only, not derived).
+     */
+    NP_UNIT_KEY_ADDED = 2u
 };
 
 /* Table entries: a number with a fixed default; one whose default derive() gives; an enumeration; the end. */
@@ -153,6 +160,8 @@ enum {
     { name, offsetof(type, member), sizeof(((type *)0)->member), lo, hi, 0u, meaning, derive, NULL, 0u }
 #define NP_UNIT_KEY_WORDS(name, type, member, lo, hi, def, meaning, word, flags) \
     { name, offsetof(type, member), sizeof(((type *)0)->member), lo, hi, def, meaning, NULL, word, flags }
+#define NP_UNIT_KEY_ADDED_LATER(name, type, member, lo, hi, def, meaning) \
+    { name, offsetof(type, member), sizeof(((type *)0)->member), lo, hi, def, meaning, NULL, NULL, NP_UNIT_KEY_ADDED }
 #define NP_UNIT_KEY_END { NULL, 0u, 0u, 0u, 0u, 0u, NULL, NULL, NULL, 0u }
 
 typedef struct np_unit {

@@ -10,11 +10,13 @@
  * keys are set (cfg_check, and the derived default of `regs` for
  * np_unit_cfg_default), so every tool sees the same registers.
  */
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "np_unit.h"
 #include "np_wave.h"
+#include "np_wave_host.h"
 #include "np_wave_ref.h"
 
 typedef struct wave_block {
@@ -30,7 +32,22 @@ static void complete(const void *cfg, unsigned seed)
 {
     wave_block *b = (wave_block *)(void *)(uintptr_t)cfg;
     unsigned n = b->u.c.trains >= 1 && b->u.c.trains <= NP_WAVE_MAX_TRAINS ? b->u.c.trains : 1u;
-    np_wave_regs_test(seed, n, &b->u.r);
+    if (np_wave_has_jac(&b->u.c))
+        np_wave_regs_test_jac(seed, n, &b->u.r);
+    else
+        np_wave_regs_test(seed, n, &b->u.r);
+    if (b->u.c.sincos == NP_WAVE_SINCOS_RECURRENCE) {
+        /*
+         * The recurrence's bound is larger than the ROM's (sqrt(2) e_s + the
+         * drift): amp and airr halved (floor) keep the error under 1 LSB up to
+         * a reset of a few thousand; the step registers from kx (np_wave_steps).
+         */
+        for (unsigned k = 0; k < n; k++) {
+            b->u.r.tr[k].amp = (uint16_t)(b->u.r.tr[k].amp >> 1);
+            b->u.r.tr[k].airr = (uint16_t)(b->u.r.tr[k].airr >> 1);
+        }
+        np_wave_steps(&b->u.r);
+    }
 }
 
 static unsigned regs_default(const void *cfg)
@@ -39,12 +56,25 @@ static unsigned regs_default(const void *cfg)
     return REGS_DEFAULT;
 }
 
+static const char *sincos_word(unsigned v)
+{
+    return v == NP_WAVE_SINCOS_ROM ? "rom" : v == NP_WAVE_SINCOS_RECURRENCE ? "recurrence" : NULL;
+}
+
 static const np_unit_key keys[] = {
     NP_UNIT_KEY("trains", wave_block, u.c.trains, 1, NP_WAVE_MAX_TRAINS, 2, "train lanes (Gerstner trains summed per point)"),
     NP_UNIT_KEY("irr", wave_block, u.c.irr, 0, 1, 1, "1: eq. (8) irregular height present"),
     NP_UNIT_KEY("cap", wave_block, u.c.cap, 0, 1, 1, "1: eq. (9) capillary noise present"),
     NP_UNIT_KEY("rom_log2", wave_block, u.c.rom_log2, NP_WAVE_ROM_MIN, NP_WAVE_ROM_MAX, NP_WAVE_ROM_DEF,
                 "L: quarter-wave ROM of 2^L x 18 bits, linear interpolation"),
+    NP_UNIT_KEY_ADDED_LATER("normals", wave_block, u.c.normals, 0, 1, 0,
+                "1: outputs nx, ny, nz, the displaced surface's normal (s20 Q9.10, not normalised)"),
+    NP_UNIT_KEY_ADDED_LATER("fold", wave_block, u.c.fold, 0, 1, 0, "1: output fold, det J <= 0 exact on the Jacobian terms"),
+    NP_UNIT_KEY_WORDS("sincos", wave_block, u.c.sincos, NP_WAVE_SINCOS_ROM, NP_WAVE_SINCOS_RECURRENCE,
+                      NP_WAVE_SINCOS_ROM, "the trains' sin and cos: rom (interpolated) or recurrence (rotated along i)",
+                      sincos_word, NP_UNIT_KEY_ADDED),
+    NP_UNIT_KEY_ADDED_LATER("reset", wave_block, u.c.reset, 1, NP_WAVE_RESET_MAX, NP_WAVE_RESET_DEF,
+                            "N: with sincos=recurrence, a lane re-sets up from the ROM every N points along i"),
     NP_UNIT_KEY_DERIVED("regs", wave_block, regs, 0, 65535, regs_default,
                         "seed of the test register set the tools run (scenes load their own)"),
     NP_UNIT_KEY_END,
@@ -62,7 +92,7 @@ static const char *cfg_check(const void *cfg)
 
 static void fields(const void *cfg, np_unit_fields *f)
 {
-    (void)cfg;
+    const np_wave_cfg *c = &((const wave_block *)cfg)->u.c;
     memset(f, 0, sizeof *f);
     f->n_in = 8;
     f->n_out = 3;
@@ -77,6 +107,13 @@ static void fields(const void *cfg, np_unit_fields *f)
     np_unit_set_field(&f->out[0], "y", 16, 1, 10, "s16 Q5.10");
     np_unit_set_field(&f->out[1], "dx", 16, 1, 10, "s16 Q5.10");
     np_unit_set_field(&f->out[2], "dz", 16, 1, 10, "s16 Q5.10");
+    if (c->normals) {
+        np_unit_set_field(&f->out[f->n_out++], "nx", NP_WAVE_N_BITS, 1, NP_WAVE_N_FRAC, "s20 Q9.10");
+        np_unit_set_field(&f->out[f->n_out++], "ny", NP_WAVE_N_BITS, 1, NP_WAVE_N_FRAC, "s20 Q9.10");
+        np_unit_set_field(&f->out[f->n_out++], "nz", NP_WAVE_N_BITS, 1, NP_WAVE_N_FRAC, "s20 Q9.10");
+    }
+    if (c->fold)
+        np_unit_set_field(&f->out[f->n_out++], "fold", 1, 0, 0, "u1");
 }
 
 static void in_of(const uint64_t *w, np_wave_in *in)
@@ -91,30 +128,67 @@ static void in_of(const uint64_t *w, np_wave_in *in)
     in->g = (uint16_t)(w[7] & 0x7fffu);
 }
 
-static void put_out(const np_wave_out *o, uint64_t *out)
+/* The outputs in field order: y, dx, dz, then nx, ny, nz (normals), then fold. */
+static void put_out(const np_wave_cfg *c, const np_wave_out *o, const np_wave_jac *j, uint64_t *out)
 {
-    out[0] = np_trunc_u((uint64_t)(int64_t)o->y, 16);
-    out[1] = np_trunc_u((uint64_t)(int64_t)o->dx, 16);
-    out[2] = np_trunc_u((uint64_t)(int64_t)o->dz, 16);
+    unsigned n = 0;
+    out[n++] = np_trunc_u((uint64_t)(int64_t)o->y, 16);
+    out[n++] = np_trunc_u((uint64_t)(int64_t)o->dx, 16);
+    out[n++] = np_trunc_u((uint64_t)(int64_t)o->dz, 16);
+    if (c->normals) {
+        out[n++] = np_trunc_u((uint64_t)(int64_t)j->nx, NP_WAVE_N_BITS);
+        out[n++] = np_trunc_u((uint64_t)(int64_t)j->ny, NP_WAVE_N_BITS);
+        out[n++] = np_trunc_u((uint64_t)(int64_t)j->nz, NP_WAVE_N_BITS);
+    }
+    if (c->fold)
+        out[n++] = j->fold;
 }
 
 static void eval(const void *cfg, const uint64_t *in, uint64_t *out)
 {
+    const np_wave_unit *u = &((const wave_block *)cfg)->u;
     np_wave_in x;
     np_wave_out o;
+    np_wave_jac j;
     in_of(in, &x);
-    np_wave_eval(&((const wave_block *)cfg)->u, &x, &o);
-    put_out(&o, out);
+    np_wave_eval_jac(u, &x, &o, &j);
+    put_out(&u->c, &o, &j, out);
 }
 
+/*
+ * The reference: y, dx, dz; the normal from the double terms; the fold flag
+ * as the reference's ny <= 0 (the model's flag may differ only where the
+ * reference's |ny| is within the normal's error bound: wave.jac_vs_ref).
+ */
 static void ref(const void *cfg, const uint64_t *in, double *out)
 {
+    const np_wave_unit *u = &((const wave_block *)cfg)->u;
     np_wave_in x;
     in_of(in, &x);
-    np_ref_wave(&((const wave_block *)cfg)->u, &x, out);
+    np_ref_wave(u, &x, out);
+    if (!np_wave_has_jac(&u->c))
+        return;
+    double j[6], n[3];
+    unsigned k = 3;
+    np_ref_wave_jac(u, &x, j, n);
+    if (u->c.normals)
+        for (unsigned q = 0; q < 3; q++)
+            out[k++] = n[q];
+    if (u->c.fold)
+        out[k++] = n[1] <= 0.0 ? 1.0 : 0.0;
 }
 
-static double error_bound(const void *cfg) { return np_wave_error_bound_lsb(&((const wave_block *)cfg)->u); }
+static double error_bound(const void *cfg)
+{
+    const np_wave_unit *u = &((const wave_block *)cfg)->u;
+    double e = np_wave_error_bound_lsb(u);
+    if (u->c.normals) {
+        np_wave_jac_bound b = np_wave_jac_error_bound(u);
+        for (unsigned q = 0; q < 3; q++)
+            e = fmax(e, b.nb[q] * 1024.0);
+    }
+    return e;
+}
 
 static int pipe_init(np_pipe *p, const void *cfg) { return np_wave_pipe_init(p, &((const wave_block *)cfg)->u); }
 
@@ -127,8 +201,8 @@ static void sig_set_in(void *sig, const uint64_t *in)
 
 static void sig_get_out(const void *cfg, const void *sig, uint64_t *out)
 {
-    (void)cfg;
-    put_out(&((const np_wave_sig *)sig)->out, out);
+    const np_wave_sig *s = sig;
+    put_out(&((const wave_block *)cfg)->u.c, &s->out, &s->jac, out);
 }
 
 static size_t datapath(const void *cfg, np_op *ops, size_t max)
@@ -210,13 +284,21 @@ static size_t regs(const void *cfg, np_unit_reg *out, size_t max)
     np_unit_set_reg(&g[n++], "n", 3, r->n, "u3");
     for (unsigned k = 0; k < r->n && k < NP_WAVE_MAX_TRAINS; k++) {
         const np_wave_train *t = &r->tr[k];
-        static const char *const nm[] = { "kx", "kz", "phi", "om", "amp", "airr", "cx", "cz" };
-        const uint64_t v[] = { (uint64_t)(int64_t)t->kx, (uint64_t)(int64_t)t->kz, t->phi, t->om, t->amp,
-                               t->airr, (uint64_t)(int64_t)t->cx, (uint64_t)(int64_t)t->cz };
-        static const unsigned bits[] = { 32, 32, 32, 32, 15, 15, 16, 16 };
-        static const char *const fmt[] = { "s32 Q0.32", "s32 Q0.32", "u32 Q0.32", "u32 Q0.32",
-                                           "u15 Q5.10", "u15 Q5.10", "s16 Q1.14", "s16 Q1.14" };
-        for (unsigned m = 0; m < 8; m++) {
+        static const char *const nm[] = { "kx", "kz", "phi", "om", "amp", "airr", "cx", "cz", "kmx", "kmz", "dc", "ds" };
+        const uint64_t v[] = { (uint64_t)(int64_t)t->kx,  (uint64_t)(int64_t)t->kz,  t->phi, t->om, t->amp,
+                               t->airr, (uint64_t)(int64_t)t->cx, (uint64_t)(int64_t)t->cz,
+                               (uint64_t)(int64_t)t->kmx, (uint64_t)(int64_t)t->kmz, (uint64_t)(int64_t)t->dc,
+                               (uint64_t)(int64_t)t->ds };
+        static const unsigned bits[] = { 32, 32, 32, 32, 15, 15, 16, 16, 16, 16, 32, 32 };
+        static const char *const fmt[] = { "s32 Q0.32", "s32 Q0.32", "u32 Q0.32", "u32 Q0.32", "u15 Q5.10", "u15 Q5.10",
+                                           "s16 Q1.14", "s16 Q1.14", "s16 Q3.12", "s16 Q3.12", "s32 Q1.30", "s32 Q1.30" };
+        /* kmx, kmz only with normals or fold, dc, ds only with recurrence (the default's lines are as they were). */
+        const np_wave_cfg *c = &((const wave_block *)cfg)->u.c;
+        for (unsigned m = 0; m < 12; m++) {
+            if ((m == 8 || m == 9) && !np_wave_has_jac(c))
+                continue;
+            if ((m == 10 || m == 11) && c->sincos != NP_WAVE_SINCOS_RECURRENCE)
+                continue;
             snprintf(name, sizeof name, "tr%u.%s", k, nm[m]);
             np_unit_set_reg(&g[n++], name, bits[m], v[m], fmt[m]);
         }
@@ -234,7 +316,9 @@ static size_t regs(const void *cfg, np_unit_reg *out, size_t max)
 }
 
 static const char *const conformance_configs[] = { "trains=1,irr=0,cap=0", "trains=4,regs=7", "rom_log2=6",
-                                                   "rom_log2=10,trains=3,regs=2", NULL };
+                                                   "rom_log2=10,trains=3,regs=2", "normals=1,fold=1",
+                                                   "trains=3,irr=0,fold=1,regs=5", "sincos=recurrence",
+                                                   "sincos=recurrence,reset=7,trains=3,regs=2,normals=1", NULL };
 
 const np_unit np_unit_wave = {
     .name = "wave",

@@ -232,6 +232,8 @@ void np_unit_cfg_format_opt(const np_unit *u, const void *cfg, unsigned how, cha
     for (const np_unit_key *k = u->keys; k && k->name; k++) {
         if ((how & NP_UNIT_FMT_NO_SCENE) && (k->flags & NP_UNIT_KEY_SCENE))
             continue;
+        if ((k->flags & NP_UNIT_KEY_ADDED) && !k->derive && np_unit_key_get(k, cfg) == k->def)
+            continue;
         char v[96];
         np_unit_key_text(k, cfg, v, sizeof v);
         put(buf, len, first ? "" : sep, k->name);
@@ -282,7 +284,7 @@ static int configure(const np_unit *u, void *cfg, const char *spec, int all, cha
     }
     for (size_t i = 0; i < n_keys; i++) {
         const np_unit_key *k = &u->keys[i];
-        if (all && !given[i]) {
+        if (all && !given[i] && !(k->flags & NP_UNIT_KEY_ADDED)) {
             snprintf(err, errlen, "key %s missing (a '# config' line gives every key of unit %s once)", k->name,
                      u->name);
             return -1;

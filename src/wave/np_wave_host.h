@@ -39,6 +39,13 @@ double np_wave_k_of_omega(double omega, double depth);
  */
 unsigned np_wave_quantise(const np_wave_phys *p, np_wave_regs *r, unsigned *dropped);
 
+/*
+ * sincos=recurrence's step registers from kx (np_wave.h): dc = round(2^30
+ * cos(2 pi kx / 2^32)), ds = round(2^30 sin(...)), s32 Q1.30, from the
+ * deterministic maths module (np_math), for every train k < r->n.
+ */
+void np_wave_steps(np_wave_regs *r);
+
 #ifdef __cplusplus
 } /* extern "C" */
 #endif

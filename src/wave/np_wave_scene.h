@@ -59,6 +59,7 @@ typedef struct np_wave_box {
     double hmax;           /* the OBB's half height: own and overlapping boxes' 1.3 sum (A + a), plus noise */
     double grow;           /* the OBB's sideways growth, m */
     np_wave_pt *pts;       /* its grid points in ray order */
+    np_wave_pt *gpts;      /* the same points in grid order (j, then i): np_wave_frame's order, for locality */
     size_t npts;
 } np_wave_box;
 
@@ -74,6 +75,8 @@ typedef struct np_wave_scene {
     double dt;         /* s a frame */
     unsigned effects;  /* NP_WAVE_FX_* */
     int allow_fold;
+    int reads_normals; /* "normals": true: the scene reads the unit's nx, ny, nz (key normals=1) */
+    int reads_fold;    /* "fold": true: the scene reads the unit's fold flag (key fold=1) */
     unsigned lanes;    /* train lanes of the unit (1: one train a pass) */
     double noise_amp;  /* b, m */
     double noise_rate; /* rad/s at r = 1 (PIN 4) */

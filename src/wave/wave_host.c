@@ -57,6 +57,23 @@ static uint16_t q510(double m)
     return v < 0.0 ? 0u : v > 32767.0 ? 32767u : (uint16_t)v;
 }
 
+/* rad/m as s16 Q3.12, saturated (np_wave_regs_check refuses a Jacobian out of range). */
+static int16_t q312(double k)
+{
+    double v = floor(k * 4096.0 + 0.5);
+    return v < -32768.0 ? INT16_MIN : v > 32767.0 ? INT16_MAX : (int16_t)v;
+}
+
+void np_wave_steps(np_wave_regs *r)
+{
+    for (unsigned k = 0; k < r->n && k < NP_WAVE_MAX_TRAINS; k++) {
+        double s, c;
+        np_sincos_turns(ldexp((double)r->tr[k].kx, -32), &s, &c);
+        r->tr[k].dc = (int32_t)floor(c * 1073741824.0 + 0.5);
+        r->tr[k].ds = (int32_t)floor(s * 1073741824.0 + 0.5);
+    }
+}
+
 unsigned np_wave_quantise(const np_wave_phys *p, np_wave_regs *r, unsigned *dropped)
 {
     unsigned n = 0, drop = 0;
@@ -75,6 +92,8 @@ unsigned np_wave_quantise(const np_wave_phys *p, np_wave_regs *r, unsigned *drop
         q->om = turns_u32(t->omega * p->dt / TWO_PI);
         q->amp = q510(t->amp);
         q->airr = q510(t->airr);
+        q->kmx = q312(t->kx); /* read by the unit only with normals or fold */
+        q->kmz = q312(t->kz);
         q->cx = (int16_t)floor(t->kx / kk * 16384.0 + 0.5);
         q->cz = (int16_t)floor(t->kz / kk * 16384.0 + 0.5);
         /* Rounding may make |c| exceed 1 by an LSB: shorten the longer component. */
@@ -86,6 +105,7 @@ unsigned np_wave_quantise(const np_wave_phys *p, np_wave_regs *r, unsigned *drop
         }
     }
     r->n = n;
+    np_wave_steps(r); /* read by the unit only with sincos=recurrence */
     if (dropped)
         *dropped = drop;
     return n;

@@ -186,7 +186,7 @@ int np_wave_scene_read(const char *path, np_wave_scene *s, unsigned *frames, cha
     np_wave_scene_init(s);
     static const char *const rk[] = { "noisepipe_scene", "name", "description", "waves", "terrain", "camera", "frames", NULL };
     static const char *const wk[] = { "grid", "extent", "fps", "effects", "allow_fold", "lanes", "noise_amp", "noise_rate",
-                                      "boxes", NULL };
+                                      "normals", "fold", "boxes", NULL };
     static const char *const ek[] = { "refraction", "irregular", "noise", "round", NULL };
     static const char *const tk[] = { "sea_depth", "island", NULL };
     static const char *const ik[] = { "center", "radius", "height", "noise_amp", "noise_scale", NULL };
@@ -205,7 +205,8 @@ int np_wave_scene_read(const char *path, np_wave_scene *s, unsigned *frames, cha
     if (num(&c, w, "waves", "grid", 8, 4096, &grid) || num(&c, w, "waves", "extent", 1.0, 1e6, &s->extent) ||
         num(&c, w, "waves", "fps", 1.0, 1000.0, &fps) || num(&c, w, "waves", "lanes", 1, NP_WAVE_MAX_TRAINS, &lanes) ||
         num(&c, w, "waves", "noise_amp", 0.0, 1.0, &s->noise_amp) ||
-        num(&c, w, "waves", "noise_rate", 0.0, 100.0, &s->noise_rate) || flag(&c, w, "waves", "allow_fold", &s->allow_fold))
+        num(&c, w, "waves", "noise_rate", 0.0, 100.0, &s->noise_rate) || flag(&c, w, "waves", "allow_fold", &s->allow_fold) ||
+        flag(&c, w, "waves", "normals", &s->reads_normals) || flag(&c, w, "waves", "fold", &s->reads_fold))
         goto done;
     if (grid != floor(grid) || lanes != floor(lanes)) {
         jfail(&c, "waves.grid", "grid and lanes are whole numbers");

@@ -36,7 +36,8 @@ void np_wave_scene_free(np_wave_scene *s)
 {
     for (unsigned k = 0; k < s->nbox; k++) {
         free(s->box[k].pts);
-        s->box[k].pts = NULL;
+        free(s->box[k].gpts);
+        s->box[k].pts = s->box[k].gpts = NULL;
     }
     free(s->depth);
     free(s->rate);
@@ -186,6 +187,14 @@ static uint32_t turns_u32(double x)
 }
 
 /* Walk ray by ray, cell by cell: the action points (depth) set the gain and the refraction phase. */
+/* Grid order: j, then i. */
+static int pt_grid_order(const void *a, const void *b)
+{
+    const np_wave_pt *p = a, *q = b;
+    uint32_t ka = (uint32_t)p->j << 16 | p->i, kb = (uint32_t)q->j << 16 | q->i;
+    return (ka > kb) - (ka < kb);
+}
+
 static int build_points(const np_wave_scene *s, np_wave_box *b)
 {
     unsigned dom = 0;
@@ -199,7 +208,8 @@ static int build_points(const np_wave_scene *s, np_wave_box *b)
     double ux = b->ux, uz = b->uz, sp = s->spacing;
     ray_state st = { b, s, 0, 0, 0 };
     free(b->pts);
-    b->pts = NULL;
+    free(b->gpts);
+    b->pts = b->gpts = NULL;
     b->npts = 0;
     for (unsigned r = 0; r < b->rays; r++) {
         double acc = 0.0, phr = 0.0;
@@ -232,7 +242,17 @@ static int build_points(const np_wave_scene *s, np_wave_box *b)
             cell_points(b, sp, s->grid, a, r, add_pt, &st);
         }
     }
-    return st.cap == 0 || b->pts ? 0 : -1;
+    if (st.cap != 0 && !b->pts)
+        return -1;
+    /* The grid-order copy: a box's points are distinct grid points, so (j, i) orders them totally. */
+    if (b->npts) {
+        b->gpts = malloc(b->npts * sizeof *b->gpts);
+        if (!b->gpts)
+            return -1;
+        memcpy(b->gpts, b->pts, b->npts * sizeof *b->gpts);
+        qsort(b->gpts, b->npts, sizeof *b->gpts, pt_grid_order);
+    }
+    return 0;
 }
 
 /* --- prepare --- */
@@ -544,7 +564,7 @@ uint64_t np_wave_frame(const np_wave_scene *s, const np_wave_plan *p, uint32_t t
         for (size_t q0 = 0; np && q0 < b->npts; q0 += RUN) {
             size_t m = b->npts - q0 < RUN ? b->npts - q0 : RUN;
             for (size_t q = 0; q < m; q++) {
-                const np_wave_pt *pt = &b->pts[q0 + q];
+                const np_wave_pt *pt = &b->gpts[q0 + q];
                 np_wave_in x = { pt->i, pt->j, t, pt->ph, pt->a, pt->b, 0, pt->g };
                 in[q] = x;
             }
