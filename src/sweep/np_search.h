@@ -65,16 +65,18 @@ enum {
     NP_SEARCH_CHUNK = 4096, /* inputs per chunk */
     NP_SEARCH_WORST = 8,    /* W: worst inputs kept, and climbed from */
     NP_SEARCH_WAVE = 8,     /* chunks per wave (stop_early looks between waves) */
-    NP_SEARCH_CLASSES = 6
+    NP_SEARCH_CLASSES = 6,
+    NP_SEARCH_MIN_IN = 2,   /* inputs of a unit the search runs: 2..5 u16 words (x, y, z, w, v) */
+    NP_SEARCH_MAX_IN = 5
 };
 
 /* The input classes (index into np_search_stats.cls_n / cls_max). */
 enum { NP_SC_EXTREME, NP_SC_LATTICE, NP_SC_FACE, NP_SC_ROUNDING, NP_SC_RANDOM, NP_SC_CLIMB };
 extern const char *const np_search_class_name[NP_SEARCH_CLASSES];
 
-/* One input and its error (largest over the fields, LSB). */
+/* One input (the unit's n words; the rest 0) and its error (largest over the fields, LSB). */
 typedef struct np_search_pt {
-    uint16_t in[3];
+    uint16_t in[NP_SEARCH_MAX_IN];
     double err;
 } np_search_pt;
 
@@ -120,6 +122,7 @@ typedef struct np_search_result {
     np_search_stats total;
     np_search_verdict verdict;
     double bound;        /* unit->error_bound_lsb(cfg) */
+    unsigned dims;       /* the unit's inputs (0 is read as 3: a result filled in by hand) */
     np_search_pt worst;  /* the input of the largest output error (the counterexample when over) */
     uint64_t chunks, chunks_resumed;
     unsigned threads;

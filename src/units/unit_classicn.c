@@ -82,6 +82,19 @@ static void trace(const void *cfg, unsigned k, const void *sig, np_trace *t, siz
 
 static const char *const conf_configs[] = { "out_bits=16", "out_bits=8,s_frac=6,lerp_frac=6", NULL };
 
+/*
+ * The search's objective (np_unit.fine_cfg): the output rounded to WL
+ * fraction bits (out_bits = WL + I, at most 16), every internal width
+ * unchanged: the error before O's rounding.
+ */
+static void fine_cfg(const void *cfg, void *fine)
+{
+    cln_block *k = fine;
+    *k = *(const cln_block *)cfg;
+    unsigned b = k->c.lerp_frac + np_classicn_int_bits(k->c.dims);
+    k->c.out_bits = b < NP_CLASSICN_OUT_MAX ? b : NP_CLASSICN_OUT_MAX;
+}
+
 #define CLASSICN_UNIT(N)                                                                                         \
     static unsigned s_frac_def##N(const void *c) { return s_frac_def(N, c); }                                 \
     static unsigned lerp_frac_def##N(const void *c) { return lerp_frac_def(N, c); }                           \
@@ -123,6 +136,7 @@ static const char *const conf_configs[] = { "out_bits=16", "out_bits=8,s_frac=6,
         .datapath = datapath,                                                                                   \
         .trace = trace,                                                                                         \
         .conformance_configs = conf_configs,                                                                    \
+        .fine_cfg = fine_cfg,                                                                                   \
     };
 
 CLASSICN_UNIT(2)

@@ -206,6 +206,18 @@ size_t np_ndim_boundary(unsigned n, uint64_t (*in)[NP_UNIT_MAX_FIELDS], size_t m
 
 static const char *const conf_configs[] = { "out_bits=8", "out_bits=12,t_frac=8,p_frac=8", NULL };
 
+/*
+ * The search's objective (np_unit.fine_cfg): f rounded to 20 fraction bits
+ * (the widest output), WT and WP unchanged: the error before the output
+ * rounding, to 1/16 LSB or finer.
+ */
+static void fine_cfg(const void *cfg, void *fine)
+{
+    sxn_block *k = fine;
+    *k = *(const sxn_block *)cfg;
+    k->c.out_bits = NP_SIMPLEXN_OUT_MAX;
+}
+
 #define SIMPLEXN_UNIT(N)                                                                                        \
     static unsigned t_frac_def##N(const void *c) { return t_frac_def(N, c); }                                \
     static unsigned p_frac_def##N(const void *c) { return p_frac_def(N, c); }                                \
@@ -251,6 +263,7 @@ static const char *const conf_configs[] = { "out_bits=8", "out_bits=12,t_frac=8,
         .datapath = datapath##N,                                                                               \
         .trace = trace_sig,                                                                                    \
         .conformance_configs = conf_configs,                                                                   \
+        .fine_cfg = fine_cfg,                                                                                  \
     };
 
 SIMPLEXN_UNIT(2)
