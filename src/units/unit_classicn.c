@@ -118,6 +118,13 @@ static void fine_cfg(const void *cfg, void *fine)
         (void)c;                                                                                                \
         return np_ndim_boundary(N, in, max);                                                                    \
     }                                                                                                           \
+    extern const np_unit np_unit_classic##N;                                                                    \
+    static int cfg_scene##N(void *c, const struct np_scene *sc, char *err, size_t errlen)                       \
+    {                                                                                                           \
+        (void)err;                                                                                              \
+        (void)errlen;                                                                                           \
+        return np_ndim_cfg_scene(&np_unit_classic##N, c, sc);                                                   \
+    }                                                                                                           \
     const np_unit np_unit_classic##N = {                                                                        \
         .name = "classic" #N,                                                                                   \
         .summary = #N "-D classic gradient noise, 8.8 inputs, 2^" #N " corner lanes "                         \
@@ -137,6 +144,7 @@ static void fine_cfg(const void *cfg, void *fine)
         .trace = trace,                                                                                         \
         .conformance_configs = conf_configs,                                                                    \
         .fine_cfg = fine_cfg,                                                                                   \
+        .cfg_scene = cfg_scene##N,                                                                              \
     };
 
 CLASSICN_UNIT(2)
