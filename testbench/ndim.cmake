@@ -22,3 +22,7 @@ np_add_cases(test_ndim_scene ndim scene_continuity scene_keys)
 # `noisepipe render` on it: every frame's image and reference against vectors/images/anim4d_hashes.txt.
 add_test(NAME ndim.scene_hashes COMMAND $<TARGET_FILE:noisepipe> render ${PROJECT_SOURCE_DIR}/vectors/scenes/anim4d.json
   -o ${CMAKE_CURRENT_BINARY_DIR}/anim4d-scene --hashes ${PROJECT_SOURCE_DIR}/vectors/images/anim4d_hashes.txt)
+# --frames on a scene without a time axis (wood): refused, exit 2, the message naming the scene.
+add_test(NAME ndim.scene_frames_refused COMMAND ${CMAKE_COMMAND} -DCHECK=exit
+  "-DARGS=render|--frames|2|-o|${CMAKE_CURRENT_BINARY_DIR}/anim4d-refused" -DEXPECT=2
+  "-DMATCH=--frames: scene wood has no time axis" ${np_sweep_script})

@@ -473,6 +473,11 @@ static int render_scene(const opts *o, const char *path, hash_list *hashes)
         np_err(CMD, "%s", err);
         return NP_EXIT_USAGE;
     }
+    if (o->frames && !sc.noise.present) {
+        np_err(CMD, "--frames: scene %s has no time axis (its texture has no \"noise\" section)", sc.name);
+        np_scene_free(&sc);
+        return NP_EXIT_USAGE;
+    }
     if (sc.noise.present) {
         int r = render_noise_scene(o, &sc, path, hashes);
         np_scene_free(&sc);
