@@ -32,15 +32,7 @@ const char *np_search_unit_check(const np_unit *u, const void *cfg)
         return np_sweep_unit_check(u, cfg);
     if (f.n_in < NP_SEARCH_MIN_IN || f.n_in > NP_SEARCH_MAX_IN)
         return "the search needs a unit with 2 to 5 inputs (x, y, z, w, v)";
-    for (unsigned k = 0; k < f.n_in; k++)
-        if (f.in[k].bits != 16 || f.in[k].is_signed)
-            return "the search needs u16 inputs";
-    if (f.n_out < 1)
-        return "the unit has no output";
-    for (unsigned k = 0; k < f.n_out; k++)
-        if (f.out[k].bits > (f.out[k].is_signed ? 32u : 31u))
-            return "the search handles output fields of at most 32 bits";
-    return NULL;
+    return np_sweep_fields_check(&f, "search", "x, y, ...");
 }
 
 typedef struct search_unit {
