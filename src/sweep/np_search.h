@@ -2,7 +2,13 @@
 /*
  * np_search.h - the adversarial error search (docs/search.md): the bit-exact
  * model against the float reference on the inputs most likely to break the
- * 1 LSB contract, for a unit with inputs x, y, z (u16 each), on all cores.
+ * 1 LSB contract, for a unit with inputs x, y, z (u16 each), on all cores;
+ * also for a unit of n = 2, 4 or 5 u16 inputs (the n-D noise units), each
+ * class below taken over n axes as docs/search.md, "n inputs", says: 12^n
+ * extremes (7^5 at n = 5), faces of every size (2..n words or fractions
+ * equal), worst rounding from the fine output's distance to a tie when the
+ * unit has no classes of its own, the climb's combinations of -2..+2 (n <= 3)
+ * or -1..+1 (n >= 4). A 3-input unit's inputs and results are unchanged.
  *
  * Input classes, each a share of the budget N (after the extremes, of every
  * 16 chunks 6 random, 6 rounding, 2 faces, 2 lattice; the last quarter of N
