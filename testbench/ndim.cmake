@@ -18,7 +18,7 @@ add_test(NAME ndim.anim4d_frames COMMAND ${CMAKE_COMMAND} -DNOISEPIPE=$<TARGET_F
 np_test_program(test_ndim_scene test_ndim_scene.c)
 target_link_libraries(test_ndim_scene PRIVATE np_render)
 target_compile_definitions(test_ndim_scene PRIVATE NP_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
-np_add_cases(test_ndim_scene ndim scene_continuity scene_keys)
+np_add_cases(test_ndim_scene ndim scene_continuity scene_keys scene_classic4)
 # `noisepipe render` on it: every frame's image and reference against vectors/images/anim4d_hashes.txt.
 add_test(NAME ndim.scene_hashes COMMAND $<TARGET_FILE:noisepipe> render ${PROJECT_SOURCE_DIR}/vectors/scenes/anim4d.json
   -o ${CMAKE_CURRENT_BINARY_DIR}/anim4d-scene --hashes ${PROJECT_SOURCE_DIR}/vectors/images/anim4d_hashes.txt)
