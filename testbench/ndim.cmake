@@ -14,3 +14,15 @@ add_test(NAME ndim.report_dims_fresh COMMAND ${CMAKE_COMMAND} -DNOISEPIPE=$<TARG
 # The time-varying solid texture through 4-D noise: frames written, moving, deterministic.
 add_test(NAME ndim.anim4d_frames COMMAND ${CMAKE_COMMAND} -DNOISEPIPE=$<TARGET_FILE:noisepipe>
   -DOUT=${CMAKE_CURRENT_BINARY_DIR}/anim4d-test -P ${CMAKE_CURRENT_SOURCE_DIR}/ndim_anim.cmake)
+# The 4-D texture as a scene of the scene pipeline (vectors/scenes/anim4d.json, src/render/np_noisetex.h).
+np_test_program(test_ndim_scene test_ndim_scene.c)
+target_link_libraries(test_ndim_scene PRIVATE np_render)
+target_compile_definitions(test_ndim_scene PRIVATE NP_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+np_add_cases(test_ndim_scene ndim scene_continuity scene_keys scene_classic4)
+# `noisepipe render` on it: every frame's image and reference against vectors/images/anim4d_hashes.txt.
+add_test(NAME ndim.scene_hashes COMMAND $<TARGET_FILE:noisepipe> render ${PROJECT_SOURCE_DIR}/vectors/scenes/anim4d.json
+  -o ${CMAKE_CURRENT_BINARY_DIR}/anim4d-scene --hashes ${PROJECT_SOURCE_DIR}/vectors/images/anim4d_hashes.txt)
+# --frames on a scene without a time axis (wood): refused, exit 2, the message naming the scene.
+add_test(NAME ndim.scene_frames_refused COMMAND ${CMAKE_COMMAND} -DCHECK=exit
+  "-DARGS=render|--frames|2|-o|${CMAKE_CURRENT_BINARY_DIR}/anim4d-refused" -DEXPECT=2
+  "-DMATCH=--frames: scene wood has no time axis" ${np_sweep_script})

@@ -124,7 +124,12 @@ add_test(NAME sweep.cli_usage COMMAND ${CMAKE_COMMAND} -DCHECK=usage ${np_sweep_
 np_test_program(test_search test_search.c)
 np_add_cases(test_search search
   classic3_s8_l9_counterexample classic3_s9_l8_counterexample simplex3_t19_p19_counterexample
-  simplex3_t19_p21_pinned defaults_faithful classes threads journal_resume journal_refuse)
+  simplex3_t19_p21_pinned defaults_faithful classes threads journal_resume journal_refuse
+  ndim_defaults ndim_counterexample)
+# n-input units (issue 18): the command names all n words of the worst input.
+add_test(NAME search.cli_ndim COMMAND ${CMAKE_COMMAND} -DCHECK=exit
+  "-DARGS=search|--unit|simplex5|-n|8192" -DEXPECT=0
+  "-DMATCH=at \\(0x[0-9a-f]+, 0x[0-9a-f]+, 0x[0-9a-f]+, 0x[0-9a-f]+, 0x[0-9a-f]+\\).*verdict: faithful \\(proved\\)" ${np_sweep_script})
 # The command: a counterexample is exit 1 with the verdict; bad usage is exit 2.
 add_test(NAME search.cli_counterexample COMMAND ${CMAKE_COMMAND} -DCHECK=exit
   "-DARGS=search|--unit|classic3|--config|s_frac=4,lerp_frac=6|-n|4096"

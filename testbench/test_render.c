@@ -162,7 +162,7 @@ static int scene_errors(void)
         { "\"name\": \"t\",", "\"name\": \"t\"", "bad.json:2:" },                       /* missing comma */
         { "\"width\": 64, ", "", "field 'image.width': missing (expected an integer in 1..4096)" },
         { "\"eye\": [0, 0, 5]", "\"eye\": [0, 5]", "field 'camera.eye': expected an array of 3 numbers" },
-        { "\"colormap\"", "\"colourmap\"", "field 'texture.colourmap': unknown field (expected one of: quadric, octaves, colormap)" },
+        { "\"colormap\"", "\"colourmap\"", "field 'texture.colourmap': unknown field (expected one of: quadric, octaves, colormap, noise)" },
         { "[[0,0,0],[255,255,255]]", "[[0,0,0],[300,0,0]]", "field 'texture.colormap.colors[1][0]': expected an integer in 0..255" },
         { "\"clamp\"", "\"repeat\"", "ok" },
         { "[[0,0,0],[255,255,255]]", "[[0,0,0],[1,1,1],[2,2,2]]", "ok" },

@@ -65,9 +65,10 @@ static void print_result(const char *what, const np_search_result *r)
 {
     char v[160];
     np_search_verdict_text(r, v, sizeof v);
-    printf("%s: %llu inputs, %llu over 1 LSB, max error %.6f LSB at (0x%04x, 0x%04x, 0x%04x), bound %.4f LSB: %s\n",
+    printf("%s: %llu inputs, %llu over 1 LSB, max error %.6f LSB at (0x%04x, 0x%04x, 0x%04x, 0x%04x, 0x%04x), "
+           "bound %.4f LSB: %s\n",
            what, (unsigned long long)r->total.n, (unsigned long long)r->total.over, r->worst.err, r->worst.in[0],
-           r->worst.in[1], r->worst.in[2], r->bound, v);
+           r->worst.in[1], r->worst.in[2], r->worst.in[3], r->worst.in[4], r->bound, v);
 }
 
 /*
@@ -393,6 +394,97 @@ static int t_journal_refuse(void)
     return 0;
 }
 
+/* --- n-input units (n = 2, 4, 5: issue 18's simplexn and classicn) --- */
+
+static const char *const ndim_units[6] = { "simplex2", "simplex4", "simplex5", "classic2", "classic4", "classic5" };
+
+/*
+ * Every n-D default: proved faithful by its bound, and the search over all
+ * its classes (extremes 12^n, lattice, faces of every size, worst rounding
+ * through the fine output, random, climb) finds nothing over it; the worst
+ * input has the unit's n words.
+ */
+static int t_ndim_defaults(void)
+{
+    for (unsigned i = 0; i < 6; i++) {
+        np_unit_cfg cfg;
+        const np_unit *u = configure(ndim_units[i], &cfg, NULL);
+        np_search_result r;
+        np_unit_fields f;
+        if (!u || search(u, &cfg, 131072, 0, &r) != 0)
+            continue;
+        u->fields(&cfg, &f);
+        print_result(ndim_units[i], &r);
+        NP_CHECK(r.dims == f.n_in && f.n_in != 3, "%s: dims %u, %u inputs", ndim_units[i], r.dims, f.n_in);
+        NP_CHECK(u->fine_cfg != NULL, "%s: no finer output for the climb and the rounding class", ndim_units[i]);
+        NP_CHECK(r.verdict == NP_SEARCH_PROVED && r.total.over == 0 && r.worst.err <= r.bound,
+                 "%s default: error %.6f, bound %.6f, %llu over", ndim_units[i], r.worst.err, r.bound,
+                 (unsigned long long)r.total.over);
+        for (unsigned c = 0; c < NP_SEARCH_CLASSES; c++)
+            NP_CHECK(r.total.cls_n[c] > 0, "%s: class %s empty", ndim_units[i], np_search_class_name[c]);
+        for (unsigned a = f.n_in; a < NP_SEARCH_MAX_IN; a++)
+            NP_CHECK(r.worst.in[a] == 0, "%s: word %u of the worst input set", ndim_units[i], a);
+    }
+    return 0;
+}
+
+/*
+ * Narrow n-D configurations are caught: the counterexample printed with the
+ * unit's n words, over 1 LSB when evaluated again; the same bits on one and
+ * two threads; a 4-D journal resumes to the same bits.
+ */
+static int t_ndim_counterexample(void)
+{
+    static const struct {
+        const char *unit, *cfg;
+    } bad[] = { { "simplex4", "out_bits=12,t_frac=8,p_frac=8" }, { "classic2", "out_bits=8,s_frac=4,lerp_frac=6" } };
+    for (unsigned i = 0; i < 2; i++) {
+        np_unit_cfg cfg;
+        const np_unit *u = configure(bad[i].unit, &cfg, bad[i].cfg);
+        np_search_result r1, r2;
+        if (!u || search(u, &cfg, 16384, 1, &r1) != 0 || search(u, &cfg, 16384, 2, &r2) != 0)
+            continue;
+        char v[160];
+        np_search_verdict_text(&r1, v, sizeof v);
+        printf("%s %s: %s (error %.4f LSB)\n", bad[i].unit, bad[i].cfg, v, r1.worst.err);
+        np_unit_fields f;
+        u->fields(&cfg, &f);
+        uint64_t in[NP_UNIT_MAX_FIELDS] = { 0 }, out[NP_UNIT_MAX_FIELDS];
+        double ref[NP_UNIT_MAX_FIELDS];
+        for (unsigned a = 0; a < f.n_in; a++)
+            in[a] = r1.worst.in[a];
+        u->eval(&cfg, in, out);
+        u->ref(&cfg, in, ref);
+        double e = fabs(np_unit_field_value(&f.out[0], out[0]) - ref[0]) * ldexp(1.0, (int)f.out[0].frac);
+        unsigned commas = 0;
+        for (const char *p = v; *p; p++)
+            commas += *p == ',';
+        NP_CHECK(r1.verdict == NP_SEARCH_COUNTEREXAMPLE && e > 1.0 && e == r1.worst.err,
+                 "%s %s: verdict %d, error again %.4f", bad[i].unit, bad[i].cfg, (int)r1.verdict, e);
+        NP_CHECK(commas == f.n_in, "%s: '%s' does not name %u words", bad[i].unit, v, f.n_in);
+        NP_CHECK(same_result(&r1, &r2), "%s: the thread count changed the result", bad[i].unit);
+    }
+    np_unit_cfg cfg;
+    const np_unit *u = configure("simplex4", &cfg, NULL);
+    char path[] = "/tmp/np_search_journal4_XXXXXX";
+    if (!u || free_path(path) != 0)
+        return 0;
+    np_search_opts o = journal_opts(u, &cfg, path);
+    np_search_result full, again;
+    char err[512];
+    NP_CHECK(np_search_run(&o, &full, err, sizeof err) == 0, "%s", err);
+    static char buf[1 << 16];
+    size_t n = slurp(path, buf, sizeof buf);
+    NP_CHECK(strstr(buf, "at=0x") != NULL && n > 0, "no field line in the 4-D journal");
+    spit(path, buf, after_record(buf, n, 3));
+    o.resume = 1;
+    NP_CHECK(np_search_run(&o, &again, err, sizeof err) == 0, "%s", err);
+    NP_CHECK(again.chunks_resumed == 3 && same_result(&full, &again), "4-D journal: resumed %llu chunks, same %d",
+             (unsigned long long)again.chunks_resumed, same_result(&full, &again));
+    remove(path);
+    return 0;
+}
+
 static const np_test_case cases[] = {
     { "classic3_s8_l9_counterexample", t_classic3_s8_l9 },
     { "classic3_s9_l8_counterexample", t_classic3_s9_l8 },
@@ -403,6 +495,8 @@ static const np_test_case cases[] = {
     { "threads", t_threads },
     { "journal_resume", t_journal_resume },
     { "journal_refuse", t_journal_refuse },
+    { "ndim_defaults", t_ndim_defaults },
+    { "ndim_counterexample", t_ndim_counterexample },
     { NULL, NULL },
 };
 

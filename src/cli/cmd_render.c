@@ -14,6 +14,7 @@
 #include "np_cli.h"
 #include "np_cmd.h"
 #include "np_image.h"
+#include "np_noisetex.h"
 #include "np_render.h"
 #include "np_texreg.h"
 #include "unit_span.h"
@@ -54,6 +55,8 @@ static void usage(FILE *f)
           "                       exit 1 on any change\n"
           "  --write-hashes FILE  write the images' hashes to FILE\n"
           "  --ppm                also write PPM files (their sha256sum is the hash)\n"
+          "  --frames N           a scene whose texture reads a 4-D noise unit (texture.noise):\n"
+          "                       render frames 0..N-1 (default: the scene's frames)\n"
           "  --aa m=2|3|4,...     the adaptive supersampling report of seed 001 instead\n"
           "                       (noisepipe render --aa m=3 --help; docs/aacount.md)\n"
           "  --report DIR         the same as noisepipe report runtime -o DIR (error against\n"
@@ -82,6 +85,7 @@ typedef struct opts {
     double zoom_levels;
     const char *hashes, *write_hashes, *report;
     unsigned repeat;
+    unsigned frames; /* --frames (0: the scene's) */
     const char *scenes[MAX_SCENES];
     unsigned n_scenes;
 } opts;
@@ -277,6 +281,15 @@ static int parse_opts(int argc, char **argv, opts *o)
             }
         } else if (strcmp(argv[i], "--hatch-table") == 0) {
             o->hatch_table = 1;
+        } else if ((r = opt_value(argc, argv, &i, "--frames", &v))) {
+            uint64_t n;
+            if (r < 0)
+                return -1;
+            if (np_parse_u64(v, 1, 100, &n)) {
+                np_err(CMD, "--frames %s: expected an integer in 1..100", v);
+                return -1;
+            }
+            o->frames = (unsigned)n;
         } else if (strcmp(argv[i], "--no-check") == 0) {
             o->check = 0;
         } else if (strcmp(argv[i], "--sized") == 0) {
@@ -404,6 +417,114 @@ static int write_unit_images(const opts *o, const np_render_frame *fr, const cha
     return 0;
 }
 
+static uint8_t round8(double v)
+{
+    double r = floor(v + 0.5);
+    return (uint8_t)(r < 0.0 ? 0.0 : r > 255.0 ? 255.0 : r);
+}
+
+/*
+ * A scene whose texture reads a 4-D noise unit (texture.noise, np_noisetex.h):
+ * frames 0..N-1 through the G-buffer, each shaded on the unit's bit-exact
+ * model (its cycle model cross-checked) and the float reference;
+ * DIR/NAME_UNIT-fNN.png and DIR/NAME_ref-fNN.png, hashes "UNIT-fNN" and
+ * "ref-fNN". Returns NP_EXIT_*.
+ */
+static int render_noise_scene(const opts *o, const np_scene *sc, const char *path, hash_list *hashes)
+{
+    np_noisetex t;
+    np_gbuf g;
+    char err[1024], base[4096], hex[65], img[16], cfgtxt[256];
+    const np_unit *nu = np_unit_find(sc->noise.unit);
+    int ui = nu ? unit_index(nu->name) : -1;
+    if (np_noisetex_init(&t, sc, ui >= 0 ? &o->ucfg[ui] : NULL, err, sizeof err) != 0) {
+        np_err(CMD, "%s", err);
+        return NP_EXIT_USAGE;
+    }
+    if (np_gbuf_build(sc, 1, &g, err, sizeof err) != 0) {
+        np_err(CMD, "%s: %s", path, err);
+        return NP_EXIT_USAGE;
+    }
+    if (np_mkdir_p(o->out) != 0) {
+        np_err(CMD, "%s: cannot create: %s", o->out, strerror(errno));
+        np_gbuf_free(&g);
+        return NP_EXIT_USAGE;
+    }
+    np_unit_cfg_format_opt(t.u, &t.cfg, NP_UNIT_FMT_COMMAS, cfgtxt, sizeof cfgtxt);
+    unsigned frames = o->frames ? o->frames : sc->noise.frames;
+    size_t npix = (size_t)sc->width * sc->height;
+    uint8_t *rgb = malloc(npix * 3), *ref8 = malloc(npix * 3);
+    double *ref = malloc(npix * 3 * sizeof *ref);
+    int rc = NP_EXIT_OK;
+    if (!rgb || !ref8 || !ref) {
+        np_err(CMD, "out of memory");
+        rc = NP_EXIT_USAGE;
+        goto out;
+    }
+    printf("scene %s (%s): %ux%u, %llu pixels, %u octave%s of %s (%s), time w = 0x%04x + f * 0x%04x (u16 Q8.8), "
+           "%u frame%s\n",
+           sc->name, path, sc->width, sc->height, (unsigned long long)g.covered_pixels, sc->tex.n_oct,
+           sc->tex.n_oct == 1 ? "" : "s", t.u->name, cfgtxt, sc->noise.w0, sc->noise.dw, frames,
+           frames == 1 ? "" : "s");
+    for (unsigned f = 0; f < frames; f++) {
+        np_noisetex_stats st;
+        if (np_noisetex_frame(&t, &g, f, o->cycles, rgb, ref, NULL, &st, err, sizeof err) != 0) {
+            np_err(CMD, "%s", err);
+            rc = NP_EXIT_USAGE;
+            goto out;
+        }
+        for (size_t i = 0; i < npix * 3; i++)
+            ref8[i] = round8(ref[i]);
+        printf("  frame %2u  w 0x%04x  texture max %.3f LSB, >1 LSB: %llu of %llu channels", f, st.w, st.max_lsb,
+               (unsigned long long)st.over_one, (unsigned long long)(3 * st.samples));
+        if (sc->light_image)
+            printf(" (lit %.3f)", st.max_lit_lsb);
+        printf("; %llu %s transactions", (unsigned long long)st.transactions, t.u->name);
+        if (o->cycles)
+            printf(", cycle model %llu clocks%s", (unsigned long long)st.cycles,
+                   st.cycle_mismatch ? "  CYCLE MODEL DIFFERS" : "");
+        printf("\n");
+        if (st.cycle_mismatch) {
+            np_err(CMD, "%s: frame %u: %s's cycle-accurate model differs from its bit-exact model", sc->name, f,
+                   t.u->name);
+            rc = NP_EXIT_FAIL;
+        }
+        if (o->check && st.max_lsb > o->tolerance) {
+            printf("  FAIL: frame %u max error %.3f LSB exceeds the tolerance %.3f LSB\n", f, st.max_lsb,
+                   o->tolerance);
+            rc = NP_EXIT_FAIL;
+        }
+        for (int k = 0; k < 2; k++) {
+            const char *who = k ? "ref" : t.u->name;
+            const uint8_t *im = k ? ref8 : rgb;
+            snprintf(base, sizeof base, "%s/%s_%s-f%02u.png", o->out, sc->name, who, f);
+            if (np_image_write_png(base, sc->width, sc->height, im, err, sizeof err) != 0) {
+                np_err(CMD, "%s", err);
+                rc = NP_EXIT_USAGE;
+                goto out;
+            }
+            if (o->ppm) {
+                snprintf(base, sizeof base, "%s/%s_%s-f%02u.ppm", o->out, sc->name, who, f);
+                if (np_image_write_ppm(base, sc->width, sc->height, im, err, sizeof err) != 0) {
+                    np_err(CMD, "%s", err);
+                    rc = NP_EXIT_USAGE;
+                    goto out;
+                }
+            }
+            np_image_hash(sc->width, sc->height, im, hex);
+            snprintf(img, sizeof img, "%.8s-f%02u", who, f % 100u);
+            np_render_hash_add(hashes, sc->name, img, hex, k ? "-" : cfgtxt);
+        }
+    }
+    printf("  images: %s/%s_{%s,ref}-f00..f%02u.png\n", o->out, sc->name, t.u->name, frames - 1u);
+out:
+    free(rgb);
+    free(ref8);
+    free(ref);
+    np_gbuf_free(&g);
+    return rc;
+}
+
 /* Render one scene with every unit that renders it; appends its hashes. Returns NP_EXIT_*. */
 static int render_scene(const opts *o, const char *path, hash_list *hashes)
 {
@@ -419,6 +540,16 @@ static int render_scene(const opts *o, const char *path, hash_list *hashes)
         return NP_EXIT_USAGE;
     }
     sc.size_registers = o->sized;
+    if (o->frames && !sc.noise.present) {
+        np_err(CMD, "--frames: scene %s has no time axis (its texture has no \"noise\" section)", sc.name);
+        np_scene_free(&sc);
+        return NP_EXIT_USAGE;
+    }
+    if (sc.noise.present) {
+        int r = render_noise_scene(o, &sc, path, hashes);
+        np_scene_free(&sc);
+        return r;
+    }
     if (np_render_prepare(&sc, &fr, err, sizeof err)) {
         np_err(CMD, "%s", err);
         np_scene_free(&sc);

@@ -14,7 +14,8 @@ static const char usage_text[] =
     "usage: noisepipe search --unit U [--config K=V,...] [-n N] [--seed S] [--threads T]\n"
     "                        [--journal FILE [--resume]]\n"
     "\n"
-    "Tries N inputs chosen to break the unit's 1 LSB contract (a unit with inputs x, y, z):\n"
+    "Tries N inputs chosen to break the unit's 1 LSB contract (a unit with 2 to 5 u16 inputs:\n"
+    "x, y, z of the 3-D units, x .. w or x .. v of the n-D ones):\n"
     "extremes and the boundary table, lattice points and cell faces, equal offsets and the\n"
     "unit's own faces, the fractions where the internal roundings are worst (derived from\n"
     "the configuration's formats), seeded random inputs, and a hill-climb around the worst\n"
@@ -23,7 +24,7 @@ static const char usage_text[] =
     "<= 1 LSB), 'no counterexample in N adversarial inputs', or 'not faithful,\n"
     "counterexample (x, y, z)' with the model's output and the true value.\n"
     "\n"
-    "  --unit U         the unit (classic3, simplex3: `noisepipe units` lists them)\n"
+    "  --unit U         the unit (classic3, simplex3, simplex4, classic5, ...: `noisepipe units`)\n"
     "  --config K=V,... its configuration (default: the unit's default)\n"
     "  -n N             inputs to evaluate in all (default 1000000, at least 4096)\n"
     "  --seed S         the generator's seed (default 1); same seed, same result, for any\n"
@@ -33,6 +34,18 @@ static const char usage_text[] =
     "  --resume         continue FILE (refused when written for another unit, config, seed or N)\n"
     "\n"
     "Exit status: 0 when no input is over 1 LSB, 1 on a counterexample, 2 on bad usage.\n";
+
+/* The unit's n input words of p as "(0xXXXX, 0xYYYY, ...)", and as words for eval. */
+static const char *point_text(const np_search_pt *p, unsigned dims, char *buf, size_t len, uint64_t *in)
+{
+    snprintf(buf, len, "(");
+    for (unsigned a = 0; a < NP_UNIT_MAX_FIELDS; a++)
+        in[a] = a < dims ? p->in[a] : 0;
+    for (unsigned a = 0; a < dims; a++)
+        snprintf(buf + strlen(buf), len - strlen(buf), "%s0x%04x", a ? ", " : "", p->in[a]);
+    snprintf(buf + strlen(buf), len - strlen(buf), ")");
+    return buf;
+}
 
 static void print_result(const np_unit *u, const void *cfg, const np_search_opts *o, const np_search_result *r)
 {
@@ -50,14 +63,15 @@ static void print_result(const np_unit *u, const void *cfg, const np_search_opts
                    s->cls_max[c]);
     for (unsigned k = 0; k < f.n_out; k++) {
         const np_search_pt *p = &s->fmax[k];
-        uint64_t in[NP_UNIT_MAX_FIELDS] = { p->in[0], p->in[1], p->in[2] }, out[NP_UNIT_MAX_FIELDS];
+        uint64_t in[NP_UNIT_MAX_FIELDS], out[NP_UNIT_MAX_FIELDS];
+        char at[64];
         double ref[NP_UNIT_MAX_FIELDS], sc = ldexp(1.0, (int)f.out[k].frac);
+        point_text(p, f.n_in, at, sizeof at, in);
         u->eval(cfg, in, out);
         u->ref(cfg, in, ref);
-        printf("field %-6s max error %.6f LSB at (0x%04x, 0x%04x, 0x%04x): output %.0f LSB, true %.6f LSB; "
+        printf("field %-6s max error %.6f LSB at %s: output %.0f LSB, true %.6f LSB; "
                "over 1 LSB: %" PRIu64 "\n",
-               f.out[k].name, p->err, p->in[0], p->in[1], p->in[2], np_unit_field_value(&f.out[k], out[k]) * sc,
-               ref[k] * sc, s->fover[k]);
+               f.out[k].name, p->err, at, np_unit_field_value(&f.out[k], out[k]) * sc, ref[k] * sc, s->fover[k]);
     }
     printf("inputs over %g LSB   %" PRIu64 "\n", u->tolerance_lsb, s->over);
     printf("error bound         %.6f LSB (the unit's error argument)%s\n", r->bound,
@@ -67,9 +81,10 @@ static void print_result(const np_unit *u, const void *cfg, const np_search_opts
     np_search_verdict_text(r, verdict, sizeof verdict);
     printf("verdict: %s", verdict);
     if (r->verdict == NP_SEARCH_COUNTEREXAMPLE) {
-        uint64_t in[NP_UNIT_MAX_FIELDS] = { r->worst.in[0], r->worst.in[1], r->worst.in[2] },
-                 out[NP_UNIT_MAX_FIELDS];
+        uint64_t in[NP_UNIT_MAX_FIELDS], out[NP_UNIT_MAX_FIELDS];
         double ref[NP_UNIT_MAX_FIELDS];
+        char at[64];
+        point_text(&r->worst, f.n_in, at, sizeof at, in);
         u->eval(cfg, in, out);
         u->ref(cfg, in, ref);
         for (unsigned k = 0; k < f.n_out; k++) {

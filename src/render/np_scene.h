@@ -86,6 +86,20 @@ typedef struct np_scene_hatch {
     double tile_pixels;                  /* "tile_pixels": 1/F, a seed tile's size on screen (default 64) */
 } np_scene_hatch;
 
+/*
+ * "texture.noise": the texture's octaves read a 4-D noise unit instead of
+ * the span units' trilinear value noise, time its fourth axis (a
+ * time-varying solid texture; docs/noise-nd.md, "A 4-D texture in a scene").
+ * The w register of frame f is u16 Q8.8, (w0 + f dw) mod 2^16: w0 and dw
+ * are lattice units, multiples of 1/256 in [0, 256) (exact in the register).
+ */
+typedef struct np_scene_noise {
+    int present;                         /* the texture has a "noise" section */
+    char unit[16];                       /* "unit": "simplex4" or "classic4" */
+    uint16_t w0, dw;                     /* "w0", "dw": u16 Q8.8 registers */
+    unsigned frames;                     /* "frames": 1..100 (default 8) */
+} np_scene_noise;
+
 typedef struct np_scene {
     char name[64];
     char path[512];
@@ -98,6 +112,7 @@ typedef struct np_scene {
     np_scene_mesh *mesh;
     uint32_t n_prims;                    /* every polygon id: n_poly + the meshes' triangles */
     np_ref_texture tex;
+    np_scene_noise noise;                /* tex's octaves through a 4-D noise unit (absent: value noise) */
     unsigned probe_row;                  /* scanline of the noise-difference plot */
     int allow_empty;                     /* "allow_empty": true: an image that covers no pixel is not an error */
     /*

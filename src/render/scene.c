@@ -664,16 +664,52 @@ static int parse_octave(ctx *c, const cJSON *o, const char *where, np_ref_octave
     return 0;
 }
 
+/* A number that is a multiple of 1/256 in [0, 256), as its u16 Q8.8 word. */
+static int read_q88(ctx *c, const cJSON *v, const char *field, uint16_t *out)
+{
+    double d = 0.0;
+    if (read_number(c, v, field, 0.0, 255.99609375, &d))
+        return -1;
+    double w = d * 256.0;
+    if (w != floor(w))
+        return fail(c, field, "%g is not a multiple of 1/256 (the register is u16 Q8.8)", d);
+    *out = (uint16_t)w;
+    return 0;
+}
+
+/* "texture.noise" (np_scene_noise). */
+static int parse_noise(ctx *c, const cJSON *t, np_scene *s)
+{
+    static const char *const keys[] = { "unit", "w0", "dw", "frames", NULL };
+    static const char *const units[] = { "simplex4", "classic4", NULL };
+    const cJSON *n = get(t, "noise");
+    np_scene_noise *q = &s->noise;
+    int u;
+    if (!n)
+        return 0;
+    if (need_object(c, n, "texture.noise") || check_keys(c, n, "texture.noise", keys) ||
+        read_string(c, get(n, "unit"), "texture.noise.unit", units, &u))
+        return -1;
+    q->present = 1;
+    snprintf(q->unit, sizeof q->unit, "%s", units[u]);
+    q->frames = 8;
+    if ((get(n, "w0") && read_q88(c, get(n, "w0"), "texture.noise.w0", &q->w0)) ||
+        (get(n, "dw") && read_q88(c, get(n, "dw"), "texture.noise.dw", &q->dw)) ||
+        (get(n, "frames") && read_uint(c, get(n, "frames"), "texture.noise.frames", 1, 100, &q->frames)))
+        return -1;
+    return 0;
+}
+
 static int parse_texture(ctx *c, const cJSON *root, np_scene *s)
 {
-    static const char *const keys[] = { "quadric", "octaves", "colormap", NULL };
+    static const char *const keys[] = { "quadric", "octaves", "colormap", "noise", NULL };
     static const char *const qkeys[] = { "A", "B", "C", "D", "E", "F", "G", "H", "I", "J", NULL };
     static const char *const ckeys[] = { "mode", "domain", "colors", NULL };
     static const char *const modes[] = { "repeat", "clamp", NULL };
     const cJSON *t = get(root, "texture");
     np_ref_texture *tx = &s->tex;
     char f[256];
-    if (need_object(c, t, "texture") || check_keys(c, t, "texture", keys))
+    if (need_object(c, t, "texture") || check_keys(c, t, "texture", keys) || parse_noise(c, t, s))
         return -1;
     const cJSON *q = get(t, "quadric");
     if (q) {

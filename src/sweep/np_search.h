@@ -2,7 +2,13 @@
 /*
  * np_search.h - the adversarial error search (docs/search.md): the bit-exact
  * model against the float reference on the inputs most likely to break the
- * 1 LSB contract, for a unit with inputs x, y, z (u16 each), on all cores.
+ * 1 LSB contract, for a unit with inputs x, y, z (u16 each), on all cores;
+ * also for a unit of n = 2, 4 or 5 u16 inputs (the n-D noise units), each
+ * class below taken over n axes as docs/search.md, "n inputs", says: 12^n
+ * extremes (7^5 at n = 5), faces of every size (2..n words or fractions
+ * equal), worst rounding from the fine output's distance to a tie when the
+ * unit has no classes of its own, the climb's combinations of -2..+2 (n <= 3)
+ * or -1..+1 (n >= 4). A 3-input unit's inputs and results are unchanged.
  *
  * Input classes, each a share of the budget N (after the extremes, of every
  * 16 chunks 6 random, 6 rounding, 2 faces, 2 lattice; the last quarter of N
@@ -65,16 +71,18 @@ enum {
     NP_SEARCH_CHUNK = 4096, /* inputs per chunk */
     NP_SEARCH_WORST = 8,    /* W: worst inputs kept, and climbed from */
     NP_SEARCH_WAVE = 8,     /* chunks per wave (stop_early looks between waves) */
-    NP_SEARCH_CLASSES = 6
+    NP_SEARCH_CLASSES = 6,
+    NP_SEARCH_MIN_IN = 2,   /* inputs of a unit the search runs: 2..5 u16 words (x, y, z, w, v) */
+    NP_SEARCH_MAX_IN = 5
 };
 
 /* The input classes (index into np_search_stats.cls_n / cls_max). */
 enum { NP_SC_EXTREME, NP_SC_LATTICE, NP_SC_FACE, NP_SC_ROUNDING, NP_SC_RANDOM, NP_SC_CLIMB };
 extern const char *const np_search_class_name[NP_SEARCH_CLASSES];
 
-/* One input and its error (largest over the fields, LSB). */
+/* One input (the unit's n words; the rest 0) and its error (largest over the fields, LSB). */
 typedef struct np_search_pt {
-    uint16_t in[3];
+    uint16_t in[NP_SEARCH_MAX_IN];
     double err;
 } np_search_pt;
 
@@ -120,6 +128,7 @@ typedef struct np_search_result {
     np_search_stats total;
     np_search_verdict verdict;
     double bound;        /* unit->error_bound_lsb(cfg) */
+    unsigned dims;       /* the unit's inputs (0 is read as 3: a result filled in by hand) */
     np_search_pt worst;  /* the input of the largest output error (the counterexample when over) */
     uint64_t chunks, chunks_resumed;
     unsigned threads;

@@ -24,12 +24,22 @@ const char *const np_search_class_name[NP_SEARCH_CLASSES] = {
 
 /* ---------------------------------------------------------------- the unit */
 
-const char *np_search_unit_check(const np_unit *u, const void *cfg) { return np_sweep_unit_check(u, cfg); }
+const char *np_search_unit_check(const np_unit *u, const void *cfg)
+{
+    np_unit_fields f;
+    u->fields(cfg, &f);
+    if (f.n_in == 3)
+        return np_sweep_unit_check(u, cfg);
+    if (f.n_in < NP_SEARCH_MIN_IN || f.n_in > NP_SEARCH_MAX_IN)
+        return "the search needs a unit with 2 to 5 inputs (x, y, z, w, v)";
+    return np_sweep_fields_check(&f, "search", "x, y, ...");
+}
 
 typedef struct search_unit {
     const np_unit *u;
     const void *cfg;
     np_unit_fields f;
+    unsigned dims;                    /* inputs: 2..5 u16 words */
     double scale[NP_UNIT_MAX_FIELDS]; /* 2^F per output field */
     double tol;
     int have_fine;                    /* the unit's fine_cfg: the climb's objective */
@@ -42,6 +52,7 @@ static void search_unit_init(search_unit *su, const np_unit *u, const void *cfg)
     su->u = u;
     su->cfg = cfg;
     u->fields(cfg, &su->f);
+    su->dims = su->f.n_in;
     for (unsigned k = 0; k < su->f.n_out; k++)
         su->scale[k] = ldexp(1.0, (int)su->f.out[k].frac);
     su->tol = u->tolerance_lsb;
@@ -58,9 +69,11 @@ static void search_unit_init(search_unit *su, const np_unit *u, const void *cfg)
  * output rounding (the fine configuration's, in the same output LSB) when
  * the unit has one, else the largest field error. A NaN wins.
  */
-static double eval_input(const search_unit *su, const uint16_t in16[3], double *e, unsigned *n_cr)
+static double eval_input(const search_unit *su, const uint16_t in16[NP_SEARCH_MAX_IN], double *e, unsigned *n_cr)
 {
-    uint64_t in[NP_UNIT_MAX_FIELDS] = { in16[0], in16[1], in16[2] }, out[NP_UNIT_MAX_FIELDS];
+    uint64_t in[NP_UNIT_MAX_FIELDS] = { 0 }, out[NP_UNIT_MAX_FIELDS];
+    for (unsigned a = 0; a < su->dims; a++)
+        in[a] = in16[a];
     double ref[NP_UNIT_MAX_FIELDS];
     su->u->eval(su->cfg, in, out);
     su->u->ref(su->cfg, in, ref);
@@ -86,10 +99,10 @@ static double eval_input(const search_unit *su, const uint16_t in16[3], double *
 
 /* ---------------------------------------------------------------- statistics */
 
-/* Is a before b in the order that ranks equal errors: smaller x, then y, then z? */
+/* Is a before b in the order that ranks equal errors: smaller x, then y, then z (then w, v)? */
 static int in_before(const uint16_t *a, const uint16_t *b)
 {
-    for (unsigned k = 0; k < 3; k++)
+    for (unsigned k = 0; k < NP_SEARCH_MAX_IN; k++)
         if (a[k] != b[k])
             return a[k] < b[k];
     return 0;
@@ -141,7 +154,7 @@ static void worst_insert(np_search_stats *s, const np_search_pt *p)
     s->worst[i] = *p;
 }
 
-static double add_input(np_search_stats *s, const search_unit *su, const uint16_t in[3], unsigned cls)
+static double add_input(np_search_stats *s, const search_unit *su, const uint16_t in[NP_SEARCH_MAX_IN], unsigned cls)
 {
     double e[NP_UNIT_MAX_FIELDS];
     np_search_pt p;
@@ -216,53 +229,124 @@ static const uint16_t extreme_axis[] = {
     0x0000, 0x0001, 0x00ff, 0x0100, 0x0101, 0x7fff, 0x8000, 0x8001, 0xfeff, 0xff00, 0xff01, 0xffff,
 };
 enum { N_EXTREME_AXIS = sizeof extreme_axis / sizeof extreme_axis[0] };
+/* For five inputs (12^5 = 248,832 would outgrow a search's first chunks): the input ends, the mid wrap and cell faces. */
+static const uint16_t extreme_axis5[] = { 0x0000, 0x00ff, 0x0100, 0x7fff, 0x8000, 0xff00, 0xffff };
+enum { N_EXTREME_AXIS5 = sizeof extreme_axis5 / sizeof extreme_axis5[0] };
 
 static uint16_t rnd16(np_rng *r) { return (uint16_t)(np_rng_next(r) >> 48); }
 
 /* Lattice: each axis on a lattice point or 1 LSB beside it, or (a cell face) a random word. */
-static void gen_lattice(np_rng *r, uint16_t in[3])
+static void gen_lattice(np_rng *r, uint16_t in[NP_SEARCH_MAX_IN], unsigned dims)
 {
     static const uint8_t frac[3] = { 0xff, 0x00, 0x01 };
     uint64_t bits = np_rng_next(r);
-    for (unsigned a = 0; a < 3; a++) {
+    for (unsigned a = 0; a < dims; a++) {
         uint16_t w = rnd16(r);
-        if ((bits >> a & 1u) || (bits >> 3 & 7u) == 0) /* every axis on the lattice 1 time in 8 */
+        if ((bits >> a & 1u) || (bits >> dims & 7u) == 0) /* every axis on the lattice 1 time in 8 */
             w = (uint16_t)((w & 0xff00u) | frac[np_rng_below(r, 3)]);
         in[a] = w;
     }
 }
 
-/* Equal offsets: x = y, y = z, x = z or x = y = z, then 0, 1 or 2 LSB off on one axis. */
-static void gen_face(np_rng *r, uint16_t in[3])
+/*
+ * Equal offsets: x = y, y = z, x = z or x = y = z, then 0, 1 or 2 LSB off on
+ * one axis. For n != 3 inputs: a group of 2..n axes (pairs, triples, ...,
+ * all; its size uniform, its axes random) made equal - the whole word (the
+ * same cell and fraction: offsets tie in every lattice) or, half the time,
+ * the fraction only (each its own cell: the classic lattice's diagonal
+ * faces) - then 0, 1 or 2 LSB off on one axis.
+ */
+static void gen_face(np_rng *r, uint16_t in[NP_SEARCH_MAX_IN], unsigned dims)
 {
     static const int delta[6] = { 0, 0, 1, -1, 2, -2 };
-    for (unsigned a = 0; a < 3; a++)
+    for (unsigned a = 0; a < dims; a++)
         in[a] = rnd16(r);
-    unsigned kind = (unsigned)np_rng_below(r, 4);
-    if (kind == 3)
-        in[1] = in[2] = in[0];
-    else
-        in[(kind + 1u) % 3u] = in[kind];
-    unsigned axis = (unsigned)np_rng_below(r, 3);
+    if (dims == 3) {
+        unsigned kind = (unsigned)np_rng_below(r, 4);
+        if (kind == 3)
+            in[1] = in[2] = in[0];
+        else
+            in[(kind + 1u) % 3u] = in[kind];
+    } else {
+        unsigned k = 2u + (unsigned)np_rng_below(r, dims - 1u), ax[NP_SEARCH_MAX_IN];
+        for (unsigned a = 0; a < dims; a++)
+            ax[a] = a;
+        for (unsigned a = 0; a < k; a++) { /* the first k of a random permutation */
+            unsigned b = a + (unsigned)np_rng_below(r, dims - a), t = ax[a];
+            ax[a] = ax[b];
+            ax[b] = t;
+        }
+        int frac_only = (int)(np_rng_next(r) & 1u);
+        for (unsigned a = 1; a < k; a++)
+            in[ax[a]] = frac_only ? (uint16_t)((in[ax[a]] & 0xff00u) | (in[ax[0]] & 0x00ffu)) : in[ax[0]];
+    }
+    unsigned axis = (unsigned)np_rng_below(r, dims);
     in[axis] = (uint16_t)(in[axis] + delta[np_rng_below(r, 6)]);
 }
 
-/* Fill in[0..n) with class cls from the unit's own generator; falls back to random. */
-static void gen_unit(const search_unit *su, unsigned cls, np_rng *r, uint16_t (*in)[3], size_t n)
+/*
+ * Worst rounding for a unit without classes of its own but with a finer
+ * output (np_unit.fine_cfg): of ADV_CANDIDATES random inputs, the one whose
+ * output before the last rounding (the fine configuration's, in output LSB)
+ * lies nearest a rounding tie (a half LSB): there the internal roundings
+ * decide the output's last bit. Returns 0 when the unit has no finer output.
+ */
+enum { ADV_CANDIDATES = 16 };
+static int gen_rounding_fine(const search_unit *su, np_rng *r, uint16_t in[NP_SEARCH_MAX_IN])
+{
+    if (!su->have_fine)
+        return 0;
+    double best = 2.0;
+    for (unsigned c = 0; c < ADV_CANDIDATES; c++) {
+        uint64_t w[NP_UNIT_MAX_FIELDS] = { 0 }, out[NP_UNIT_MAX_FIELDS];
+        for (unsigned a = 0; a < su->dims; a++)
+            w[a] = rnd16(r);
+        su->u->eval(&su->fine, w, out);
+        double v = np_unit_field_value(&su->ff.out[0], out[0]) * su->scale[0];
+        double d = fabs(v - floor(v) - 0.5);
+        if (d < best) {
+            best = d;
+            for (unsigned a = 0; a < su->dims; a++)
+                in[a] = (uint16_t)w[a];
+        }
+    }
+    return 1;
+}
+
+/*
+ * Fill in[0..n) with class cls from the unit's own generator; a unit without
+ * one gets gen_rounding_fine for the worst-rounding class; else random.
+ */
+static void gen_unit(const search_unit *su, unsigned cls, np_rng *r, uint16_t (*in)[NP_SEARCH_MAX_IN], size_t n)
 {
     uint64_t (*buf)[NP_UNIT_MAX_FIELDS] = malloc(n * sizeof *buf);
     size_t got = buf && su->u->adversarial ? su->u->adversarial(su->cfg, cls, r, buf, n) : 0;
-    for (size_t i = 0; i < n; i++)
-        for (unsigned a = 0; a < 3; a++)
+    for (size_t i = 0; i < n; i++) {
+        if (got != n && !su->u->adversarial && cls == NP_ADV_ROUNDING && gen_rounding_fine(su, r, in[i]))
+            continue;
+        for (unsigned a = 0; a < su->dims; a++)
             in[i][a] = got == n ? (uint16_t)buf[i][a] : rnd16(r);
+    }
     free(buf);
 }
+
+/*
+ * The neighbour offsets, in the order tried: each axis alone by +-1..+-256,
+ * then every combination of -2..+2 over the axes (n <= 3) or of -1..+1
+ * (n = 4, 5: 80 and 242 combinations rather than 624 and 3124), the first
+ * axis varying slowest.
+ */
+enum { N_STEPS = 12, N_NEIGH_MAX = NP_SEARCH_MAX_IN * 2 * N_STEPS + 242 };
+typedef struct neighbours {
+    unsigned n;
+    int16_t d[N_NEIGH_MAX][NP_SEARCH_MAX_IN];
+} neighbours;
 
 /* The run: what every chunk and climb needs. */
 typedef struct search_run {
     const np_search_opts *o;
     search_unit su;
-    uint16_t (*ext)[3]; /* the extremes list */
+    uint16_t (*ext)[NP_SEARCH_MAX_IN]; /* the extremes list */
     size_t n_ext;
     uint64_t n_chunks;  /* phase 1 */
     np_search_stats *chunk;
@@ -279,6 +363,7 @@ typedef struct search_run {
     unsigned n_starts, next_climb;
     uint64_t *climb_budget;
     unsigned round;
+    neighbours nb;      /* the climb's steps */
 } search_run;
 
 static np_rng chunk_rng(uint64_t seed, uint64_t k, uint64_t stream)
@@ -303,8 +388,9 @@ static unsigned chunk_class(uint64_t j)
 static void chunk_run(const search_run *run, uint64_t k, np_search_stats *s)
 {
     const search_unit *su = &run->su;
-    uint16_t in[NP_SEARCH_CHUNK][3];
+    uint16_t in[NP_SEARCH_CHUNK][NP_SEARCH_MAX_IN];
     unsigned char cls[NP_SEARCH_CHUNK];
+    memset(in, 0, sizeof in);
     np_rng r = chunk_rng(run->o->seed, k, 0);
     uint64_t n_ext_chunks = (run->n_ext + NP_SEARCH_CHUNK - 1) / NP_SEARCH_CHUNK;
     if (k < n_ext_chunks) {
@@ -314,7 +400,7 @@ static void chunk_run(const search_run *run, uint64_t k, np_search_stats *s)
                 memcpy(in[i], run->ext[j], sizeof in[i]);
                 cls[i] = NP_SC_EXTREME;
             } else {
-                gen_lattice(&r, in[i]);
+                gen_lattice(&r, in[i], su->dims);
                 cls[i] = NP_SC_LATTICE;
             }
         }
@@ -324,12 +410,12 @@ static void chunk_run(const search_run *run, uint64_t k, np_search_stats *s)
             gen_unit(su, c == NP_SC_ROUNDING ? NP_ADV_ROUNDING : NP_ADV_FACES, &r, in, NP_SEARCH_CHUNK);
         for (size_t i = 0; i < NP_SEARCH_CHUNK; i++) {
             if (c == NP_SC_RANDOM)
-                for (unsigned a = 0; a < 3; a++)
+                for (unsigned a = 0; a < su->dims; a++)
                     in[i][a] = rnd16(&r);
             else if (c == NP_SC_LATTICE)
-                gen_lattice(&r, in[i]);
+                gen_lattice(&r, in[i], su->dims);
             else if (c == NP_SC_FACE && !(k & 16u))
-                gen_face(&r, in[i]);
+                gen_face(&r, in[i], su->dims);
             cls[i] = (unsigned char)c;
         }
     }
@@ -340,28 +426,35 @@ static void chunk_run(const search_run *run, uint64_t k, np_search_stats *s)
 
 /* ---------------------------------------------------------------- the hill-climb */
 
-/* The neighbour offsets, in the order tried: each axis alone by +-1..+-256, then every combination of -2..+2. */
-enum { N_STEPS = 12, N_NEIGH = 3 * 2 * N_STEPS + 124 };
-static int16_t neigh[N_NEIGH][3];
-
-static void neigh_init(void)
+static void neigh_init(neighbours *nb, unsigned dims)
 {
     static const int16_t step[N_STEPS] = { 1, 2, 3, 4, 6, 8, 12, 16, 32, 64, 128, 256 };
     unsigned n = 0;
-    for (unsigned a = 0; a < 3; a++)
+    memset(nb, 0, sizeof *nb);
+    for (unsigned a = 0; a < dims; a++)
         for (unsigned k = 0; k < N_STEPS; k++)
-            for (int sg = -1; sg <= 1; sg += 2) {
-                memset(neigh[n], 0, sizeof neigh[n]);
-                neigh[n++][a] = (int16_t)(sg * step[k]);
-            }
-    for (int dx = -2; dx <= 2; dx++)
-        for (int dy = -2; dy <= 2; dy++)
-            for (int dz = -2; dz <= 2; dz++)
-                if (dx || dy || dz) {
-                    neigh[n][0] = (int16_t)dx;
-                    neigh[n][1] = (int16_t)dy;
-                    neigh[n++][2] = (int16_t)dz;
-                }
+            for (int sg = -1; sg <= 1; sg += 2)
+                nb->d[n++][a] = (int16_t)(sg * step[k]);
+    int reach = dims <= 3 ? 2 : 1, v[NP_SEARCH_MAX_IN];
+    for (unsigned a = 0; a < dims; a++)
+        v[a] = -reach;
+    for (;;) {
+        int any = 0;
+        for (unsigned a = 0; a < dims; a++)
+            any |= v[a] != 0;
+        if (any) {
+            for (unsigned a = 0; a < dims; a++)
+                nb->d[n][a] = (int16_t)v[a];
+            n++;
+        }
+        unsigned a = dims;
+        while (a > 0 && v[a - 1] == reach)
+            v[--a] = -reach;
+        if (a == 0)
+            break;
+        v[a - 1]++;
+    }
+    nb->n = n;
 }
 
 /*
@@ -378,10 +471,11 @@ static void climb_run(const search_run *run, const np_search_pt *start, uint64_t
     np_search_pt cur = *start, best = *start;
     while (s->n < budget) {
         np_search_pt top = cur;
-        for (unsigned k = 0; k < N_NEIGH && s->n < budget; k++) {
+        for (unsigned k = 0; k < run->nb.n && s->n < budget; k++) {
             np_search_pt p;
-            for (unsigned a = 0; a < 3; a++)
-                p.in[a] = (uint16_t)(cur.in[a] + neigh[k][a]);
+            memset(p.in, 0, sizeof p.in);
+            for (unsigned a = 0; a < su->dims; a++)
+                p.in[a] = (uint16_t)(cur.in[a] + run->nb.d[k][a]);
             p.err = add_input(s, su, p.in, NP_SC_CLIMB);
             if (p.err > top.err)
                 top = p;
@@ -392,7 +486,8 @@ static void climb_run(const search_run *run, const np_search_pt *start, uint64_t
                 best = cur;
         } else if (s->n < budget) {
             np_search_pt p;
-            for (unsigned a = 0; a < 3; a++)
+            memset(p.in, 0, sizeof p.in);
+            for (unsigned a = 0; a < su->dims; a++)
                 p.in[a] = (uint16_t)(best.in[a] + (int)np_rng_below(&r, 33) - 16);
             p.err = add_input(s, su, p.in, NP_SC_CLIMB);
             cur = p;
@@ -430,17 +525,26 @@ static void climb_run(const search_run *run, const np_search_pt *start, uint64_t
 /* Synced at most this often (s): a chunk takes milliseconds, a sync as long. */
 #define JOURNAL_SYNC_INTERVAL 1.0
 
-/* Add chunk k's record to the journal's pending lines. 0, or -1. */
-static int chunk_record(np_jfile *jf, uint64_t k, const np_search_stats *s)
+/* An input's n words as the journal writes them: "0xXXXX,0xYYYY,..." (n = 3: x, y, z, as always). */
+static const char *in_text(char *buf, size_t len, const uint16_t *in, unsigned dims)
 {
+    buf[0] = '\0';
+    for (unsigned a = 0; a < dims; a++)
+        snprintf(buf + strlen(buf), len - strlen(buf), "%s0x%04x", a ? "," : "", (unsigned)in[a]);
+    return buf;
+}
+
+/* Add chunk k's record (an n-input unit's) to the journal's pending lines. 0, or -1. */
+static int chunk_record(np_jfile *jf, uint64_t k, const np_search_stats *s, unsigned dims)
+{
+    char at[NP_SEARCH_MAX_IN * 7];
     int rc = np_jfile_add(jf, "chunk %" PRIu64 " n=%" PRIu64 " over=%" PRIu64 " cr=%" PRIu64, k, s->n, s->over,
                           s->cr);
     for (unsigned f = 0; f < s->n_out && rc == 0; f++)
-        rc = np_jfile_add(jf, "field %u max=%a at=0x%04x,0x%04x,0x%04x over=%" PRIu64, f, s->fmax[f].err,
-                          (unsigned)s->fmax[f].in[0], (unsigned)s->fmax[f].in[1], (unsigned)s->fmax[f].in[2],
-                          s->fover[f]);
+        rc = np_jfile_add(jf, "field %u max=%a at=%s over=%" PRIu64, f, s->fmax[f].err,
+                          in_text(at, sizeof at, s->fmax[f].in, dims), s->fover[f]);
     /* Room for the longest: a count is 20 digits, a %a double 24 characters, and a separator. */
-    char n[NP_SEARCH_CLASSES * 21], max[NP_SEARCH_CLASSES * 25], worst[NP_SEARCH_WORST * 47];
+    char n[NP_SEARCH_CLASSES * 21], max[NP_SEARCH_CLASSES * 25], worst[NP_SEARCH_WORST * (NP_SEARCH_MAX_IN * 7 + 26)];
     size_t ln = 0, lm = 0, lw = 0;
     for (unsigned c = 0; c < NP_SEARCH_CLASSES; c++) {
         ln += (size_t)snprintf(n + ln, sizeof n - ln, "%s%" PRIu64, c ? "," : "", s->cls_n[c]);
@@ -448,8 +552,8 @@ static int chunk_record(np_jfile *jf, uint64_t k, const np_search_stats *s)
     }
     worst[0] = '\0';
     for (unsigned i = 0; i < s->n_worst; i++)
-        lw += (size_t)snprintf(worst + lw, sizeof worst - lw, " 0x%04x,0x%04x,0x%04x:%a", (unsigned)s->worst[i].in[0],
-                               (unsigned)s->worst[i].in[1], (unsigned)s->worst[i].in[2], s->worst[i].err);
+        lw += (size_t)snprintf(worst + lw, sizeof worst - lw, " %s:%a", in_text(at, sizeof at, s->worst[i].in, dims),
+                               s->worst[i].err);
     if (rc == 0)
         rc = np_jfile_add(jf, "class n=%s max=%s", n, max);
     return rc == 0 ? np_jfile_add(jf, "worst%s", worst) : rc;
@@ -463,17 +567,20 @@ typedef struct chunk_reader {
     unsigned next; /* the line expected: 0 chunk, 1..F field, F + 1 class, F + 2 worst */
 } chunk_reader;
 
-/* "0xXXXX,0xYYYY,0xZZZZ" at *p into in: 0 (*p after it), or -1. */
-static int parse_in(const char **p, uint16_t in[3])
+/* dims words "0xXXXX,0xYYYY,..." at *p into in (the rest 0): 0 (*p after it), or -1. */
+static int parse_in(const char **p, uint16_t in[NP_SEARCH_MAX_IN], unsigned dims)
 {
-    unsigned v[3];
-    int used = -1;
-    if (sscanf(*p, "0x%x,0x%x,0x%x%n", &v[0], &v[1], &v[2], &used) != 3 || used < 0 || v[0] > 0xffffu ||
-        v[1] > 0xffffu || v[2] > 0xffffu)
-        return -1;
-    for (unsigned a = 0; a < 3; a++)
-        in[a] = (uint16_t)v[a];
-    *p += used;
+    const char *q = *p;
+    memset(in, 0, NP_SEARCH_MAX_IN * sizeof *in);
+    for (unsigned a = 0; a < dims; a++) {
+        unsigned v;
+        int used = -1;
+        if ((a && *q++ != ',') || sscanf(q, "0x%x%n", &v, &used) != 1 || used < 0 || v > 0xffffu)
+            return -1;
+        in[a] = (uint16_t)v;
+        q += used;
+    }
+    *p = q;
     return 0;
 }
 
@@ -504,14 +611,14 @@ static int parse_classes(const char *p, np_search_stats *s)
     return total == s->n ? 0 : -1;
 }
 
-static int parse_worst(const char *p, np_search_stats *s)
+static int parse_worst(const char *p, np_search_stats *s, unsigned dims)
 {
     s->n_worst = 0;
     while (*p == ' ') {
         np_search_pt *w = &s->worst[s->n_worst];
         char *end;
         p++;
-        if (s->n_worst == NP_SEARCH_WORST || parse_in(&p, w->in) != 0 || *p++ != ':')
+        if (s->n_worst == NP_SEARCH_WORST || parse_in(&p, w->in, dims) != 0 || *p++ != ':')
             return -1;
         w->err = strtod(p, &end);
         if (end == p)
@@ -541,22 +648,24 @@ static int resume_line(void *ctx, const np_jfile_info *info, char *line, uint64_
             s->over > s->n || s->cr > s->n * n_out)
             return np_errf(err, errlen, "malformed chunk line (a record starts with one)");
     } else if (rd->next <= n_out) {
-        unsigned f, x, y, z;
+        unsigned f = 0;
         np_search_pt *m = &s->fmax[rd->next - 1u];
-        if (sscanf(line, "field %u max=%la at=0x%x,0x%x,0x%x over=%" SCNu64 "%n", &f, &m->err, &x, &y, &z,
-                   &s->fover[rd->next - 1u], &used) != 6 ||
-            used < 0 || line[used] != '\0' || f != rd->next - 1u || x > 0xffffu || y > 0xffffu || z > 0xffffu ||
-            s->fover[f] > s->over)
+        const char *q = NULL;
+        if (sscanf(line, "field %u max=%la at=%n", &f, &m->err, &used) == 2 && used > 0) {
+            q = line + used;
+            used = -1;
+            if (parse_in(&q, m->in, run->su.dims) != 0 ||
+                sscanf(q, " over=%" SCNu64 "%n", &s->fover[rd->next - 1u], &used) != 1)
+                q = NULL;
+        }
+        if (!q || used < 0 || q[used] != '\0' || f != rd->next - 1u || s->fover[f] > s->over)
             return np_errf(err, errlen, "malformed field line (field %u of %u of chunk %" PRIu64 " expected)",
                            rd->next - 1u, n_out, rd->k);
-        m->in[0] = (uint16_t)x;
-        m->in[1] = (uint16_t)y;
-        m->in[2] = (uint16_t)z;
     } else if (rd->next == n_out + 1u) {
         if (strncmp(line, "class ", 6) != 0 || parse_classes(line + 6, s) != 0)
             return np_errf(err, errlen, "malformed class line of chunk %" PRIu64, rd->k);
     } else {
-        if (strncmp(line, "worst", 5) != 0 || parse_worst(line + 5, s) != 0)
+        if (strncmp(line, "worst", 5) != 0 || parse_worst(line + 5, s, run->su.dims) != 0)
             return np_errf(err, errlen, "malformed worst line of chunk %" PRIu64, rd->k);
         if (run->have[rd->k] && !np_search_stats_equal(&run->chunk[rd->k], s))
             return np_errf(err, errlen, "chunk %" PRIu64 " appears twice with different statistics", rd->k);
@@ -609,7 +718,7 @@ static void *chunk_worker(void *arg)
         /* The record goes out in one write: a kill leaves at most a torn tail. */
         if (run->jf.fd >= 0 && !run->failed) {
             char jerr[sizeof run->err];
-            if (chunk_record(&run->jf, k, &s) != 0) {
+            if (chunk_record(&run->jf, k, &s, run->su.dims) != 0) {
                 np_jfile_discard(&run->jf);
                 run->failed = 1;
                 snprintf(run->err, sizeof run->err, "cannot write journal %s: line too long or out of memory",
@@ -668,26 +777,27 @@ static void run_threads(void *(*fn)(void *), search_run *run, unsigned nt)
 static int make_extremes(search_run *run)
 {
     const np_unit *u = run->su.u;
+    const unsigned dims = run->su.dims;
     size_t nb = u->boundary ? u->boundary(run->su.cfg, NULL, 0) : 0;
-    size_t n = (size_t)N_EXTREME_AXIS * N_EXTREME_AXIS * N_EXTREME_AXIS;
+    const uint16_t *axis = dims == 5 ? extreme_axis5 : extreme_axis;
+    const unsigned na = dims == 5 ? N_EXTREME_AXIS5 : N_EXTREME_AXIS;
+    size_t n = 1;
+    for (unsigned a = 0; a < dims; a++)
+        n *= na; /* 12^n for n <= 4 (144, 1,728, 20,736), 7^5 = 16,807 */
     uint64_t (*b)[NP_UNIT_MAX_FIELDS] = malloc((nb ? nb : 1) * sizeof *b);
-    run->ext = malloc((n + nb) * sizeof *run->ext);
+    run->ext = calloc(n + nb, sizeof *run->ext);
     if (!b || !run->ext) {
         free(b);
         return -1;
     }
     size_t k = 0;
-    for (unsigned a = 0; a < N_EXTREME_AXIS; a++)
-        for (unsigned c = 0; c < N_EXTREME_AXIS; c++)
-            for (unsigned d = 0; d < N_EXTREME_AXIS; d++, k++) {
-                run->ext[k][0] = extreme_axis[a];
-                run->ext[k][1] = extreme_axis[c];
-                run->ext[k][2] = extreme_axis[d];
-            }
+    for (; k < n; k++) /* the last axis varying fastest */
+        for (unsigned a = 0, q = (unsigned)k; a < dims; a++, q /= na)
+            run->ext[k][dims - 1u - a] = axis[q % na];
     if (nb)
         u->boundary(run->su.cfg, b, nb);
     for (size_t i = 0; i < nb; i++, k++)
-        for (unsigned a = 0; a < 3; a++)
+        for (unsigned a = 0; a < dims; a++)
             run->ext[k][a] = (uint16_t)b[i][a];
     run->n_ext = k;
     free(b);
@@ -723,6 +833,7 @@ int np_search_run(const np_search_opts *o, np_search_result *res, char *err, siz
     run->o = o;
     np_jfile_none(&run->jf);
     search_unit_init(&run->su, o->unit, o->cfg);
+    const unsigned dims = run->su.dims;
     stats_init(&res->total, run->su.f.n_out);
     /* Phase 1: 3/4 of the budget in whole chunks; the climbs take the rest. */
     run->n_chunks = (o->n - o->n / 4u) / NP_SEARCH_CHUNK;
@@ -739,7 +850,7 @@ int np_search_run(const np_search_opts *o, np_search_result *res, char *err, siz
         free_run(run);
         return -1;
     }
-    neigh_init();
+    neigh_init(&run->nb, run->su.dims);
     unsigned nt = o->threads ? (o->threads < MAX_THREADS ? o->threads : MAX_THREADS) : online_cpus();
     res->threads = nt;
     res->chunks = run->n_chunks;
@@ -804,6 +915,7 @@ int np_search_run(const np_search_opts *o, np_search_result *res, char *err, siz
     if (failed)
         return -1;
     res->bound = o->unit->error_bound_lsb(o->cfg);
+    res->dims = dims;
     res->worst = res->total.fmax[0];
     for (unsigned k = 1; k < res->total.n_out; k++)
         if (pt_above(&res->total.fmax[k], &res->worst))
@@ -823,8 +935,11 @@ void np_search_verdict_text(const np_search_result *res, char *buf, size_t len)
         snprintf(buf, len, "no counterexample in %" PRIu64 " adversarial inputs", res->total.n);
         break;
     default:
-        snprintf(buf, len, "not faithful, counterexample (0x%04x, 0x%04x, 0x%04x)", res->worst.in[0],
-                 res->worst.in[1], res->worst.in[2]);
+        snprintf(buf, len, "not faithful, counterexample (");
+        /* A result put together by hand (a report's cache) may leave dims 0: a 3-input unit's. */
+        for (unsigned a = 0; a < (res->dims ? res->dims : 3u); a++)
+            snprintf(buf + strlen(buf), len - strlen(buf), "%s0x%04x", a ? ", " : "", res->worst.in[a]);
+        snprintf(buf + strlen(buf), len - strlen(buf), ")");
         break;
     }
 }

@@ -64,21 +64,31 @@ int np_sweep_stats_equal(const np_sweep_stats *a, const np_sweep_stats *b)
 
 /* ------------------------------------------------------------------ the unit */
 
+const char *np_sweep_fields_check(const np_unit_fields *f, const char *who, const char *in_names)
+{
+    static _Thread_local char why[128];
+    for (unsigned k = 0; k < f->n_in; k++)
+        if (f->in[k].bits != 16 || f->in[k].is_signed) {
+            snprintf(why, sizeof why, "the %s needs u16 inputs %s", who, in_names);
+            return why;
+        }
+    if (f->n_out < 1)
+        return "the unit has no output";
+    for (unsigned k = 0; k < f->n_out; k++)
+        if (f->out[k].bits > (f->out[k].is_signed ? 32u : 31u)) {
+            snprintf(why, sizeof why, "the %s handles output fields of at most 32 bits", who);
+            return why;
+        }
+    return NULL;
+}
+
 const char *np_sweep_unit_check(const np_unit *u, const void *cfg)
 {
     np_unit_fields f;
     u->fields(cfg, &f);
     if (f.n_in != 3)
         return "the sweep needs a unit with three inputs (x, y, z)";
-    for (unsigned k = 0; k < 3; k++)
-        if (f.in[k].bits != 16 || f.in[k].is_signed)
-            return "the sweep needs u16 inputs x, y, z";
-    if (f.n_out < 1)
-        return "the unit has no output";
-    for (unsigned k = 0; k < f.n_out; k++)
-        if (f.out[k].bits > (f.out[k].is_signed ? 32u : 31u))
-            return "the sweep handles output fields of at most 32 bits";
-    return NULL;
+    return np_sweep_fields_check(&f, "sweep", "x, y, z");
 }
 
 void np_sweep_rows_generic(const np_unit *u, const void *cfg, uint16_t x0, uint16_t y0,

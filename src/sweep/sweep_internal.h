@@ -13,4 +13,7 @@
  */
 int np_sweep_bind_unit(np_jfile_binds *b, const np_unit *u, const void *cfg);
 
+/* NULL when every input of f is u16 and its outputs are 1..32-bit words the error measure reads, else why not. */
+const char *np_sweep_fields_check(const np_unit_fields *f, const char *who, const char *in_names);
+
 #endif /* NP_SWEEP_INTERNAL_H */

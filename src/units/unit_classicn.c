@@ -82,6 +82,19 @@ static void trace(const void *cfg, unsigned k, const void *sig, np_trace *t, siz
 
 static const char *const conf_configs[] = { "out_bits=16", "out_bits=8,s_frac=6,lerp_frac=6", NULL };
 
+/*
+ * The search's objective (np_unit.fine_cfg): the output rounded to WL
+ * fraction bits (out_bits = WL + I, at most 16), every internal width
+ * unchanged: the error before O's rounding.
+ */
+static void fine_cfg(const void *cfg, void *fine)
+{
+    cln_block *k = fine;
+    *k = *(const cln_block *)cfg;
+    unsigned b = k->c.lerp_frac + np_classicn_int_bits(k->c.dims);
+    k->c.out_bits = b < NP_CLASSICN_OUT_MAX ? b : NP_CLASSICN_OUT_MAX;
+}
+
 #define CLASSICN_UNIT(N)                                                                                         \
     static unsigned s_frac_def##N(const void *c) { return s_frac_def(N, c); }                                 \
     static unsigned lerp_frac_def##N(const void *c) { return lerp_frac_def(N, c); }                           \
@@ -105,6 +118,13 @@ static const char *const conf_configs[] = { "out_bits=16", "out_bits=8,s_frac=6,
         (void)c;                                                                                                \
         return np_ndim_boundary(N, in, max);                                                                    \
     }                                                                                                           \
+    extern const np_unit np_unit_classic##N;                                                                    \
+    static int cfg_scene##N(void *c, const struct np_scene *sc, char *err, size_t errlen)                       \
+    {                                                                                                           \
+        (void)err;                                                                                              \
+        (void)errlen;                                                                                           \
+        return np_ndim_cfg_scene(&np_unit_classic##N, c, sc);                                                   \
+    }                                                                                                           \
     const np_unit np_unit_classic##N = {                                                                        \
         .name = "classic" #N,                                                                                   \
         .summary = #N "-D classic gradient noise, 8.8 inputs, 2^" #N " corner lanes "                         \
@@ -123,6 +143,8 @@ static const char *const conf_configs[] = { "out_bits=16", "out_bits=8,s_frac=6,
         .datapath = datapath,                                                                                   \
         .trace = trace,                                                                                         \
         .conformance_configs = conf_configs,                                                                    \
+        .fine_cfg = fine_cfg,                                                                                   \
+        .cfg_scene = cfg_scene##N,                                                                              \
     };
 
 CLASSICN_UNIT(2)

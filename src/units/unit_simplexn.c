@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "np_refn.h"
+#include "np_scene.h"
 #include "np_simplexn.h"
 #include "np_unit.h"
 #include "unit_ndim.h"
@@ -35,6 +36,14 @@ static np_simplexn_cfg cfg_of(unsigned n, const void *cfg)
 }
 
 const char *const np_ndim_axis_names[5] = { "x", "y", "z", "w", "v" };
+
+int np_ndim_cfg_scene(const np_unit *u, void *cfg, const np_scene *sc)
+{
+    if (!sc->noise.present || strcmp(sc->noise.unit, u->name) != 0)
+        return 0;
+    np_unit_cfg_default(u, cfg);
+    return 1;
+}
 
 static unsigned t_frac_def(unsigned n, const void *cfg)
 {
@@ -206,6 +215,18 @@ size_t np_ndim_boundary(unsigned n, uint64_t (*in)[NP_UNIT_MAX_FIELDS], size_t m
 
 static const char *const conf_configs[] = { "out_bits=8", "out_bits=12,t_frac=8,p_frac=8", NULL };
 
+/*
+ * The search's objective (np_unit.fine_cfg): f rounded to 20 fraction bits
+ * (the widest output), WT and WP unchanged: the error before the output
+ * rounding, to 1/16 LSB or finer.
+ */
+static void fine_cfg(const void *cfg, void *fine)
+{
+    sxn_block *k = fine;
+    *k = *(const sxn_block *)cfg;
+    k->c.out_bits = NP_SIMPLEXN_OUT_MAX;
+}
+
 #define SIMPLEXN_UNIT(N)                                                                                        \
     static unsigned t_frac_def##N(const void *c) { return t_frac_def(N, c); }                                \
     static unsigned p_frac_def##N(const void *c) { return p_frac_def(N, c); }                                \
@@ -233,6 +254,13 @@ static const char *const conf_configs[] = { "out_bits=8", "out_bits=12,t_frac=8,
         return np_ndim_boundary(N, in, max);                                                                         \
     }                                                                                                          \
     static size_t datapath##N(const void *c, np_op *ops, size_t max) { return datapath(N, c, ops, max); }    \
+    extern const np_unit np_unit_simplex##N;                                                                   \
+    static int cfg_scene##N(void *c, const struct np_scene *sc, char *err, size_t errlen)                      \
+    {                                                                                                          \
+        (void)err;                                                                                             \
+        (void)errlen;                                                                                          \
+        return np_ndim_cfg_scene(&np_unit_simplex##N, c, sc);                                                  \
+    }                                                                                                          \
     const np_unit np_unit_simplex##N = {                                                                       \
         .name = "simplex" #N,                                                                                  \
         .summary = #N "-D simplex noise f, 8.8 inputs, exact skew/rank, sorting network "                    \
@@ -251,6 +279,8 @@ static const char *const conf_configs[] = { "out_bits=8", "out_bits=12,t_frac=8,
         .datapath = datapath##N,                                                                               \
         .trace = trace_sig,                                                                                    \
         .conformance_configs = conf_configs,                                                                   \
+        .fine_cfg = fine_cfg,                                                                                  \
+        .cfg_scene = cfg_scene##N,                                                                             \
     };
 
 SIMPLEXN_UNIT(2)

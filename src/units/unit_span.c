@@ -166,6 +166,8 @@ int np_su_cfg_scene(const np_su *su, const np_unit *u, void *cfg, const np_scene
 {
     unsigned *tex = (unsigned *)(void *)((char *)cfg + su->span.texture_offset);
     char name[80];
+    if (sc->noise.present) /* the octaves read a 4-D noise unit, not the span units' value noise */
+        return 0;
     const int sized = sc->size_registers && su->idx_int_max;
     snprintf(name, sizeof name, "%s:%s", sized ? "sized" : "scene", sc->name);
     if (!sized && np_ut_texture_add(name, &sc->tex, tex, err, errlen) != 0)
