@@ -128,7 +128,7 @@ static uint64_t seed_word(const np_hatch_cfg *cfg, int v, unsigned i)
     return seed_st(cfg, v, i) + 1u; /* ceil: the exact seed is above the truncation */
 }
 
-enum { HATCH_BND_MAX = 256 };
+enum { HATCH_BND_MAX = 512 };
 
 typedef struct bnd_tab {
     uint64_t (*t)[5];
@@ -178,6 +178,48 @@ static void tie_case(const np_hatch_cfg *cfg, uint64_t out[5])
     out[2] = 64u;
     out[3] = 0x10000u;
     out[4] = 0x8000u;
+}
+
+/*
+ * Rounding probes: the internal roundings (Q, the profile, S, alpha) are
+ * 2^-30 steps that an 8-bit output shows only where it changes. Along a ray
+ * from a seed's centre, x(t) = x0 + t d (mod 2), the probe bisects for an
+ * adjacent pair t, t + 1 (2^-32 apart) across which the model's output
+ * passes a level L, and emits both points: an implementation whose alpha
+ * differs by a few ulps there moves the crossing and misses one of the two.
+ * Up to `levels` levels, evenly spaced between the outputs at t = 0 and at
+ * t = 2^29 (1/8 of a tile).
+ */
+static void probe_ray(const np_hatch_cfg *cfg, bnd_tab *b, uint64_t xu0, uint64_t xv0, int du, int dv,
+                      const uint64_t ctl[3], unsigned levels)
+{
+    const uint64_t m33 = NP_MASK(NP_HATCH_X_BITS), tmax = (uint64_t)1 << 29;
+#define PROBE_X(t, x0, d) (((x0) + (uint64_t)(int64_t)(d) * (t)) & m33)
+#define PROBE_OUT(t)                                                                                                   \
+    np_hatch_eval(cfg, PROBE_X(t, xu0, du), PROBE_X(t, xv0, dv), (uint32_t)ctl[0], (uint32_t)ctl[1], (uint32_t)ctl[2], \
+                  NULL)
+    uint32_t o0 = PROBE_OUT(0), o1 = PROBE_OUT(tmax);
+    int up = o1 > o0;
+    uint32_t span = up ? o1 - o0 : o0 - o1;
+    unsigned nl = span < levels ? span : levels;
+    for (unsigned k = 1; k <= nl; k++) {
+        /* Level L: out(lo) on o0's side of L, out(hi) on o1's (L counts from o0 toward o1). */
+        uint32_t step = (uint32_t)((uint64_t)span * k / (nl + 1u));
+        uint32_t lvl = up ? o0 + (step ? step : 1u) : o0 - (step ? step : 1u);
+        uint64_t lo = 0, hi = tmax;
+        while (hi - lo > 1u) {
+            uint64_t mid = lo + (hi - lo) / 2u;
+            uint32_t om = PROBE_OUT(mid);
+            if (up ? om < lvl : om > lvl)
+                lo = mid;
+            else
+                hi = mid;
+        }
+        bnd_add(b, PROBE_X(lo, xu0, du), PROBE_X(lo, xv0, dv), ctl[0], ctl[1], ctl[2]);
+        bnd_add(b, PROBE_X(hi, xu0, du), PROBE_X(hi, xv0, dv), ctl[0], ctl[1], ctl[2]);
+    }
+#undef PROBE_OUT
+#undef PROBE_X
 }
 
 /*
@@ -268,6 +310,36 @@ static size_t boundary(const void *cfgv, uint64_t (*in)[NP_UNIT_MAX_FIELDS], siz
         bnd_add(&b, ou, cv, 0x30, 0x10000, 0xFFFF ^ (1u << j));
     for (unsigned j = 0; j < 8u; j++)
         bnd_add(&b, ou, cv, 0x30 ^ (1u << j), 0x10000, 0x10000);
+    /*
+     * Rounding probes (probe_ray) from the same centre along u, v and both
+     * diagonals, 8 levels each, in two settings. Tone 42 (alpha_tone 0.66,
+     * and 42 2^30 / 255 has fraction .54: A rounds up) at om = 3/4: both
+     * factors of alpha inexact (smooth). Tone 2 (fraction .50: A rounds up)
+     * at m = 0.3 / (N + 1): one by one, seed 0's tone and level ramps are
+     * fractional (S rounds), while smooth still inks faintly.
+     */
+    const uint64_t ctl1[3] = { 42, 0x10000, 0xC000 };
+    const uint64_t ctl2[3] = { 2, 0x10000, 0x10000u - (0x10000u * 3u / (10u * (np_hatch_n(cfg) + 1u))) };
+    const int dirs[4][2] = { { 1, 0 }, { 0, 1 }, { 1, 1 }, { 1, -1 } };
+    for (unsigned k = 0; k < 4u; k++)
+        probe_ray(cfg, &b, cu, cv, dirs[k][0], dirs[k][1], ctl1, 8u);
+    for (unsigned k = 0; k < 4u; k++)
+        probe_ray(cfg, &b, cu, cv, dirs[k][0], dirs[k][1], ctl2, 8u);
+    /*
+     * S's roundings move alpha by an ulp only for some ramp values t: four
+     * more one-by-one settings (tones 1 and 3; m = 0.15 and 0.55 of the
+     * first ramp step), along the diagonals, 6 levels each.
+     */
+    const unsigned n1 = np_hatch_n(cfg) + 1u;
+    const uint64_t ctl3[4][3] = {
+        { 1, 0x10000, 0x10000u - 0x10000u * 15u / (100u * n1) },
+        { 3, 0x10000, 0x10000u - 0x10000u * 55u / (100u * n1) },
+        { 1, 0x10000, 0x10000u - 0x10000u * 55u / (100u * n1) },
+        { 3, 0x10000, 0x10000u - 0x10000u * 15u / (100u * n1) },
+    };
+    for (unsigned j = 0; j < 4u; j++)
+        for (unsigned k = 2; k < 4u; k++)
+            probe_ray(cfg, &b, cu, cv, dirs[k][0], dirs[k][1], ctl3[j], 6u);
     for (size_t k = 0; k < b.n && k < max; k++)
         for (unsigned f = 0; f < 5; f++)
             in[k][f] = rows[k][f] & (f < 2 ? NP_MASK(33) : f == 2 ? 0xFFu : NP_MASK(17));
