@@ -190,15 +190,30 @@ static void tie_case(const np_hatch_cfg *cfg, uint64_t out[5])
  * Up to `levels` levels, evenly spaced between the outputs at t = 0 and at
  * t = 2^29 (1/8 of a tile).
  */
+/* The ray's point t: x0 + t d (mod 2), d = -1, 0 or 1. */
+static uint64_t ray_x(uint64_t x0, int d, uint64_t t)
+{
+    return (x0 + (uint64_t)(int64_t)d * t) & NP_MASK(NP_HATCH_X_BITS);
+}
+
+typedef struct hatch_ray {
+    uint64_t xu0, xv0;
+    int du, dv;
+    const uint64_t *ctl; /* tone, pm, om */
+} hatch_ray;
+
+static uint32_t ray_out(const np_hatch_cfg *cfg, const hatch_ray *r, uint64_t t)
+{
+    return np_hatch_eval(cfg, ray_x(r->xu0, r->du, t), ray_x(r->xv0, r->dv, t), (uint32_t)r->ctl[0],
+                         (uint32_t)r->ctl[1], (uint32_t)r->ctl[2], NULL);
+}
+
 static void probe_ray(const np_hatch_cfg *cfg, bnd_tab *b, uint64_t xu0, uint64_t xv0, int du, int dv,
                       const uint64_t ctl[3], unsigned levels)
 {
-    const uint64_t m33 = NP_MASK(NP_HATCH_X_BITS), tmax = (uint64_t)1 << 29;
-#define PROBE_X(t, x0, d) (((x0) + (uint64_t)(int64_t)(d) * (t)) & m33)
-#define PROBE_OUT(t)                                                                                                   \
-    np_hatch_eval(cfg, PROBE_X(t, xu0, du), PROBE_X(t, xv0, dv), (uint32_t)ctl[0], (uint32_t)ctl[1], (uint32_t)ctl[2], \
-                  NULL)
-    uint32_t o0 = PROBE_OUT(0), o1 = PROBE_OUT(tmax);
+    const hatch_ray r = { xu0, xv0, du, dv, ctl };
+    const uint64_t tmax = (uint64_t)1 << 29;
+    uint32_t o0 = ray_out(cfg, &r, 0), o1 = ray_out(cfg, &r, tmax);
     int up = o1 > o0;
     uint32_t span = up ? o1 - o0 : o0 - o1;
     unsigned nl = span < levels ? span : levels;
@@ -209,17 +224,15 @@ static void probe_ray(const np_hatch_cfg *cfg, bnd_tab *b, uint64_t xu0, uint64_
         uint64_t lo = 0, hi = tmax;
         while (hi - lo > 1u) {
             uint64_t mid = lo + (hi - lo) / 2u;
-            uint32_t om = PROBE_OUT(mid);
+            uint32_t om = ray_out(cfg, &r, mid);
             if (up ? om < lvl : om > lvl)
                 lo = mid;
             else
                 hi = mid;
         }
-        bnd_add(b, PROBE_X(lo, xu0, du), PROBE_X(lo, xv0, dv), ctl[0], ctl[1], ctl[2]);
-        bnd_add(b, PROBE_X(hi, xu0, du), PROBE_X(hi, xv0, dv), ctl[0], ctl[1], ctl[2]);
+        bnd_add(b, ray_x(xu0, du, lo), ray_x(xv0, dv, lo), ctl[0], ctl[1], ctl[2]);
+        bnd_add(b, ray_x(xu0, du, hi), ray_x(xv0, dv, hi), ctl[0], ctl[1], ctl[2]);
     }
-#undef PROBE_OUT
-#undef PROBE_X
 }
 
 /*
