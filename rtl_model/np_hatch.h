@@ -6,18 +6,26 @@
  * left on white paper by every stroke of every layer (Algorithm 1).
  *
  * This header is the bit-exact specification. Signals and formats (value =
- * word / 2^fraction bits; "unorm8": value = word / 255):
+ * word / 2^fraction bits; "unorm8": value = word / 255). "Rounded half up"
+ * to n fraction bits is floor(v 2^n + 1/2) of the exact value: ties go
+ * toward +infinity, for negative values too (Q = -2.5 ulp gives -2 ulp).
  *
  *   xu, xv    u33 Q1.32   seed-space position mod 2 (the host computes it per
  *                         span from UV and the level in 128 bits: np_hatch_xs).
  *   tone      u8 unorm8   a = tone / 255: darkness to draw (0 white, 1 black).
  *   pm        u17 Q1.16   2^-m (the host's, per span); strokes scale by 2^m.
- *   om        u17 Q1.16   1 - m; saturated to 1.0 (0x10000) before use (oms).
+ *   om        u17 Q1.16   1 - m; saturated to 1.0 before use: oms = min(om,
+ *                         0x10000) (u17 Q1.16, stage A); only oms is used.
  *   out       u8 unorm8   the paper's colour after all strokes, round(255 c).
  *
  * Per configuration (np_hatch_cfg; per layer l < layers <= 4):
  *   b_u, b_v      N-bit patterns (N = 16 or 64), seed i = rotl_N(b, i)/(2^N-1)
- *   R             2x2 s16 Q1.14 stroke rotation R = [[c, s], [-s, c]]
+ *   R             2x2 s16 Q1.14 stroke rotation R = [[c, s], [-s, c]] with
+ *                 c = round(2^14 cos theta), s = round(2^14 sin theta) (sin's
+ *                 sign as is): 45 deg c = s = 11585; -45 deg c = 11585,
+ *                 s = -11585; 0 deg (16384, 0); 90 deg (0, 16384); 1e-4 rad
+ *                 (16384, 2). Layer l's theta (PIN, rot=pin): 45, -45, 0, 90
+ *                 deg for l = 0, 1, 2, 3; rot=ANGLE gives every layer ANGLE.
  *   inv_u, inv_v  u16 Q8.8 1/(F e) along and across the stroke (every layer)
  *
  * Set-up (stage A, once per point):
@@ -26,8 +34,13 @@
  *   al[l]     u31 Q1.30   clamp(4 A - l, 0, 1): layer l draws tone range
  *                         [l/4, (l+1)/4] (PIN), exact.
  *   ku, kv    u33 Q9.24   pm * inv_u, pm * inv_v, exact: 1 / (2^m F e).
+ *   oms       u17 Q1.16   min(om, 0x10000).
+ *   m30       u31 Q1.30   (0x10000 - oms) << 14: m = 1 - oms, exact (one by
+ *                         one fading only).
  *
- * Per seed (layer l, i = 0..N-1, in that order: compositing order matters):
+ * Per seed (layers l = 0, 1, ..., layers-1 in turn, within each i = 0, 1,
+ * ..., N-1 counting UP, in that order: compositing order matters, and i is
+ * also the seed's index in the one-by-one ramps below):
  *   W         N bits      rotl_N(b, i): wiring.
  *   st        u32 Q0.32   the first 32 bits of the periodic fraction 0.WWW...
  *                         (wiring). The exact seed is st + delta with
@@ -37,27 +50,46 @@
  *                         + 1/2) EXACTLY for the exact rational s (d lies in
  *                         (e - 2^-32, e) and is a multiple of 2^-32, so no
  *                         integer lies between), so bit 32 of d is the parity
- *                         of w = floor(x_s - s_i + eta) (§5.3).
+ *                         of w = floor(x_s - s_i + eta) (§5.3). The -2^-32
+ *                         matters: at x = st + 1/2 (mod 1) d = 1 - 2^-32 (bit
+ *                         32 even, r = 1/2 - 2^-32), where x - st + 1/2 would
+ *                         give 1 (odd, r = -1/2); the exact x - s + 1/2 is
+ *                         1 - delta < 1. Not x - st + 1/2, not NOT32.
  *   surv      1 bit       d_u[32] == W_u[0] and d_v[32] == W_v[0]: the seed
  *                         coincides with a seed of the sparse level (the first
  *                         bit of s_{i-1}, i.e. the last of W, is the corner the
  *                         chaos game used). Proved exhaustively in test_hatch.
  *   ru, rv    s33 Q0.32   frac(d) - 1/2 in [-1/2, 1/2): |r - r_exact| < 2^-32.
- *   qu, qv    s49 Q3.46   R (r_u, r_v), exact.
+ *   qu, qv    s49 Q3.46   R (r_u, r_v), exact: qu = c ru + s rv,
+ *                         qv = -s ru + c rv.
  *   Qu, Qv    s42 Q11.30  2 q k rounded half up (z = (Q + 1) / 2 addresses the
- *                         stroke, which is 0 outside [0, 1]^2, i.e. |Q| > 1).
- *   profile   u31 Q1.30   y = (1 - Qu^8)(1 - Qv^4) (procedural stroke: flat
- *                         along, rounded across), each square and the product
- *                         rounded half up; 0 when |Qu| or |Qv| >= 1.
- *   at        u31 Q1.30   tone part: smooth al; one by one S(clamp((N+1) al - i))
- *                         with S(t) = t^2 (3 - 2t) (two rounded products; no divide).
- *   am        u31 Q1.30   level part: 1 if surv; else smooth oms, one by one
- *                         1 - S(clamp((N+1) m - i)), m = 1 - oms.
- *   alpha     u31 Q1.30   round(round(at am) y).
+ *                         stroke, which is 0 outside (0, 1)^2, i.e. where
+ *                         |Qu| >= 1 or |Qv| >= 1, compared on the Q1.30 word).
+ *   y_alpha   u31 Q1.30   the stroke profile (signal "profile" in traces):
+ *                         (1 - Qu^8)(1 - Qv^4) (procedural stroke: flat along,
+ *                         rounded across) for |Qu| < 1 and |Qv| < 1, else 0;
+ *                         u2 = round(Qu^2), u4 = round(u2^2), u8 = round(u4^2),
+ *                         v2 = round(Qv^2), v4 = round(v2^2), y_alpha =
+ *                         round((1 - u8)(1 - v4)), each rounded half up in Q1.30.
+ *   S(t)      u31 Q1.30   smoothstep of t in [0, 1] Q1.30, no divide:
+ *                         S(t) = round(round(t^2) (3 - 2t)), both products
+ *                         rounded half up in Q1.30; S(0) = 0, S(1) = 1 exactly.
+ *   at        u31 Q1.30   tone part. smooth: al[l]. one by one:
+ *                         S(clamp((N+1) al[l] - i, 0, 1)), the ramp exact in
+ *                         Q1.30 ((N+1) times the word minus i 2^30, clamped).
+ *   am        u31 Q1.30   level part: 1 if surv; else smooth oms << 14, one by
+ *                         one 1 - S(clamp((N+1) m30 - i, 0, 1)) (exact ramp).
+ *   alpha     u31 Q1.30   round(round(at am) y_alpha), both rounded half up.
  *   c         u(F+1) Q1.F colour register, F = 8 + guard; starts at 1 (white);
- *                         c <- c - floor(alpha c) (black ink, PIN: y = 0), i.e.
- *                         c (1 - alpha) truncated: never below the true value's
- *                         truncation, never negative.
+ *                         c <- c - floor(alpha c / 2^30) on the words (black
+ *                         ink, PIN: the ink colour is 0), i.e. c (1 - alpha)
+ *                         rounded UP (ceil) to a multiple of 2^-F (toward
+ *                         white), never below the exact c (1 - alpha), never
+ *                         negative. Not floor(c (1 - alpha)), not rounded to
+ *                         nearest.
+ *   out       u8          floor((255 c + 2^(F-1)) / 2^F) on the word:
+ *                         round(255 c) half up. The only tie is c = 1/2
+ *                         (127.5 -> 128), since 255 is odd.
  *
  * Error bound. Let e_k be the colour error after k blends against the exact
  * c_k and da_k = |alpha_k(model) - alpha_k(exact)|. Since 0 <= alpha <= 1 and

@@ -5,9 +5,10 @@
  * misread variants of a unit's bit-exact model (below) on every vector of
  * the unit's checked-in sets ($readmemh files, vectors/<unit>/) and counts
  * the vectors whose expected output the variant misses. The spec's own model
- * must miss none; every misreading must be caught by at least one of the
- * sets at non-default configurations (the default set alone misses some:
- * the table printed says which).
+ * must miss none; every misreading of classic3 and simplex3 must be caught by
+ * at least one of the sets at non-default configurations (the default set
+ * alone misses some: the table printed says which), every misreading of
+ * hatch by at least one of its six sets (docs/hatch.md lists which).
  *
  * simplex3 misreadings (np_simplex.h):
  *   e_neg_after   e_a = -round(tau4) instead of round(-tau4) (sign after rounding)
@@ -25,6 +26,34 @@
  *                 negates in 10 bits.
  *   s_ws_bits     s held in WS bits (1.0 wraps to 0) instead of u(WS+1)
  *   ties_away     interpolators round ties away from zero (sign after rounding)
+ * hatch misreadings (np_hatch.h, docs/hatch.md; most from an independent
+ * implementation's review, each a plausible reading of an earlier text):
+ *   blend_trunc   c <- floor(c (1 - alpha)) instead of c - floor(alpha c)
+ *   blend_round   c <- c - round(alpha c)
+ *   i_down        seeds composited i = N-1 down to 0 (ramps keep index i)
+ *   ramp_down     one by one: the ramps use N-1-i (seeds fade the other way)
+ *   layers_rev    layers composited from the last to the first
+ *   om_unsat      om not saturated: oms = om (up to 2 - 2^-16)
+ *   om_wrap       om read as u16: oms = om mod 2^16 (1.0 becomes 0)
+ *   sm_one_om     smooth: alpha_level = 1 - oms (om taken as m)
+ *   s_neg         R = [[c, -s], [s, c]]: s = -sin
+ *   d_no_ulp      d = x - st + 1/2 (x + NOT32(st) + 1 + 2^31): no -2^-32
+ *   surv_msb      survival against W's first bit instead of its last
+ *   layer_swap    layer l complements u when l & 2 and v when l & 1
+ *   a_trunc       A = floor(tone 2^30 / 255)
+ *   q_trunc       Q = 2 q k truncated instead of rounded half up
+ *   prof_trunc    the profile's squarings and product truncated
+ *   s_one_round   S(t) = round(t^2 (3 - 2t)) with one rounding
+ *   alpha_order   alpha = round(round(at y) am)
+ *   out_half_down the output tie c = 1/2 rounds down (127)
+ *   out_trunc     out = floor(255 c)
+ *   k_swap        Qu scaled by kv and Qv by ku (inv_len and inv_wid swapped)
+ *   prof_swap     profile (1 - Qu^4)(1 - Qv^8): the exponents swapped
+ *   pin_perm      rot=pin angles 45, -45, 90, 0 (layers 2 and 3 swapped)
+ *   prof_le1      the profile computed where |Q| <= 1 (not < 1). INVISIBLE,
+ *                 and the case checks that it is: at |Q| = 1 exactly the
+ *                 factor 1 - Q^8 (or 1 - Q^4) is 1 - 1 = 0, so the profile
+ *                 is 0 either way; docs/hatch.md says >= 1 to leave no doubt.
  */
 #include <stdint.h>
 #include <stdio.h>
@@ -32,15 +61,17 @@
 #include <string.h>
 
 #include "np_classic.h"
+#include "np_hatch.h"
 #include "np_simplex.h"
 #include "np_test.h"
+#include "np_unit.h"
 
 /* ------------------------------------------------------------ vector files */
 
 typedef struct vecset {
     char config[512];
     size_t n;
-    uint16_t (*in)[3];
+    uint64_t (*in)[5];  /* input fields, in[a] for input a */
     uint64_t (*out)[4]; /* output fields, out[k] for output k */
 } vecset;
 
@@ -53,8 +84,12 @@ static uint64_t bits_of(const uint64_t *w, unsigned lo, unsigned n)
     return v;
 }
 
-/* Read a $readmemh set; widths[k] of the nout outputs, from the LSB end: last output first. */
-static int read_set(const char *path, unsigned nout, const unsigned *widths, vecset *s)
+/*
+ * Read a $readmemh set: nin inputs of in_w[a] bits, then nout outputs of
+ * widths[k] bits, taken from the LSB end: last output first.
+ */
+static int read_set(const char *path, unsigned nin, const unsigned *in_w, unsigned nout, const unsigned *widths,
+                    vecset *s)
 {
     FILE *f = fopen(path, "r");
     char line[480];
@@ -90,9 +125,9 @@ static int read_set(const char *path, unsigned nout, const unsigned *widths, vec
             s->out[s->n][k] = bits_of(w, pos, widths[k]);
             pos += widths[k];
         }
-        for (unsigned a = 3; a-- > 0;) {
-            s->in[s->n][a] = (uint16_t)bits_of(w, pos, 16);
-            pos += 16;
+        for (unsigned a = nin; a-- > 0;) {
+            s->in[s->n][a] = bits_of(w, pos, in_w[a]);
+            pos += in_w[a];
         }
         s->n++;
     }
@@ -222,6 +257,209 @@ static void classic_variant(const np_classic_cfg *cfg, int variant, const uint16
     out[1] = out[2] = out[3] = 0;
 }
 
+/* ------------------------------------------------------------ hatch variants */
+
+enum {
+    H_SPEC,
+    H_BLEND_TRUNC,
+    H_BLEND_ROUND,
+    H_I_DOWN,
+    H_RAMP_DOWN,
+    H_LAYERS_REV,
+    H_OM_UNSAT,
+    H_OM_WRAP,
+    H_SM_ONE_OM,
+    H_S_NEG,
+    H_D_NO_ULP,
+    H_SURV_MSB,
+    H_LAYER_SWAP,
+    H_A_TRUNC,
+    H_Q_TRUNC,
+    H_PROF_TRUNC,
+    H_S_ONE_ROUND,
+    H_ALPHA_ORDER,
+    H_OUT_HALF_DOWN,
+    H_OUT_TRUNC,
+    H_PROF_LE1,
+    H_K_SWAP,
+    H_PROF_SWAP,
+    H_PIN_PERM,
+    H_VARIANTS
+};
+static const char *const h_names[H_VARIANTS] = {
+    "spec",        "blend_trunc", "blend_round", "i_down",        "ramp_down", "layers_rev", "om_unsat",
+    "om_wrap",     "sm_one_om",   "s_neg",       "d_no_ulp",      "surv_msb",  "layer_swap", "a_trunc",
+    "q_trunc",     "prof_trunc",  "s_one_round", "alpha_order",   "out_half_down", "out_trunc", "prof_le1",
+    "k_swap",      "prof_swap",   "pin_perm",
+};
+
+#define H_ONE ((uint64_t)1 << NP_HATCH_AF)
+
+/* x y / 2^30, rounded half up (or truncated), both Q1.30 (om_unsat: am up to 2). */
+static uint64_t h_mul(int variant, int trunc_variant, uint64_t x, uint64_t y)
+{
+    return variant == trunc_variant ? (x * y) >> NP_HATCH_AF : np_shr_round_half_up_u(x * y, NP_HATCH_AF);
+}
+
+static uint64_t h_smooth(int variant, uint64_t t)
+{
+    if (variant == H_S_ONE_ROUND)
+        return (uint64_t)(((np_u128)t * t * (3u * H_ONE - 2u * t) + ((np_u128)1 << (2 * NP_HATCH_AF - 1))) >>
+                          (2 * NP_HATCH_AF));
+    uint64_t t2 = h_mul(variant, -1, t, t);
+    return h_mul(variant, -1, t2, 3u * H_ONE - 2u * t);
+}
+
+static uint64_t h_ramp(unsigned n, uint64_t x, unsigned i)
+{
+    int64_t v = (int64_t)(n + 1u) * (int64_t)x - (int64_t)i * (int64_t)H_ONE;
+    return (uint64_t)(v < 0 ? 0 : (v > (int64_t)H_ONE ? (int64_t)H_ONE : v));
+}
+
+/* Q = 2 q k (q Q3.46, k Q9.24 -> Q11.30): rounded half up (floor(v + 1/2)) or truncated (floor). */
+static int64_t h_stroke_q(int variant, int64_t q, uint64_t k)
+{
+    np_s128 p = (np_s128)q * (np_s128)k;
+    if (variant != H_Q_TRUNC)
+        p += (np_s128)1 << 38;
+    return (int64_t)np_asr128(p, 39);
+}
+
+static uint64_t h_profile(int variant, int64_t Qu, int64_t Qv)
+{
+    uint64_t U = (uint64_t)(Qu < 0 ? -Qu : Qu), V = (uint64_t)(Qv < 0 ? -Qv : Qv);
+    if (variant == H_PROF_LE1 ? (U > H_ONE || V > H_ONE) : (U >= H_ONE || V >= H_ONE))
+        return 0;
+    if (variant == H_PROF_SWAP) {
+        uint64_t t = U;
+        U = V;
+        V = t;
+    }
+    uint64_t u2 = h_mul(variant, H_PROF_TRUNC, U, U), u4 = h_mul(variant, H_PROF_TRUNC, u2, u2);
+    uint64_t u8 = h_mul(variant, H_PROF_TRUNC, u4, u4);
+    uint64_t v2 = h_mul(variant, H_PROF_TRUNC, V, V), v4 = h_mul(variant, H_PROF_TRUNC, v2, v2);
+    return h_mul(variant, H_PROF_TRUNC, H_ONE - u8, H_ONE - v4);
+}
+
+/* The unit from docs/hatch.md, written afresh, with one misreading switched in. */
+static uint64_t hatch_variant(const np_hatch_cfg *cfg, int variant, const uint64_t in[5])
+{
+    const np_hatch_set *set = &np_hatch_sets[cfg->set];
+    unsigned n = set->n, f = 8u + cfg->guard;
+    uint64_t xu = in[0], xv = in[1], tone = in[2], pm = in[3], om = in[4];
+    uint64_t a = variant == H_A_TRUNC ? tone * H_ONE / 255u : (tone * H_ONE + 127u) / 255u;
+    uint64_t oms = variant == H_OM_UNSAT ? om : variant == H_OM_WRAP ? om & 0xFFFFu : (om > 0x10000u ? 0x10000u : om);
+    uint64_t ku = pm * cfg->inv_u, kv = pm * cfg->inv_v;
+    if (variant == H_K_SWAP) {
+        uint64_t t = ku;
+        ku = kv;
+        kv = t;
+    }
+    uint64_t mask_f = NP_MASK(f + 1u), c = (uint64_t)1 << f;
+    uint64_t nm = n >= 64u ? ~(uint64_t)0 : NP_MASK(n), m33 = NP_MASK(NP_HATCH_X_BITS);
+    for (unsigned ll = 0; ll < cfg->layers; ll++) {
+        unsigned l = variant == H_LAYERS_REV ? cfg->layers - 1u - ll : ll;
+        int64_t alv = 4 * (int64_t)a - (int64_t)l * (int64_t)H_ONE;
+        uint64_t al = (uint64_t)(alv < 0 ? 0 : (alv > (int64_t)H_ONE ? (int64_t)H_ONE : alv));
+        int swap = variant == H_LAYER_SWAP;
+        uint64_t bu = (l & (swap ? 2u : 1u)) ? ~set->bu & nm : set->bu;
+        uint64_t bv = (l & (swap ? 1u : 2u)) ? ~set->bv & nm : set->bv;
+        int16_t r[2][2];
+        np_hatch_layer_r(cfg, variant == H_PIN_PERM && cfg->rot == NP_HATCH_ROT_PIN && l >= 2u ? 5u - l : l, r);
+        int64_t rc = r[0][0], rs = variant == H_S_NEG ? -r[0][1] : r[0][1];
+        for (unsigned ii = 0; ii < n; ii++) {
+            unsigned i = variant == H_I_DOWN ? n - 1u - ii : ii, ri = variant == H_RAMP_DOWN ? n - 1u - i : i;
+            uint64_t wu = np_hatch_rotl(bu, i, n), wv = np_hatch_rotl(bv, i, n);
+            uint64_t stu = np_hatch_seed_st(wu, n), stv = np_hatch_seed_st(wv, n), half = (uint64_t)1 << 31;
+            uint64_t du = variant == H_D_NO_ULP ? (xu - stu + half) & m33 : (xu + (m33 ^ stu) + half) & m33;
+            uint64_t dv = variant == H_D_NO_ULP ? (xv - stv + half) & m33 : (xv + (m33 ^ stv) + half) & m33;
+            unsigned bit_u = (unsigned)(variant == H_SURV_MSB ? wu >> (n - 1u) : wu) & 1u;
+            unsigned bit_v = (unsigned)(variant == H_SURV_MSB ? wv >> (n - 1u) : wv) & 1u;
+            int surv = ((du >> 32) & 1u) == bit_u && ((dv >> 32) & 1u) == bit_v;
+            int64_t ru = (int64_t)(du & NP_MASK(32)) - (int64_t)half, rv = (int64_t)(dv & NP_MASK(32)) - (int64_t)half;
+            int64_t Qu = h_stroke_q(variant, rc * ru + rs * rv, ku), Qv = h_stroke_q(variant, -rs * ru + rc * rv, kv);
+            uint64_t y = h_profile(variant, Qu, Qv), at, am;
+            if (cfg->fade == NP_HATCH_FADE_ONE_BY_ONE) {
+                at = h_smooth(variant, h_ramp(n, al, ri));
+                uint64_t m30 = oms > 0x10000u ? 0 : (0x10000u - oms) << (NP_HATCH_AF - NP_HATCH_M_FRAC);
+                am = surv ? H_ONE : H_ONE - h_smooth(variant, h_ramp(n, m30, ri));
+            } else {
+                at = al;
+                uint64_t o30 = oms << (NP_HATCH_AF - NP_HATCH_M_FRAC);
+                am = surv ? H_ONE : variant == H_SM_ONE_OM ? (o30 > H_ONE ? 0 : H_ONE - o30) : o30;
+            }
+            uint64_t alpha = variant == H_ALPHA_ORDER ? h_mul(variant, -1, h_mul(variant, -1, at, y), am)
+                                                      : h_mul(variant, -1, h_mul(variant, -1, at, am), y);
+            if (variant == H_BLEND_TRUNC)
+                c = (uint64_t)(((np_s128)H_ONE - (np_s128)alpha) * (np_s128)c >> NP_HATCH_AF) & mask_f;
+            else if (variant == H_BLEND_ROUND)
+                c = (c - np_shr_round_half_up_u(alpha * c, NP_HATCH_AF)) & mask_f;
+            else
+                c = (c - ((alpha * c) >> NP_HATCH_AF)) & mask_f; /* om_unsat: alpha up to 2 wraps c */
+        }
+    }
+    uint64_t p = 255u * c;
+    if (variant == H_OUT_HALF_DOWN)
+        return ((p + ((uint64_t)1 << (f - 1u)) - 1u) >> f) & 0xFFu;
+    if (variant == H_OUT_TRUNC)
+        return (p >> f) & 0xFFu;
+    return ((p + ((uint64_t)1 << (f - 1u))) >> f) & 0xFFu;
+}
+
+static const char *const h_sets[] = { "hatch-l1-seed1",          "hatch-l1-seed1-onebyone", "hatch-l1-seed1-best64",
+                                      "hatch-l1-seed1-g0",       "hatch-l1-seed1-rot45",    "hatch-l1-seed1-fkm16_l1" };
+enum { H_NSETS = sizeof h_sets / sizeof h_sets[0] };
+
+static int case_hatch(void)
+{
+    const np_unit *u = np_unit_find("hatch");
+    NP_CHECK(u != NULL, "unit hatch not registered");
+    static uint64_t missed[H_VARIANTS][H_NSETS];
+    memset(missed, 0, sizeof missed);
+    const unsigned in_w[5] = { NP_HATCH_X_BITS, NP_HATCH_X_BITS, 8, NP_HATCH_M_BITS, NP_HATCH_M_BITS }, out_w[1] = { 8 };
+    for (unsigned si = 0; si < H_NSETS; si++) {
+        char path[1024], err[512];
+        snprintf(path, sizeof path, "%s/hatch/%s.memh", NP_VEC_DIR, h_sets[si]);
+        vecset vs;
+        NP_CHECK(read_set(path, 5, in_w, 1, out_w, &vs) == 0, "cannot read %s", path);
+        if (vs.n == 0)
+            return 1;
+        union {
+            np_hatch_cfg h;
+            unsigned char raw[NP_UNIT_CFG_MAX];
+        } cb;
+        NP_CHECK(np_unit_configure_all(u, &cb, vs.config, err, sizeof err) == 0, "%s: config '%s': %s", path,
+                 vs.config, err);
+        for (size_t t = 0; t < vs.n; t++)
+            for (unsigned v = 0; v < H_VARIANTS; v++)
+                missed[v][si] += hatch_variant(&cb.h, (int)v, vs.in[t]) != vs.out[t][0];
+        printf("%-26s %6zu vectors  config %s\n", h_sets[si], vs.n, vs.config);
+        free_set(&vs);
+    }
+    printf("vectors whose expected output each variant misses (a misreading is caught where > 0):\n");
+    printf("  %-13s", "variant");
+    for (unsigned si = 0; si < H_NSETS; si++)
+        printf(" %9s", si == 0 ? "default" : h_sets[si] + sizeof "hatch-l1-seed1");
+    printf("\n");
+    for (unsigned v = 0; v < H_VARIANTS; v++) {
+        uint64_t caught = 0;
+        printf("  %-13s", h_names[v]);
+        for (unsigned si = 0; si < H_NSETS; si++) {
+            printf(" %9llu", (unsigned long long)missed[v][si]);
+            caught += missed[v][si];
+        }
+        printf("\n");
+        if (v == H_SPEC || v == H_PROF_LE1)
+            for (unsigned si = 0; si < H_NSETS; si++)
+                NP_CHECK(missed[v][si] == 0, "%s misses %llu vectors of %s (%s)", h_names[v],
+                         (unsigned long long)missed[v][si], h_sets[si],
+                         v == H_SPEC ? "the spec's model" : "should be invisible at the output");
+        else
+            NP_CHECK(caught > 0, "misreading %s is caught by no checked-in hatch set", h_names[v]);
+    }
+    return 0;
+}
+
 /* ------------------------------------------------------------ cases */
 
 /* The checked-in sets of each unit: the default first, then the non-default ones. */
@@ -245,7 +483,8 @@ static int run_unit(int simplex)
         vecset vs;
         /* The config line decides the widths: read it first with a dummy layout. */
         unsigned w0[1] = { 1 };
-        NP_CHECK(read_set(path, 1, w0, &vs) == 0, "cannot read %s", path);
+        const unsigned in_w[3] = { 16, 16, 16 };
+        NP_CHECK(read_set(path, 3, in_w, 1, w0, &vs) == 0, "cannot read %s", path);
         if (vs.n == 0)
             return 1;
         if (simplex) {
@@ -262,14 +501,15 @@ static int run_unit(int simplex)
             widths[0] = cc.out_bits;
         }
         free_set(&vs);
-        NP_CHECK(read_set(path, nout, widths, &vs) == 0, "cannot read %s", path);
+        NP_CHECK(read_set(path, 3, in_w, nout, widths, &vs) == 0, "cannot read %s", path);
         for (size_t t = 0; t < vs.n; t++)
             for (unsigned v = 0; v < nvar; v++) {
                 uint64_t o[4];
+                const uint16_t in16[3] = { (uint16_t)vs.in[t][0], (uint16_t)vs.in[t][1], (uint16_t)vs.in[t][2] };
                 if (simplex)
-                    simplex_variant(&sc, (int)v, vs.in[t], o);
+                    simplex_variant(&sc, (int)v, in16, o);
                 else
-                    classic_variant(&cc, (int)v, vs.in[t], o);
+                    classic_variant(&cc, (int)v, in16, o);
                 int differs = 0;
                 for (unsigned k = 0; k < nout; k++)
                     differs |= o[k] != vs.out[t][k];
@@ -311,6 +551,7 @@ static int case_classic3(void) { return run_unit(0); }
 
 static const np_test_case cases[] = {
     { "classic3", case_classic3 },
+    { "hatch", case_hatch },
     { "simplex3", case_simplex3 },
     { NULL, NULL },
 };

@@ -114,19 +114,132 @@ static void sig_get_out(const void *cfg, const void *sig, uint64_t *out)
     out[0] = ((const np_hatch_sig *)sig)->out;
 }
 
-/* The first 32 bits of seed i of layer 0 (a point at the seed: r = 0, frac(d) = 1/2 exactly up to 2^-32). */
-static uint64_t seed_word(const np_hatch_cfg *cfg, int v, unsigned i)
+/* st of seed i of layer 0 on axis v (0: u, 1: v): the first 32 bits of 0.WWW..., the seed's truncation. */
+static uint64_t seed_st(const np_hatch_cfg *cfg, int v, unsigned i)
 {
     uint64_t bu, bv;
     unsigned n = np_hatch_n(cfg);
     np_hatch_layer_b(cfg, 0, &bu, &bv);
-    uint64_t st = np_hatch_seed_st(np_hatch_rotl(v ? bv : bu, i, n), n);
-    return st + 1u; /* ceil: the exact seed is above the truncation */
+    return np_hatch_seed_st(np_hatch_rotl(v ? bv : bu, i, n), n);
+}
+
+/* The ceiling of seed i of layer 0 (a point at the seed: r = 0, frac(d) = 1/2 exactly up to 2^-32). */
+static uint64_t seed_word(const np_hatch_cfg *cfg, int v, unsigned i)
+{
+    return seed_st(cfg, v, i) + 1u; /* ceil: the exact seed is above the truncation */
+}
+
+enum { HATCH_BND_MAX = 512 };
+
+typedef struct bnd_tab {
+    uint64_t (*t)[5];
+    size_t n;
+} bnd_tab;
+
+static void bnd_add(bnd_tab *b, uint64_t xu, uint64_t xv, uint64_t tone, uint64_t pm, uint64_t om)
+{
+    if (b->n >= HATCH_BND_MAX)
+        return;
+    uint64_t *r = b->t[b->n++];
+    r[0] = xu;
+    r[1] = xv;
+    r[2] = tone;
+    r[3] = pm;
+    r[4] = om;
+}
+
+/*
+ * The output tie c = 1/2 (255 c = 127.5: round half up gives 128, the only
+ * tie since 255 is odd). One stroke of alpha exactly 1/2 and no other ink:
+ * a seed's centre (profile 1), tone 64 (layer 0's alpha_tone 1), om = 1/2
+ * (alpha_level 1/2 where the seed does not survive; one by one, seed N/2's
+ * ramp (N+1)/2 - N/2 = 1/2 gives S = 1/2 too). Which seed and tile leave
+ * every other stroke off depends on the set and sizes: the first candidate
+ * whose colour register is exactly 1/2 in the bit-exact model (seed N/2
+ * first, then every seed; the four tiles of each), else the first candidate.
+ */
+static void tie_case(const np_hatch_cfg *cfg, uint64_t out[5])
+{
+    unsigned n = np_hatch_n(cfg);
+    int found = 0;
+    for (unsigned k = 0; k <= n && !found; k++) {
+        unsigned i = k == 0 ? n / 2u : k - 1u;
+        for (unsigned w = 0; w < 4u && !found; w++) {
+            uint64_t xu = seed_word(cfg, 0, i) | (uint64_t)(w & 1u) << 32;
+            uint64_t xv = seed_word(cfg, 1, i) | (uint64_t)(w >> 1) << 32;
+            np_hatch_sig s;
+            np_hatch_eval(cfg, xu, xv, 64u, 0x10000u, 0x8000u, &s);
+            found = s.c == (uint32_t)1u << (7u + cfg->guard);
+            if (found || (k == 0 && w == 0)) {
+                out[0] = xu;
+                out[1] = xv;
+            }
+        }
+    }
+    out[2] = 64u;
+    out[3] = 0x10000u;
+    out[4] = 0x8000u;
+}
+
+/*
+ * Rounding probes: the internal roundings (Q, the profile, S, alpha) are
+ * 2^-30 steps that an 8-bit output shows only where it changes. Along a ray
+ * from a seed's centre, x(t) = x0 + t d (mod 2), the probe bisects for an
+ * adjacent pair t, t + 1 (2^-32 apart) across which the model's output
+ * passes a level L, and emits both points: an implementation whose alpha
+ * differs by a few ulps there moves the crossing and misses one of the two.
+ * Up to `levels` levels, evenly spaced between the outputs at t = 0 and at
+ * t = 2^29 (1/8 of a tile).
+ */
+/* The ray's point t: x0 + t d (mod 2), d = -1, 0 or 1. */
+static uint64_t ray_x(uint64_t x0, int d, uint64_t t)
+{
+    return (x0 + (uint64_t)(int64_t)d * t) & NP_MASK(NP_HATCH_X_BITS);
+}
+
+typedef struct hatch_ray {
+    uint64_t xu0, xv0;
+    int du, dv;
+    const uint64_t *ctl; /* tone, pm, om */
+} hatch_ray;
+
+static uint32_t ray_out(const np_hatch_cfg *cfg, const hatch_ray *r, uint64_t t)
+{
+    return np_hatch_eval(cfg, ray_x(r->xu0, r->du, t), ray_x(r->xv0, r->dv, t), (uint32_t)r->ctl[0],
+                         (uint32_t)r->ctl[1], (uint32_t)r->ctl[2], NULL);
+}
+
+static void probe_ray(const np_hatch_cfg *cfg, bnd_tab *b, uint64_t xu0, uint64_t xv0, int du, int dv,
+                      const uint64_t ctl[3], unsigned levels)
+{
+    const hatch_ray r = { xu0, xv0, du, dv, ctl };
+    const uint64_t tmax = (uint64_t)1 << 29;
+    uint32_t o0 = ray_out(cfg, &r, 0), o1 = ray_out(cfg, &r, tmax);
+    int up = o1 > o0;
+    uint32_t span = up ? o1 - o0 : o0 - o1;
+    unsigned nl = span < levels ? span : levels;
+    for (unsigned k = 1; k <= nl; k++) {
+        /* Level L: out(lo) on o0's side of L, out(hi) on o1's (L counts from o0 toward o1). */
+        uint32_t step = (uint32_t)((uint64_t)span * k / (nl + 1u));
+        uint32_t lvl = up ? o0 + (step ? step : 1u) : o0 - (step ? step : 1u);
+        uint64_t lo = 0, hi = tmax;
+        while (hi - lo > 1u) {
+            uint64_t mid = lo + (hi - lo) / 2u;
+            uint32_t om = ray_out(cfg, &r, mid);
+            if (up ? om < lvl : om > lvl)
+                lo = mid;
+            else
+                hi = mid;
+        }
+        bnd_add(b, ray_x(xu0, du, lo), ray_x(xv0, dv, lo), ctl[0], ctl[1], ctl[2]);
+        bnd_add(b, ray_x(xu0, du, hi), ray_x(xv0, dv, hi), ctl[0], ctl[1], ctl[2]);
+    }
 }
 
 /*
  * Hand-annotated boundary cases: inputs xu, xv, tone, pm, om, each with the
- * reason it is there.
+ * reason it is there. Rows are only ever appended (the checked-in vector
+ * sets keep their earlier lines).
  */
 static size_t boundary(const void *cfgv, uint64_t (*in)[NP_UNIT_MAX_FIELDS], size_t max)
 {
@@ -159,11 +272,92 @@ static size_t boundary(const void *cfgv, uint64_t (*in)[NP_UNIT_MAX_FIELDS], siz
         { s0u + 0x7FFFFFFF, s0v, 255, 0x10000, 0x10000 }, /* r near +1/2 */
         { 0, 0, 255, 0x8000, 0x10000 },                 /* largest strokes (2^-m = 1/2) at the origin */
     };
-    size_t n = sizeof t / sizeof t[0];
-    for (size_t k = 0; k < n && k < max; k++)
+    uint64_t rows[HATCH_BND_MAX][5];
+    bnd_tab b = { rows, 0 };
+    for (size_t k = 0; k < sizeof t / sizeof t[0]; k++)
+        bnd_add(&b, t[k][0], t[k][1], t[k][2], t[k][3], t[k][4]);
+    /*
+     * The NOT33 edge of d: x = st + 1/2 (mod 1) exactly, where d = 1 - 2^-32
+     * (parity even, r = 1/2 - 2^-32) and d without the -2^-32 would be 1
+     * (odd). pm = 0 makes every stroke cover the point (Q = 0) and om = 0
+     * leaves only the survivors drawing, so the survival bit of the edge seed
+     * decides the colour; tone 4 (layer 0 alone, alpha_tone 16/255; one by
+     * one: seeds 0 and 1) keeps c away from 0 at N = 64 (0.94^16). Seed 0
+     * with both axes on the edge and seed 1 with u on the edge and v at its
+     * centre, each in the four tiles (bit 32 of xu, xv).
+     */
+    for (unsigned i = 0; i < 2u; i++)
+        for (unsigned w = 0; w < 4u; w++) {
+            uint64_t eu = seed_st(cfg, 0, i) + 0x80000000u;
+            uint64_t ev = i == 0 ? seed_st(cfg, 1, i) + 0x80000000u : seed_word(cfg, 1, i);
+            bnd_add(&b, eu ^ (uint64_t)(w & 1u) << 32, ev ^ (uint64_t)(w >> 1) << 32, 4, 0, 0);
+        }
+    /* The output tie: c = 1/2 exactly, out = 128 (tie_case). */
+    uint64_t tie[5] = { 0, 0, 0, 0, 0 };
+    tie_case(cfg, tie);
+    bnd_add(&b, tie[0], tie[1], tie[2], tie[3], tie[4]);
+    /*
+     * Walks that carry ink (the generic walk source's backgrounds mostly give
+     * white paper): around seed 0's centre in a tile where it does not
+     * survive (bit 32 of xu differs from W_u[0], of xv equals W_v[0]; bit 32
+     * of d is the tile's there), tone 0x30 (layer 0 alone, alpha_tone 0.75
+     * smooth, seed 0's 1 one by one), m = 0: each bit of xu, then of xv,
+     * flipped in turn (33 + 33: sub-ulp moves that keep the ink up to
+     * whole-tile moves); then, 2^-7 of a tile off the centre on u (Q depends
+     * on k there), each bit of pm flipped (17), of om = 1 (17: below bit 16
+     * om > 1 must saturate; bit 16 gives m = 1), of om = 1 - 2^-16 (16: m
+     * from 2^-15 to 1/2 + 2^-16), and of the tone (8).
+     */
+    uint64_t b0u, b0v;
+    np_hatch_layer_b(cfg, 0, &b0u, &b0v);
+    uint64_t cu = s0u | (~b0u & 1u) << 32, cv = s0v | (b0v & 1u) << 32;
+    for (unsigned j = 0; j < NP_HATCH_X_BITS; j++)
+        bnd_add(&b, cu ^ (1ull << j), cv, 0x30, 0x10000, 0x10000);
+    for (unsigned j = 0; j < NP_HATCH_X_BITS; j++)
+        bnd_add(&b, cu, cv ^ (1ull << j), 0x30, 0x10000, 0x10000);
+    uint64_t ou = (cu + 0x02000000u) & NP_MASK(NP_HATCH_X_BITS);
+    for (unsigned j = 0; j < NP_HATCH_M_BITS; j++)
+        bnd_add(&b, ou, cv, 0x30, 0x10000 ^ (1u << j), 0x10000);
+    for (unsigned j = 0; j < NP_HATCH_M_BITS; j++)
+        bnd_add(&b, ou, cv, 0x30, 0x10000, 0x10000 ^ (1u << j));
+    for (unsigned j = 0; j < NP_HATCH_M_FRAC; j++)
+        bnd_add(&b, ou, cv, 0x30, 0x10000, 0xFFFF ^ (1u << j));
+    for (unsigned j = 0; j < 8u; j++)
+        bnd_add(&b, ou, cv, 0x30 ^ (1u << j), 0x10000, 0x10000);
+    /*
+     * Rounding probes (probe_ray) from the same centre along u, v and both
+     * diagonals, 8 levels each, in two settings. Tone 42 (alpha_tone 0.66,
+     * and 42 2^30 / 255 has fraction .54: A rounds up) at om = 3/4: both
+     * factors of alpha inexact (smooth). Tone 2 (fraction .50: A rounds up)
+     * at m = 0.3 / (N + 1): one by one, seed 0's tone and level ramps are
+     * fractional (S rounds), while smooth still inks faintly.
+     */
+    const uint64_t ctl1[3] = { 42, 0x10000, 0xC000 };
+    const uint64_t ctl2[3] = { 2, 0x10000, 0x10000u - (0x10000u * 3u / (10u * (np_hatch_n(cfg) + 1u))) };
+    const int dirs[4][2] = { { 1, 0 }, { 0, 1 }, { 1, 1 }, { 1, -1 } };
+    for (unsigned k = 0; k < 4u; k++)
+        probe_ray(cfg, &b, cu, cv, dirs[k][0], dirs[k][1], ctl1, 8u);
+    for (unsigned k = 0; k < 4u; k++)
+        probe_ray(cfg, &b, cu, cv, dirs[k][0], dirs[k][1], ctl2, 8u);
+    /*
+     * S's roundings move alpha by an ulp only for some ramp values t: four
+     * more one-by-one settings (tones 1 and 3; m = 0.15 and 0.55 of the
+     * first ramp step), along the diagonals, 6 levels each.
+     */
+    const unsigned n1 = np_hatch_n(cfg) + 1u;
+    const uint64_t ctl3[4][3] = {
+        { 1, 0x10000, 0x10000u - 0x10000u * 15u / (100u * n1) },
+        { 3, 0x10000, 0x10000u - 0x10000u * 55u / (100u * n1) },
+        { 1, 0x10000, 0x10000u - 0x10000u * 55u / (100u * n1) },
+        { 3, 0x10000, 0x10000u - 0x10000u * 15u / (100u * n1) },
+    };
+    for (unsigned j = 0; j < 4u; j++)
+        for (unsigned k = 2; k < 4u; k++)
+            probe_ray(cfg, &b, cu, cv, dirs[k][0], dirs[k][1], ctl3[j], 6u);
+    for (size_t k = 0; k < b.n && k < max; k++)
         for (unsigned f = 0; f < 5; f++)
-            in[k][f] = t[k][f] & (f < 2 ? NP_MASK(33) : f == 2 ? 0xFFu : NP_MASK(17));
-    return n;
+            in[k][f] = rows[k][f] & (f < 2 ? NP_MASK(33) : f == 2 ? 0xFFu : NP_MASK(17));
+    return b.n;
 }
 
 static size_t datapath(const void *cfg, np_op *ops, size_t max) { return np_hatch_datapath(cfg, ops, max); }
