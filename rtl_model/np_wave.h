@@ -96,7 +96,7 @@
  * successor is a itself there).
  *
  * Error of sin (np_wave_sin_bound, asserted by wave.sincos_bound over every
- * ROM interval's worst points and 2^24 phases): ROM rounding 2^-18, the
+ * ROM interval's worst points, 2^22 random phases and a local search): ROM rounding 2^-18, the
  * interpolation's rounding 2^-18, the chord's error h^2/8 (h = 2 pi / 2^(L+2)
  * radians per ROM step), and the dropped phase bits 2 pi (2^(30-L-IFRAC) - 1) / 2^32:
  *   e_s <= 2^-17 + (2 pi / 2^(L+2))^2 / 8 + 2 pi (2^(30-L-IFRAC) - 1) 2^-32.
@@ -323,7 +323,7 @@ typedef struct np_wave_recur {
     int64_t c, s;   /* s32 Q1.30 */
     int64_t dc, ds; /* cos, sin of the step, s32 Q1.30 */
 } np_wave_recur;
-/* Set up at phase th (u32 turns) with step dth; values from the ROM widened to Q1.30 by exact maths is the host's. */
+/* Load the state (c0, s0), s32 Q1.30 (the lane sets up from the ROM values times 2^13), and the step's cos and sin (dc, ds), s32 Q1.30. */
 void np_wave_recur_setup(np_wave_recur *q, int64_t c0, int64_t s0, int64_t dc, int64_t ds);
 void np_wave_recur_step(np_wave_recur *q);
 
