@@ -10,13 +10,25 @@
  * compares every output; ndim.classic3_same_datapath the declaration).
  *
  * Signals (np_classic.h for the 3-D names):
- *   x_a        u16 Q8.8  input; cell c_a = high byte (tile 256), fraction u_a = low byte
- *   h[c]       u6        np_hashn of corner c = sum_a 2^a b_a (b_a = 1: c_a + 1 mod 256)
- *   d          s9 Q1.8   u_a or u_a - 256
- *   g[c]       s(GB) Q.8 G_c . d, exact; |g| <= K 256 (K = np_gradn_max_terms): GB = 11 (n <= 4), 12 (n = 5)
+ *   x_a        u16 Q8.8  input field a (x, y, z, w, v); cell c_a = high byte
+ *                        (tile 256), fraction u_a = low byte (u8 Q0.8)
+ *   h[c]       u6        np_hashn(n, k_c) of corner c = sum_a 2^a b_a:
+ *                        k_ca = (c_a + b_a) mod 256
+ *   d_ca       s9 Q1.8   u_a (b_a = 0) or u_a - 256 (b_a = 1)
+ *   g[c]       s(GB) Q.8 sum_a G_ca d_ca, G_c = np_gradn_decode(n, h[c]), exact;
+ *                        |g| <= K 256 (K = np_gradn_max_terms): GB = 11 (n <= 4), 12 (n = 5)
  *   s_a        u(WS+1) Q1.WS   round(u^2 (768 - 2u) / 2^(24 - WS)), as classic3
- *   l_m[p]     Q(vi_m).WL      level m = 1..n: lerp along axis m - 1 of level m - 1's pairs
- *   out        sN Q(I).(N-I)   I = 2 (n <= 3), 3 (n = 4, 5); F = N - I fraction bits
+ *   l_m[p]     s(WL+1+vi_m) Q(vi_m).WL   level m = 1..n, p < 2^(n-m):
+ *                        lerp(s_(m-1), l_(m-1)[2p], l_(m-1)[2p+1]) (along
+ *                        axis m - 1), l_0 = g (Q.8); lerp(s, a, b) =
+ *                        rescale(a 2^WS + s (b - a), fa + WS -> WL), fa = 8
+ *                        at level 1, WL after
+ *   out        sN Q(I).(N-I)   sat(rescale(l_n, WL -> F)); I = 2 (n <= 3),
+ *                        3 (n = 4, 5); F = N - I fraction bits. I COUNTS THE
+ *                        SIGN (as classic3's s8 Q2.6 and the vector headers):
+ *                        Q(I-1).F in np_fixed.h's notation
+ * rescale: dropping bits rounds half up (np_shr_round_half_up, ties toward
+ * +inf), adding bits is the exact left shift (level 1 when WL > 8 + WS).
  * Range: each axis contributes at most 1 (|d_a| <= 1, |coefficient| <= 1)
  * and, once interpolated, at most max_t (1 - s)t + s(1 - t) = 1/2, so
  * |l_m| <= m/2 + (n - m) and |noise| <= n/2 = 1, 1.5, 2, 2.5 < 2^(I-1):

@@ -33,12 +33,15 @@
  * ceil(8n/3) - 1 six-bit adders whose carries out of bit 5 are dropped.
  *
  * GRADIENT. Coefficients in {-1, 0, +1} from the 6-bit index h, a select
- * and a conditional negate per axis, no multiplier:
+ * and a conditional negate per axis, no multiplier. Every sign bit has the
+ * same polarity: 1 gives -1, 0 gives +1. Axis a is input field a (x, y, z,
+ * w, v):
  *   n = 2: b2 = 0: an axis, (+-1, 0) or (0, +-1): b0 picks the axis,
  *          b1 the sign (1 = negative); b2 = 1: a diagonal (+-1, +-1),
- *          sign of axis a = bit a. 8 gradients, b5..b3 unused.
+ *          sign of axis a = bit a (1 = negative). 8 gradients, b5..b3
+ *          unused.
  *   n = 3: Appendix B (np_grad_decode): 12 two-term, 8 three-term.
- *   n = 4: b1 b0 = the axis whose coefficient is 0; the other three axes,
+ *   n = 4: 2 b1 + b0 = the axis whose coefficient is 0; the other three axes,
  *          in increasing order, take the signs b2, b3, b4 (1 = negative).
  *          32 gradients, each twice (b5 unused): the 4-D set of three-term
  *          gradients (every permutation of (0, +-1, +-1, +-1)).

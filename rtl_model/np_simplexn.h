@@ -12,9 +12,14 @@
  *   unskew:  u_a = x_a - i_a + G sum_b i_b              G = p/L, L = q + n p
  *   rank:    axes in decreasing u, ties to the lower axis (Appendix B's rule)
  *   corner c (0..n): skewed offset A_c = the first c axes of the ranking
+ *            (A_ca = 1 when axis a is one of them, else 0)
  *            d_c = u - A_c + c G                      (the unskewed offset)
  *   f = A sum_c max(0, r^2 - |d_c|^2)^4 (G_c . d_c),  G_c = np_gradn_decode(
- *            n, np_hashn(n, (i + A_c) mod 256))
+ *            n, np_hashn(n, k_c)), k_ca = (i_a + A_ca) mod 256
+ * Axis a is input field a: x, y, z, w, v (the first n); the output field is
+ * f. For n != 3 the tie rule cannot show in f: on a tie the two simplices
+ * differ in one corner, at distance >= sqrt(1/2) = r from the point, where
+ * T = 0 exactly (docs/noise-nd.md, "Ranking").
  * Since G = F / (1 + n F) exactly, skew and unskew are exact inverses for the
  * rational F: the lattice is the regular one's image up to the rounding of
  * F (docs/noise-nd.md bounds its effect on the geometry).
@@ -34,20 +39,29 @@
  *
  * EXACT FRONT END (every decision on exact integers; W = the offset unit):
  *   SX_a = q X_a + p sum_b X_b        u26 (n = 3: 4X + Y + Z, u19)
- *   i_a  = floor(floor(SX_a / 256) / q)   u10 (n = 3: u9)
+ *   i_a  = floor(floor(SX_a / 256) / q)   u9 (n = 2, 3), u10 (n = 4, 5)
  *   U_a  = (W/256) X_a - W i_a + (W p / L) sum_b i_b   = W u_a, s12
  *   D_ca = U_a - W A_ca + (W p / L) c                = W d_ca, s12
- *   R2_c = sum_a D_ca^2                               u24 (n = 3: u22)
+ *   k_ca = (i_a + A_ca) mod 256   u8, corner c's lattice point
+ *   G_c  = np_gradn_decode(n, np_hashn(n, k_c))       coefficients in {-1, 0, 1}
+ *   R2_c = sum_a D_ca^2          u20 (n = 2), u21 (n = 4, 5), u22 (n = 3)
  *   T_c  = max(0, Tv - k R2_c)   u(TB) Q0.TB holding tau = c_t t exactly
- *   gd_c = G_c . D_c             s14, read as Q.GDF (gd = G.d W / 2^GDF)
+ *                                (n != 3: u20 Q0.20, T <= 2^19)
+ *   gd_c = sum_a G_ca D_ca       s12 (n = 2, 4), s13 (n = 3, 5), read as Q.GDF
+ *                                (gd = G.d W / 2^GDF); widths as declared
  *   n != 3: W = 1024, TB = 20, Tv = 2^19, k = 1, GDF = 10: tau = t, gd = G.d.
  *   n = 3:  W = 1536, TB = 23, Tv = 7077888, k = 5, GDF = 9 (np_simplex.h).
- * ROUNDED DATAPATH (all rounding np_shr_round_half_up):
- *   tau2 = round(T^2 / 2^(2 TB - WT))   u(WT) Q0.WT
- *   tau4 = round(tau2^2 / 2^WT)          u(WT) Q0.WT
- *   fc   = round(tau4 gd) to WP bits     s(WP+1) Q0.WP
+ * ROUNDED DATAPATH (every rescaling np_simplexn_requant: dropping bits
+ * rounds half up, floor(v / 2^k + 1/2) on the two's-complement value, ties
+ * toward +inf for negative values too (np_shr_round_half_up); adding bits
+ * is the exact left shift):
+ *   tau2 = round(T^2 / 2^(2 TB - WT))   u(WT-1) Q0.WT (n = 3: u(WT))
+ *   tau4 = round(tau2^2 / 2^WT)          u(WT-3) Q0.WT (n = 3: u(WT))
+ *   fc   = rescale(tau4 gd, WT + GDF -> WP)   s(WP+1) Q0.WP (a left shift
+ *          when WP > WT + GDF)
  *   S    = sum of the n + 1 fc           s(WP+3) Q2.WP
- *   f    = sat(round(Kf' S))             sN Q-1.N
+ *   f    = sat(rescale(Kf' S, WK + WP -> N))   sN Q-1.N (a left shift
+ *          when WK + WP < N); sat clamps to [-2^(N-1), 2^(N-1) - 1]
  *   Kf   = A 2^GDF / (c_t^4 W): n != 3: Kf = A (an integer: Kf' = A 2^WK is
  *          exact, WK = 0); n = 3: 2^23 / 12301875 rounded to WK bits.
  * ERROR BOUND (argument; np_simplexn_error_bound_lsb): e = 2^-(WT+1),

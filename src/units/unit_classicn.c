@@ -101,7 +101,7 @@ static void fine_cfg(const void *cfg, void *fine)
     static const np_unit_key keys##N[] = {                                                                      \
         NP_UNIT_KEY("dims", cln_block, c.dims, N, N, N, "n: the dimension (fixed for this unit)"),             \
         NP_UNIT_KEY("out_bits", cln_block, c.out_bits, NP_CLASSICN_OUT_MIN, NP_CLASSICN_OUT_MAX, 8,             \
-                    "N: f is sN Q(I).(N-I), I = 2 (n <= 3), 3 (n >= 4)"),                                      \
+                    "N: f is sN Q(I).(N-I), I = 2 (n <= 3), 3 (n >= 4), counting the sign"),                   \
         NP_UNIT_KEY_DERIVED("s_frac", cln_block, c.s_frac, 1, NP_CLASSICN_WS_MAX, s_frac_def##N,                \
                             "WS: s-curve fraction bits (default F + 6, n >= 4: F + 7)"),                      \
         NP_UNIT_KEY_DERIVED("lerp_frac", cln_block, c.lerp_frac, 0, NP_CLASSICN_WL_MAX, lerp_frac_def##N,       \
