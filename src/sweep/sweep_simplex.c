@@ -7,23 +7,36 @@
  * sweep.simplex_kernel_*), also vectorised across the row.
  *
  * The reference row. np_ref_simplex3 (src/ref/ref_simplex.c) per input, in
- * its order of operations, with three changes that change no bit:
- *  - floor(x + s) is kept as a double fi (an integer < 2^10) instead of an
- *    int64_t: i + j + k and x - i are then exact double operations on the
- *    same integers, and the hash reads (int32_t)fi's low 8 bits;
- *  - the hash and gradient come from the 32-bit tables (np_hash.h; == the
- *    bit loop for every argument, fast.hash_exhaustive), and the gradient
- *    g = p + (q + r) of Appendix B is formed with the unused term as +0.0
- *    (two-term gradients: p + (q + 0) == p + q except for the sign of a zero
- *    result);
- *  - a corner outside the kernel (t < 0) leaves f and df unchanged by a
- *    select instead of a `continue`.
- * Why the sign of a zero g changes nothing: f and df start at +0.0 and only
- * ever have terms added (df: 8 t^4 G_a - 64 t^3 g d_a, itself +0.0 - (+-0.0)
- * = +0.0 when it is zero); under round-to-nearest x + (+-0) == x for x != 0
- * and +0 + (+-0) == +0, so a sum that starts at +0.0 is never -0.0 and a
- * term's zero sign cannot show in it. Every other operation is the
- * reference's, in its order, with -ffp-contract=off (no FMA) in every clone.
+ * its order of operations, in two passes that GCC vectorises (-fopt-info-vec:
+ * both loops in the x86-64-v4 clone; GCC 12 if-converts their selects only
+ * with AVX-512 masks under -ftrapping-math, so the v3 and baseline clones run
+ * them scalar):
+ *  - pass 1 (ref_pass1), per input: the skew, floor(x + s) as a double fi (an
+ *    integer < 2^9, by floor_pos: the same double as floor(), no call), the
+ *    unskew, (u, v, w), and a key = (cell, the three rank comparisons) as an
+ *    exact integer-valued double;
+ *  - a scalar scan cuts the row into runs of one key (one simplex: a row
+ *    crosses a few cells and rank changes); per run, ref_corners finds the
+ *    reference's four corners, hashes (np_hash6_fast == the bit loop,
+ *    fast.hash_exhaustive) and Appendix B gradients (grad_coef, as in the
+ *    reference) once;
+ *  - pass 2 (ref_pass2) per input of the run: the corner loop with the run's
+ *    constants. Appendix B's g = p + (q + r) (q or r unused for 48 of the 64
+ *    gradients) is formed as X + (Y + Z) in the rotation whose first term is
+ *    the p axis, X = G_x d_x etc. with G = 0.0 on an unused axis, and the
+ *    rotation is taken by weights 1.0/0.0 (no select on a loop-invariant
+ *    condition); a corner outside the kernel (t < 0) leaves f and df
+ *    unchanged by a select instead of a `continue`.
+ * None of this changes a nonzero double: X + (Y + 0*d) == X + Y whenever the
+ * result is nonzero, and 1*g + 0*g' + 0*g'' == g when g != 0 (every
+ * operand is finite). Only the sign of a zero g can differ, and it cannot
+ * show: f and df start at +0.0 and only ever have terms added (df: 8 t^4 G_a
+ * - 64 t^3 g d_a, itself +-0.0 when it is zero); under round-to-nearest
+ * x + (+-0) == x for x != 0 and +0 + (+-0) == +0, so a sum that starts at
+ * +0.0 is never -0.0 and a term's zero sign cannot show in it. Every other
+ * operation is the reference's, in its order, with -ffp-contract=off (no
+ * FMA) in every clone. Tests fast.simplex_kernel_block (2^24 inputs) and
+ * fast.simplex_kernel_random compare every double's bits.
  */
 #include <math.h>
 #include <stdint.h>
@@ -34,64 +47,96 @@
 #include "np_simplex.h"
 #include "np_sweep.h"
 
-/* Appendix B's gradient of index h as selectors: p, q, r axes and signs; q/r unused -> coefficient 0. */
-typedef struct ref_grad_sel {
-    double sp, sq, sr; /* +-1.0, or 0.0 for an unused q or r */
-    uint32_t rot;      /* b = h & 3: which axis p is (1: x, 2: y, 0 or 3: z) */
-} ref_grad_sel;
+/* ---- The reference row, in segments ---- */
 
-NP_SWEEP_INLINE double pick(uint32_t rot, double a1, double a2, double a0)
+/*
+ * floor(a) for 0 <= a < 2^51, the same double: a + 1.5 * 2^52 rounds a to a
+ * nearest integer n (the sum lies in [2^52, 2^53), where doubles are the
+ * integers), exactly; n - 1.5 * 2^52 is exact; n - 1 when n > a. A select,
+ * not a call: GCC inlines floor() into a vector loop only with
+ * -fno-trapping-math, which noisepipe does not use.
+ */
+NP_SWEEP_INLINE double floor_pos(double a)
 {
-    return rot == 1u ? a1 : rot == 2u ? a2 : a0;
+    double n = (a + 0x1.8p52) - 0x1.8p52, n1 = n - 1.0;
+    return n > a ? n1 : n;
 }
 
-/* One row of np_ref_simplex3 at (x0 + t) / 256, y / 256, z / 256, t < 256; f and grad into ref[k * stride + t]. */
-NP_SWEEP_INLINE void ref_row(uint16_t x0, uint16_t yw, uint16_t zw, const int deriv, double *restrict rf,
-                             double *restrict rdx, double *restrict rdy, double *restrict rdz)
+/*
+ * Pass 1 of a row: per input the reference's skew, cell and unskewed offsets
+ * (u, v, w) and a key naming its simplex: the cell and the three rank
+ * comparisons. Only doubles: the loop vectorises.
+ */
+NP_SWEEP_INLINE void ref_pass1(const double *restrict xs, double y, double z, double *restrict u,
+                               double *restrict v, double *restrict w, double *restrict key)
 {
-    const double y = (double)yw / 256.0, z = (double)zw / 256.0;
     for (unsigned t = 0; t < NP_SWEEP_ROW; t++) {
-        double x = (double)(uint16_t)(x0 + t) / 256.0;
+        double x = xs[t];
         double s = (x + y + z) / 3;
-        double fi = floor(x + s), fj = floor(y + s), fk = floor(z + s);
+        double fi = floor_pos(x + s), fj = floor_pos(y + s), fk = floor_pos(z + s);
         s = (fi + fj + fk) / 6.;
-        double u = x - fi + s, v = y - fj + s, w = z - fk + s;
-        int hi = u >= w ? u >= v ? 0 : 1 : v >= w ? 1 : 2;
-        int lo = u < w ? u < v ? 0 : 1 : v < w ? 1 : 2;
-        int mid = 3 - hi - lo;
-        uint32_t ci = (uint32_t)(int32_t)fi, cj = (uint32_t)(int32_t)fj, ck = (uint32_t)(int32_t)fk;
+        double uu = x - fi + s, vv = y - fj + s, ww = z - fk + s;
+        /* the ranking reads u >= w, u >= v, v >= w (np_ref_simplex3's hi/lo rule) */
+        double rank = (uu >= ww ? 4.0 : 0.0) + (uu >= vv ? 2.0 : 0.0) + (vv >= ww ? 1.0 : 0.0);
+        u[t] = uu;
+        v[t] = vv;
+        w[t] = ww;
+        /* fi, fj, fk < 2^9: the key is an exact integer < 2^33, one per (cell, rank) */
+        key[t] = ((fi * 1024. + fj) * 1024. + fk) * 8. + rank;
+    }
+}
+
+/* What a corner of one simplex contributes, constant over a segment of a row. */
+typedef struct ref_corner {
+    double a0, a1, a2, sa; /* the corner offset A and (A0 + A1 + A2) / 6 */
+    double gx, gy, gz;     /* Appendix B's gradient coefficients on x, y, z (grad_coef) */
+    double w1, w2, w0;     /* 1.0 for the gradient's p axis: x (h & 3 == 1), y (== 2), z (0, 3); others 0.0 */
+} ref_corner;
+
+/*
+ * One corner of np_ref_simplex3's corner loop at (u, v, w), in its order: d,
+ * t, the gradient p + (q + r), f += 8 t^4 g, df += 8 t^4 G - 64 t^3 g d; a
+ * corner with t < 0 is skipped by a select. The three orders of the gradient
+ * sum are all computed and the one of the p axis is taken by weights 1, 0, 0
+ * (1 g + 0 g' + 0 g'' == g when g != 0, and a zero when g is one): no
+ * operation is under a condition and no select has a loop-invariant
+ * condition, so GCC can if-convert and vectorise the loop.
+ */
+NP_SWEEP_INLINE void ref_corner_add(const ref_corner k, double u, double v, double w, const int deriv, double *f,
+                                    double *df0, double *df1, double *df2)
+{
+    double d0 = u - k.a0 + k.sa, d1 = v - k.a1 + k.sa, d2 = w - k.a2 + k.sa;
+    double tt = .6 - d0 * d0 - d1 * d1 - d2 * d2;
+    double X = k.gx * d0, Y = k.gy * d1, Z = k.gz * d2;
+    double g1 = X + (Y + Z), g2 = Y + (Z + X), g0 = Z + (X + Y);
+    double g = (k.w1 * g1 + k.w2 * g2) + k.w0 * g0; /* one weight 1.0, two 0.0: the selected sum, or a zero */
+    double t2 = tt * tt;
+    double nf = *f + 8 * t2 * t2 * g;
+    *f = tt < 0 ? *f : nf;
+    if (deriv) {
+        double t3 = t2 * tt, t4 = t2 * t2;
+        double n0 = *df0 + (8 * t4 * k.gx - 64 * t3 * g * d0);
+        double n1 = *df1 + (8 * t4 * k.gy - 64 * t3 * g * d1);
+        double n2 = *df2 + (8 * t4 * k.gz - 64 * t3 * g * d2);
+        *df0 = tt < 0 ? *df0 : n0;
+        *df1 = tt < 0 ? *df1 : n1;
+        *df2 = tt < 0 ? *df2 : n2;
+    }
+}
+
+/* Pass 2: the four corners of one simplex for the inputs [t0, t1) of a row. Doubles only. */
+NP_SWEEP_INLINE void ref_pass2(const ref_corner *restrict cn, unsigned t0, unsigned t1, const double *restrict u,
+                               const double *restrict v, const double *restrict w, const int deriv,
+                               double *restrict rf, double *restrict rdx, double *restrict rdy,
+                               double *restrict rdz)
+{
+    const ref_corner k0 = cn[0], k1 = cn[1], k2 = cn[2], k3 = cn[3];
+    for (unsigned t = t0; t < t1; t++) {
         double f = 0.0, df0 = 0.0, df1 = 0.0, df2 = 0.0;
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC unroll 4
-#endif
-        for (unsigned c = 0; c < 4; c++) {
-            /* corner offsets: 0, e_hi, e_hi + e_mid, (1,1,1) */
-            int c1 = c >= 1u, c2 = c >= 2u, c3 = c >= 3u;
-            uint32_t a0 = (uint32_t)((c1 & (hi == 0)) + (c2 & (mid == 0)) + (c3 & (lo == 0)));
-            uint32_t a1 = (uint32_t)((c1 & (hi == 1)) + (c2 & (mid == 1)) + (c3 & (lo == 1)));
-            uint32_t a2 = (uint32_t)((c1 & (hi == 2)) + (c2 & (mid == 2)) + (c3 & (lo == 2)));
-            double sa = (double)(a0 + a1 + a2) / 6.;
-            double d0 = u - (double)a0 + sa, d1 = v - (double)a1 + sa, d2 = w - (double)a2 + sa;
-            double tt = .6 - d0 * d0 - d1 * d1 - d2 * d2;
-            uint32_t h = np_hash6_fast32((ci + a0) & 255u, (cj + a1) & 255u, (ck + a2) & 255u);
-            uint32_t b5 = h >> 5 & 1u, b4 = h >> 4 & 1u, b3 = h >> 3 & 1u, b2 = h >> 2 & 1u, rot = h & 3u;
-            double sp = b5 == b3 ? -1.0 : 1.0;
-            double sq = (rot == 0u || b2 == 0u) ? (b5 == b4 ? -1.0 : 1.0) : 0.0;
-            double sr = (rot == 0u || b2 != 0u) ? (b5 != (b4 ^ b3) ? -1.0 : 1.0) : 0.0;
-            double p = sp * pick(rot, d0, d1, d2), q = sq * pick(rot, d1, d2, d0), r = sr * pick(rot, d2, d0, d1);
-            double g = p + (q + r);
-            double t2 = tt * tt;
-            int in = !(tt < 0);
-            f = in ? f + 8 * t2 * t2 * g : f;
-            if (deriv) {
-                double t3 = t2 * tt, t4 = t2 * t2;
-                /* grad_coef: the coefficient of each axis (p on its axis, q, r on theirs) */
-                double gx = pick(rot, sp, sr, sq), gy = pick(rot, sq, sp, sr), gz = pick(rot, sr, sq, sp);
-                df0 = in ? df0 + (8 * t4 * gx - 64 * t3 * g * d0) : df0;
-                df1 = in ? df1 + (8 * t4 * gy - 64 * t3 * g * d1) : df1;
-                df2 = in ? df2 + (8 * t4 * gz - 64 * t3 * g * d2) : df2;
-            }
-        }
+        ref_corner_add(k0, u[t], v[t], w[t], deriv, &f, &df0, &df1, &df2);
+        ref_corner_add(k1, u[t], v[t], w[t], deriv, &f, &df0, &df1, &df2);
+        ref_corner_add(k2, u[t], v[t], w[t], deriv, &f, &df0, &df1, &df2);
+        ref_corner_add(k3, u[t], v[t], w[t], deriv, &f, &df0, &df1, &df2);
         rf[t] = f;
         if (deriv) {
             rdx[t] = df0;
@@ -101,22 +146,85 @@ NP_SWEEP_INLINE void ref_row(uint16_t x0, uint16_t yw, uint16_t zw, const int de
     }
 }
 
-/* The row with and without the derivative, each compiled without a branch on it (so it vectorises). */
-NP_SWEEP_CLONES static void ref_row_d(uint16_t x0, uint16_t y, uint16_t z, double *rf, double *rdx, double *rdy,
-                                      double *rdz)
+/* Appendix B's gradient coefficients of index h on x, y, z (np_ref_simplex3's grad_coef). */
+static void grad_coef(unsigned h, double gc[3])
 {
-    ref_row(x0, y, z, 1, rf, rdx, rdy, rdz);
+    unsigned b5 = h >> 5 & 1u, b4 = h >> 4 & 1u, b3 = h >> 3 & 1u, b2 = h >> 2 & 1u, b = h & 3u;
+    unsigned p = b == 1 ? 0u : b == 2 ? 1u : 2u, q = b == 1 ? 1u : b == 2 ? 2u : 0u, r = b == 1 ? 2u : b == 2 ? 0u : 1u;
+    gc[0] = gc[1] = gc[2] = 0.0;
+    gc[p] = b5 == b3 ? -1.0 : 1.0;
+    if (b == 0 || b2 == 0)
+        gc[q] = b5 == b4 ? -1.0 : 1.0;
+    if (b == 0 || b2 != 0)
+        gc[r] = b5 != (b4 ^ b3) ? -1.0 : 1.0;
 }
 
-NP_SWEEP_CLONES static void ref_row_f(uint16_t x0, uint16_t y, uint16_t z, double *rf)
+/* The four corners of the simplex that pass 1's key names (cell and rank, as np_ref_simplex3 finds them). */
+static void ref_corners(double key, ref_corner cn[4])
 {
-    ref_row(x0, y, z, 0, rf, NULL, NULL, NULL);
+    uint64_t kk = (uint64_t)key;
+    unsigned ra = (unsigned)(kk >> 2 & 1u), rb = (unsigned)(kk >> 1 & 1u), rc = (unsigned)(kk & 1u);
+    uint32_t fk = (uint32_t)(kk >> 3 & 1023u), fj = (uint32_t)(kk >> 13 & 1023u), fi = (uint32_t)(kk >> 23);
+    /* hi = u >= w ? u >= v ? 0 : 1 : v >= w ? 1 : 2; lo = u < w ? u < v ? 0 : 1 : v < w ? 1 : 2 */
+    unsigned hi = ra ? (rb ? 0u : 1u) : (rc ? 1u : 2u);
+    unsigned lo = !ra ? (!rb ? 0u : 1u) : (!rc ? 1u : 2u);
+    const unsigned step[4] = { hi, 3u - hi - lo, lo, 0u };
+    unsigned a[3] = { 0, 0, 0 };
+    for (unsigned c = 0; c < 4; c++) {
+        ref_corner *k = &cn[c];
+        unsigned h = np_hash6_fast((uint8_t)((fi + a[0]) & 255u), (uint8_t)((fj + a[1]) & 255u),
+                                   (uint8_t)((fk + a[2]) & 255u));
+        double gc[3];
+        grad_coef(h, gc);
+        k->a0 = (double)a[0];
+        k->a1 = (double)a[1];
+        k->a2 = (double)a[2];
+        k->sa = (double)(a[0] + a[1] + a[2]) / 6.;
+        k->gx = gc[0];
+        k->gy = gc[1];
+        k->gz = gc[2];
+        k->w1 = (h & 3u) == 1u ? 1.0 : 0.0;
+        k->w2 = (h & 3u) == 2u ? 1.0 : 0.0;
+        k->w0 = (h & 3u) == 0u || (h & 3u) == 3u ? 1.0 : 0.0;
+        a[step[c]]++;
+    }
+}
+
+/* One row of np_ref_simplex3 at xs[t], y / 256, z / 256: pass 1, then pass 2 over each run of one simplex. */
+NP_SWEEP_INLINE void ref_row(const double *restrict xs, uint16_t yw, uint16_t zw, const int deriv,
+                             double *restrict rf, double *restrict rdx, double *restrict rdy, double *restrict rdz)
+{
+    double u[NP_SWEEP_ROW], v[NP_SWEEP_ROW], w[NP_SWEEP_ROW], key[NP_SWEEP_ROW];
+    ref_pass1(xs, (double)yw / 256.0, (double)zw / 256.0, u, v, w, key);
+    unsigned t0 = 0;
+    while (t0 < NP_SWEEP_ROW) {
+        unsigned t1 = t0 + 1u;
+        while (t1 < NP_SWEEP_ROW && key[t1] == key[t0])
+            t1++;
+        ref_corner cn[4];
+        ref_corners(key[t0], cn);
+        ref_pass2(cn, t0, t1, u, v, w, deriv, rf, rdx, rdy, rdz);
+        t0 = t1;
+    }
+}
+
+/* The row with and without the derivative, each compiled without a branch on it (so it vectorises). */
+NP_SWEEP_CLONES static void ref_row_d(const double *xs, uint16_t y, uint16_t z, double *rf, double *rdx,
+                                      double *rdy, double *rdz)
+{
+    ref_row(xs, y, z, 1, rf, rdx, rdy, rdz);
+}
+
+NP_SWEEP_CLONES static void ref_row_f(const double *xs, uint16_t y, uint16_t z, double *rf)
+{
+    ref_row(xs, y, z, 0, rf, NULL, NULL, NULL);
 }
 
 void np_sweep_simplex3_rows(const np_simplex_cfg *cfg, uint16_t x0, uint16_t y0, uint16_t z, unsigned rows,
                             unsigned what, int32_t *code, double *ref)
 {
     unsigned nf = cfg->deriv ? 4u : 1u;
+    double xs_ref[NP_SWEEP_ROW]; /* the reference's x = word / 256, the same in every row */
     for (unsigned r = 0; r < rows; r++) {
         uint16_t y = (uint16_t)(y0 + r);
         if (what & NP_SWEEP_MODEL) {
@@ -135,12 +243,15 @@ void np_sweep_simplex3_rows(const np_simplex_cfg *cfg, uint16_t x0, uint16_t y0,
             }
         }
         if (what & NP_SWEEP_REF) {
+            if (r == 0)
+                for (unsigned t = 0; t < NP_SWEEP_ROW; t++)
+                    xs_ref[t] = (double)(uint16_t)(x0 + t) / 256.0;
             double *b = ref + (size_t)r * NP_SWEEP_ROW;
             size_t fs = (size_t)rows * NP_SWEEP_ROW;
             if (cfg->deriv)
-                ref_row_d(x0, y, z, b, b + fs, b + 2 * fs, b + 3 * fs);
+                ref_row_d(xs_ref, y, z, b, b + fs, b + 2 * fs, b + 3 * fs);
             else
-                ref_row_f(x0, y, z, b);
+                ref_row_f(xs_ref, y, z, b);
         }
     }
 }
