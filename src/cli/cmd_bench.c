@@ -301,8 +301,12 @@ static int bench_units(double secs, const np_unit *classic)
         np_unit_cfg cfg;
         char err[256];
         if (np_unit_configure(su, &cfg, NULL, err, sizeof err) == 0)
+        {
             side_row("simplex3 + derivatives, sweep kernel (rows)", bench_kernel(su, &cfg, NP_SWEEP_MODEL, secs),
                      stb);
+            side_row("simplex3 float reference, sweep kernel (rows)", bench_kernel(su, &cfg, NP_SWEEP_REF, secs),
+                     stb);
+        }
     }
     side_row("simplex3 float reference (value + gradient)", side_run(side_simplex_ref, in, secs), stb);
     printf("  targets (issue 13, not asserted): classic3 batch >= 1x stb; simplex3 batch with derivatives >= 0.75x\n");

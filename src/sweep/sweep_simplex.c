@@ -190,9 +190,33 @@ static void ref_corners(double key, ref_corner cn[4])
     }
 }
 
+/*
+ * The corners of recent keys (rows next to each other cross the same
+ * simplices): direct-mapped, REF_CACHE entries, one cache per thread that
+ * lives across calls (a key's corners depend on the key alone: the reference
+ * has no configuration); key -1 marks an empty entry.
+ */
+enum { REF_CACHE = 64 };
+typedef struct ref_cache {
+    double key[REF_CACHE];
+    ref_corner cn[REF_CACHE][4];
+} ref_cache;
+
+static const ref_corner *ref_corners_cached(ref_cache *cache, double key)
+{
+    uint64_t kk = (uint64_t)key;
+    unsigned e = (unsigned)((kk * 0x9e3779b97f4a7c15u) >> 58); /* 6 bits: REF_CACHE */
+    if (cache->key[e] != key) {
+        ref_corners(key, cache->cn[e]);
+        cache->key[e] = key;
+    }
+    return cache->cn[e];
+}
+
 /* One row of np_ref_simplex3 at xs[t], y / 256, z / 256: pass 1, then pass 2 over each run of one simplex. */
-NP_SWEEP_INLINE void ref_row(const double *restrict xs, uint16_t yw, uint16_t zw, const int deriv,
-                             double *restrict rf, double *restrict rdx, double *restrict rdy, double *restrict rdz)
+NP_SWEEP_INLINE void ref_row(ref_cache *cache, const double *restrict xs, uint16_t yw, uint16_t zw,
+                             const int deriv, double *restrict rf, double *restrict rdx, double *restrict rdy,
+                             double *restrict rdz)
 {
     double u[NP_SWEEP_ROW], v[NP_SWEEP_ROW], w[NP_SWEEP_ROW], key[NP_SWEEP_ROW];
     ref_pass1(xs, (double)yw / 256.0, (double)zw / 256.0, u, v, w, key);
@@ -201,23 +225,21 @@ NP_SWEEP_INLINE void ref_row(const double *restrict xs, uint16_t yw, uint16_t zw
         unsigned t1 = t0 + 1u;
         while (t1 < NP_SWEEP_ROW && key[t1] == key[t0])
             t1++;
-        ref_corner cn[4];
-        ref_corners(key[t0], cn);
-        ref_pass2(cn, t0, t1, u, v, w, deriv, rf, rdx, rdy, rdz);
+        ref_pass2(ref_corners_cached(cache, key[t0]), t0, t1, u, v, w, deriv, rf, rdx, rdy, rdz);
         t0 = t1;
     }
 }
 
 /* The row with and without the derivative, each compiled without a branch on it (so it vectorises). */
-NP_SWEEP_CLONES static void ref_row_d(const double *xs, uint16_t y, uint16_t z, double *rf, double *rdx,
+NP_SWEEP_CLONES static void ref_row_d(ref_cache *cache, const double *xs, uint16_t y, uint16_t z, double *rf, double *rdx,
                                       double *rdy, double *rdz)
 {
-    ref_row(xs, y, z, 1, rf, rdx, rdy, rdz);
+    ref_row(cache, xs, y, z, 1, rf, rdx, rdy, rdz);
 }
 
-NP_SWEEP_CLONES static void ref_row_f(const double *xs, uint16_t y, uint16_t z, double *rf)
+NP_SWEEP_CLONES static void ref_row_f(ref_cache *cache, const double *xs, uint16_t y, uint16_t z, double *rf)
 {
-    ref_row(xs, y, z, 0, rf, NULL, NULL, NULL);
+    ref_row(cache, xs, y, z, 0, rf, NULL, NULL, NULL);
 }
 
 void np_sweep_simplex3_rows(const np_simplex_cfg *cfg, uint16_t x0, uint16_t y0, uint16_t z, unsigned rows,
@@ -225,6 +247,13 @@ void np_sweep_simplex3_rows(const np_simplex_cfg *cfg, uint16_t x0, uint16_t y0,
 {
     unsigned nf = cfg->deriv ? 4u : 1u;
     double xs_ref[NP_SWEEP_ROW]; /* the reference's x = word / 256, the same in every row */
+    static _Thread_local ref_cache cache;
+    static _Thread_local int cache_ready;
+    if (!cache_ready) {
+        for (unsigned e = 0; e < REF_CACHE; e++)
+            cache.key[e] = -1.0;
+        cache_ready = 1;
+    }
     for (unsigned r = 0; r < rows; r++) {
         uint16_t y = (uint16_t)(y0 + r);
         if (what & NP_SWEEP_MODEL) {
@@ -249,9 +278,9 @@ void np_sweep_simplex3_rows(const np_simplex_cfg *cfg, uint16_t x0, uint16_t y0,
             double *b = ref + (size_t)r * NP_SWEEP_ROW;
             size_t fs = (size_t)rows * NP_SWEEP_ROW;
             if (cfg->deriv)
-                ref_row_d(xs_ref, y, z, b, b + fs, b + 2 * fs, b + 3 * fs);
+                ref_row_d(&cache, xs_ref, y, z, b, b + fs, b + 2 * fs, b + 3 * fs);
             else
-                ref_row_f(xs_ref, y, z, b);
+                ref_row_f(&cache, xs_ref, y, z, b);
         }
     }
 }
