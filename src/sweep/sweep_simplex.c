@@ -242,6 +242,169 @@ NP_SWEEP_CLONES static void ref_row_f(ref_cache *cache, const double *xs, uint16
     ref_row(cache, xs, y, z, 0, rf, NULL, NULL, NULL);
 }
 
+/* ---- The model row, in segments (the default configurations) ---- */
+
+/*
+ * np_simplex_eval (eval_one in np_simplex.c) for a row, in two passes, the
+ * same inline arithmetic of np_simplex.h with the hash and gradient decode
+ * hoisted out of the per-input loop:
+ *  - pass 1 per input: the skewed cells (SK), the offsets and the three rank
+ *    comparisons (RK), and a key naming the simplex (cells and comparisons);
+ *  - a scan cuts the row into runs of one key; per run the four corners'
+ *    masks, hashes and gradients are found once (np_simplex_corner_mask,
+ *    np_simplex_corner_hash, np_grad_fast: they depend on the cells and the
+ *    rank alone);
+ *  - pass 2 per input of the run: every corner's D, G.D, R2, T, tau powers
+ *    and terms, and the outputs, through the same inline functions with the
+ *    configuration a compile-time constant.
+ * So the codes are eval_one's by construction; fast.simplex_kernel_block and
+ * fast.simplex_kernel_random compare every code with np_simplex_eval.
+ */
+typedef struct mdl_corner {
+    int32_t b0, b1, b2; /* the corner's mask bits */
+    int32_t cx, cy, cz; /* its gradient */
+} mdl_corner;
+
+static const np_simplex_cfg mdl_default_d = { 16, 16, 1, 24, 22, 22 };
+static const np_simplex_cfg mdl_default_f = { 16, 16, 0, 23, 20, 22 };
+
+NP_SWEEP_INLINE void mdl_pass1(uint16_t x0, uint16_t yw, uint16_t zw, int32_t *restrict o0, int32_t *restrict o1,
+                               int32_t *restrict o2, uint32_t *restrict key)
+{
+    for (unsigned t = 0; t < NP_SWEEP_ROW; t++) {
+        uint16_t xw = (uint16_t)(x0 + t);
+        uint32_t c0 = np_simplex_cell(np_simplex_skew(xw, yw, zw));
+        uint32_t c1 = np_simplex_cell(np_simplex_skew(yw, zw, xw));
+        uint32_t c2 = np_simplex_cell(np_simplex_skew(zw, xw, yw));
+        uint32_t n = c0 + c1 + c2;
+        int32_t u = np_simplex_offset(xw, c0, n), v = np_simplex_offset(yw, c1, n), w = np_simplex_offset(zw, c2, n);
+        /* np_simplex_rank's three comparators */
+        uint32_t rank = (uint32_t)(u >= w) << 2 | (uint32_t)(u >= v) << 1 | (uint32_t)(v >= w);
+        o0[t] = u;
+        o1[t] = v;
+        o2[t] = w;
+        key[t] = ((c0 << 9 | c1) << 9 | c2) << 3 | rank; /* cells u9 each */
+    }
+}
+
+static void mdl_corners(uint32_t key, mdl_corner cn[4])
+{
+    uint32_t cell[3] = { key >> 21 & 511u, key >> 12 & 511u, key >> 3 & 511u };
+    uint8_t hi, lo;
+    /* the comparators' results as np_simplex_rank reads them (u >= w, u >= v, v >= w) */
+    int32_t uw = (int32_t)(key >> 2 & 1u), uv = (int32_t)(key >> 1 & 1u), vw = (int32_t)(key & 1u);
+    hi = (uint8_t)(uw ? (uv ? 0 : 1) : (vw ? 1 : 2));
+    lo = (uint8_t)(!uw ? (!uv ? 0 : 1) : (!vw ? 1 : 2));
+    for (unsigned c = 0; c < 4; c++) {
+        unsigned mask = np_simplex_corner_mask(hi, lo, c);
+        np_grad g = np_grad_fast(np_simplex_corner_hash(cell, mask));
+        cn[c].b0 = (int32_t)(mask & 1u);
+        cn[c].b1 = (int32_t)(mask >> 1 & 1u);
+        cn[c].b2 = (int32_t)(mask >> 2 & 1u);
+        cn[c].cx = g.cx;
+        cn[c].cy = g.cy;
+        cn[c].cz = g.cz;
+    }
+}
+
+NP_SWEEP_INLINE void mdl_corner_add(const np_simplex_cfg *cfg, const mdl_corner k, unsigned c, int32_t u, int32_t v,
+                                    int32_t w, int64_t *s, int64_t *q0, int64_t *q1, int64_t *q2)
+{
+    int32_t d[3] = { np_simplex_corner_d(u, (unsigned)k.b0, c), np_simplex_corner_d(v, (unsigned)k.b1, c),
+                     np_simplex_corner_d(w, (unsigned)k.b2, c) };
+    np_grad g = { (int8_t)k.cx, (int8_t)k.cy, (int8_t)k.cz };
+    int32_t gd = np_simplex_gdot(g, d);
+    uint32_t t = np_simplex_kernel_t(np_simplex_r2(d));
+    uint32_t tau2 = np_simplex_tau2(cfg, t);
+    uint32_t tau4 = np_simplex_tau4(cfg, tau2);
+    *s += np_simplex_fterm(cfg, tau4, gd);
+    if (cfg->deriv) {
+        int64_t q = np_simplex_qterm(cfg, np_simplex_tau3(tau2, t), gd);
+        *q0 += np_simplex_eterm(cfg, tau4, k.cx) - np_simplex_mterm(q, d[0]);
+        *q1 += np_simplex_eterm(cfg, tau4, k.cy) - np_simplex_mterm(q, d[1]);
+        *q2 += np_simplex_eterm(cfg, tau4, k.cz) - np_simplex_mterm(q, d[2]);
+    }
+}
+
+NP_SWEEP_INLINE void mdl_pass2(const np_simplex_cfg *cfg, const mdl_corner *restrict cn, unsigned t0, unsigned t1,
+                               const int32_t *restrict o0, const int32_t *restrict o1, const int32_t *restrict o2,
+                               int32_t *restrict f, int32_t *restrict dx, int32_t *restrict dy,
+                               int32_t *restrict dz)
+{
+    const int64_t kf = np_simplex_kf(cfg), kd = np_simplex_kd(cfg);
+    const mdl_corner k0 = cn[0], k1 = cn[1], k2 = cn[2], k3 = cn[3];
+    for (unsigned t = t0; t < t1; t++) {
+        int64_t s = 0, q0 = 0, q1 = 0, q2 = 0;
+        mdl_corner_add(cfg, k0, 0u, o0[t], o1[t], o2[t], &s, &q0, &q1, &q2);
+        mdl_corner_add(cfg, k1, 1u, o0[t], o1[t], o2[t], &s, &q0, &q1, &q2);
+        mdl_corner_add(cfg, k2, 2u, o0[t], o1[t], o2[t], &s, &q0, &q1, &q2);
+        mdl_corner_add(cfg, k3, 3u, o0[t], o1[t], o2[t], &s, &q0, &q1, &q2);
+        f[t] = np_simplex_out_f(cfg, kf, s);
+        if (cfg->deriv) {
+            dx[t] = np_simplex_out_d(cfg, kd, q0);
+            dy[t] = np_simplex_out_d(cfg, kd, q1);
+            dz[t] = np_simplex_out_d(cfg, kd, q2);
+        }
+    }
+}
+
+/*
+ * The corners of recent keys, one direct-mapped cache per thread that lives
+ * across calls, as the reference row's (a key's corners depend on the cells
+ * and the rank alone, not on the configuration); key ~0 (no key: cells are
+ * u9) marks an empty entry.
+ */
+static const mdl_corner *mdl_corners_cached(uint32_t key)
+{
+    static _Thread_local uint32_t keys[REF_CACHE];
+    static _Thread_local mdl_corner cns[REF_CACHE][4];
+    static _Thread_local int ready;
+    if (!ready) {
+        for (unsigned e = 0; e < REF_CACHE; e++)
+            keys[e] = ~0u;
+        ready = 1;
+    }
+    unsigned e = (unsigned)(((uint64_t)key * 0x9e3779b97f4a7c15u) >> 58); /* 6 bits: REF_CACHE */
+    if (keys[e] != key) {
+        mdl_corners(key, cns[e]);
+        keys[e] = key;
+    }
+    return cns[e];
+}
+
+NP_SWEEP_INLINE void mdl_row(const np_simplex_cfg *cfg, uint16_t x0, uint16_t y, uint16_t z, int32_t *f,
+                             int32_t *dx, int32_t *dy, int32_t *dz)
+{
+    int32_t o0[NP_SWEEP_ROW], o1[NP_SWEEP_ROW], o2[NP_SWEEP_ROW];
+    uint32_t key[NP_SWEEP_ROW];
+    mdl_pass1(x0, y, z, o0, o1, o2, key);
+    unsigned t0 = 0;
+    while (t0 < NP_SWEEP_ROW) {
+        unsigned t1 = t0 + 1u;
+        while (t1 < NP_SWEEP_ROW && key[t1] == key[t0])
+            t1++;
+        mdl_pass2(cfg, mdl_corners_cached(key[t0]), t0, t1, o0, o1, o2, f, dx, dy, dz);
+        t0 = t1;
+    }
+}
+
+NP_SWEEP_CLONES static void mdl_row_d(uint16_t x0, uint16_t y, uint16_t z, int32_t *f, int32_t *dx, int32_t *dy,
+                                      int32_t *dz)
+{
+    mdl_row(&mdl_default_d, x0, y, z, f, dx, dy, dz);
+}
+
+NP_SWEEP_CLONES static void mdl_row_f(uint16_t x0, uint16_t y, uint16_t z, int32_t *f)
+{
+    mdl_row(&mdl_default_f, x0, y, z, f, NULL, NULL, NULL);
+}
+
+static int mdl_same(const np_simplex_cfg *a, const np_simplex_cfg *b)
+{
+    return a->out_bits == b->out_bits && a->dout_bits == b->dout_bits && a->deriv == b->deriv &&
+           a->t_frac == b->t_frac && a->p_frac == b->p_frac && a->k_frac == b->k_frac;
+}
+
 void np_sweep_simplex3_rows(const np_simplex_cfg *cfg, uint16_t x0, uint16_t y0, uint16_t z, unsigned rows,
                             unsigned what, int32_t *code, double *ref)
 {
@@ -256,7 +419,15 @@ void np_sweep_simplex3_rows(const np_simplex_cfg *cfg, uint16_t x0, uint16_t y0,
     }
     for (unsigned r = 0; r < rows; r++) {
         uint16_t y = (uint16_t)(y0 + r);
-        if (what & NP_SWEEP_MODEL) {
+        int seg_d = mdl_same(cfg, &mdl_default_d), seg_f = mdl_same(cfg, &mdl_default_f);
+        if ((what & NP_SWEEP_MODEL) && (seg_d || seg_f)) {
+            size_t fs = (size_t)rows * NP_SWEEP_ROW;
+            int32_t *c = code + (size_t)r * NP_SWEEP_ROW;
+            if (seg_d)
+                mdl_row_d(x0, y, z, c, c + fs, c + 2 * fs, c + 3 * fs);
+            else
+                mdl_row_f(x0, y, z, c);
+        } else if (what & NP_SWEEP_MODEL) {
             uint16_t xs[NP_SWEEP_ROW], ys[NP_SWEEP_ROW], zs[NP_SWEEP_ROW];
             np_simplex_out o[NP_SWEEP_ROW];
             for (unsigned t = 0; t < NP_SWEEP_ROW; t++) {
