@@ -69,11 +69,19 @@ void np_pipe_eval(np_pipe *p, np_pipe_port *port)
     unsigned last = p->depth - 1u;
     /* Ready chain, from the output back to the input. The skid buffer's
      * ready is its spare register being empty: a flip-flop. */
-    int last_ready = p->out_skid ? !p->skid_v : port->out_ready;
-    p->moves[last] = (unsigned char)(p->valid[last] && last_ready);
-    for (unsigned k = last; k-- > 0;)
-        p->moves[k] = (unsigned char)(p->valid[k] && (!p->valid[k + 1] || p->moves[k + 1]));
-    p->core_in_ready = (unsigned char)(!p->valid[0] || p->moves[0]);
+    unsigned ready = p->out_skid ? !p->skid_v : port->out_ready != 0;
+    /*
+     * Bank k moves when it is valid and the bank after it is ready: empty, or
+     * moving itself (the last bank: the output is ready). Computed with 0/1
+     * arithmetic instead of && and || so that the random handshakes of a
+     * co-simulation cost no mispredicted branches; the same values.
+     */
+    for (unsigned k = last + 1u; k-- > 0;) {
+        unsigned v = p->valid[k] != 0, m = v & ready;
+        p->moves[k] = (unsigned char)m;
+        ready = (v ^ 1u) | m;
+    }
+    p->core_in_ready = (unsigned char)ready;
     port->in_ready = p->in_reg ? (!p->in_v || p->core_in_ready) : p->core_in_ready;
     port->out_valid = p->out_skid ? p->main_v : p->valid[last];
     port->out_sig = p->out_skid ? opt(p, 1) : bank(p, last);

@@ -323,3 +323,36 @@ foreach(u "classic3;np_classic3;;default" "classic3;np_classic3;-set IN_REG 1 -s
   np_rtl_test(rtl.${unit}.yosys_check.${name} "${NP_YOSYS}" pass "" "rtl"
     ${NP_YOSYS} -q -s ${NP_RTL_WORK}/yosys-${unit}-${name}.ys)
 endforeach()
+
+# ----------------------------------------------- vector files end by count
+# A $readmemh set ends where its header's "// count N" says (docs/vectors.md),
+# not where a simulator's unwritten memory happens to stop the bench. Each
+# bench is given the checked-in golden set with its last vector cut off, and
+# the set without its count line: both must fail, naming the count.
+foreach(unit classic3 simplex3)
+  if(unit STREQUAL "classic3")
+    set(golden ${c3_golden})
+  else()
+    set(golden ${s3_golden})
+  endif()
+  file(MAKE_DIRECTORY ${NP_RTL_WORK}/${unit}/vec)
+  file(READ ${golden} text)
+  string(REGEX MATCH "// count ([0-9]+)\n" m "${text}")
+  set(n ${CMAKE_MATCH_1})
+  math(EXPR n_short "${n} - 1")
+  string(REGEX REPLACE "[0-9a-fA-F]+\n$" "" short "${text}")
+  string(REGEX REPLACE "// count [0-9]+\n" "" nocount "${text}")
+  file(WRITE ${NP_RTL_WORK}/${unit}/vec/${unit}-golden-short.memh "${short}")
+  file(WRITE ${NP_RTL_WORK}/${unit}/vec/${unit}-golden-nocount.memh "${nocount}")
+  foreach(sim icarus verilator)
+    set(lab "rtl")
+    if(sim STREQUAL "verilator")
+      set(lab "rtl;nosan")
+    endif()
+    np_rtl_check(rtl.${unit}.${sim}.count_short ${unit} ${sim} ok rtl_${unit}_tb default
+      ${NP_RTL_WORK}/${unit}/vec/${unit}-golden-short.memh fail
+      "the header's count is ${n} but the file holds ${n_short} vectors" "${lab}")
+    np_rtl_check(rtl.${unit}.${sim}.count_missing ${unit} ${sim} ok rtl_${unit}_tb default
+      ${NP_RTL_WORK}/${unit}/vec/${unit}-golden-nocount.memh fail "has no '// count N' header line" "${lab}")
+  endforeach()
+endforeach()

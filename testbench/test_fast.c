@@ -4,6 +4,7 @@
  * hash and gradient decode (np_hash.h) against the seed's bit loop, every
  * argument.
  */
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -11,6 +12,8 @@
 
 #include "np_classic.h"
 #include "np_hash.h"
+#include "np_ref.h"
+#include "np_ref_fast.h"
 #include "np_rng.h"
 #include "np_simplex.h"
 #include "np_sweep.h"
@@ -370,7 +373,49 @@ static int t_pipe_no_copy(void)
     return 0;
 }
 
+/*
+ * The per-input references' branch-free gradient (np_ref_fast.h) against
+ * Appendix B's transcription np_ref_grad: every h, on points with signed
+ * zeros, halves, ones and random values; every result's bits (-0.0
+ * included). The coefficient table against np_ref_grad at the unit vectors,
+ * its zeros +0.0.
+ */
+static int t_ref_grad_fast(void)
+{
+    static const double pick[] = { 0.0, -0.0, 0.5, -0.5, 1.0, -1.0, 0x1p-30, -0.75, 0.125 };
+    enum { NP_ = sizeof pick / sizeof pick[0] };
+    np_rng r;
+    np_rng_seed(&r, 0x6772616466ull);
+    uint64_t bad = 0, n = 0;
+    for (unsigned h = 0; h < 64; h++) {
+        for (unsigned a = 0; a < NP_ * NP_ * NP_ + 4096u; a++, n++) {
+            double x, y, z;
+            if (a < NP_ * NP_ * NP_) {
+                x = pick[a % NP_];
+                y = pick[a / NP_ % NP_];
+                z = pick[a / (NP_ * NP_)];
+            } else {
+                x = (double)(int32_t)(uint32_t)np_rng_next(&r) / 0x1p31;
+                y = (double)(int32_t)(uint32_t)np_rng_next(&r) / 0x1p31;
+                z = (double)(int32_t)(uint32_t)np_rng_next(&r) / 0x1p31;
+            }
+            double want = np_ref_grad(h, x, y, z), got = np_ref_grad_fast(h, x, y, z);
+            if (memcmp(&want, &got, sizeof want) != 0 && ++bad <= 5)
+                NP_CHECK(0, "h=%u at (%a, %a, %a): np_ref_grad %a, fast %a", h, x, y, z, want, got);
+        }
+        for (unsigned a = 0; a < 3; a++) {
+            double want = np_ref_grad(h, a == 0, a == 1, a == 2), got = np_ref_grad_coef[h][a];
+            NP_CHECK(want == got && (got != 0.0 || !signbit(got)), "h=%u axis %u: coefficient %g, Appendix B %g", h,
+                     a, got, want);
+        }
+    }
+    printf("np_ref_grad_fast: %llu (h, point) pairs, %llu differing results\n", (unsigned long long)n,
+           (unsigned long long)bad);
+    return 0;
+}
+
 static const np_test_case cases[] = {
+    { "ref_grad_fast", t_ref_grad_fast },
     { "hash_exhaustive", t_hash_exhaustive },
     { "grad_table", t_grad_table },
     { "classic_batch_random", t_classic_batch_random },

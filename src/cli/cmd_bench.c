@@ -25,7 +25,10 @@ static const char usage_text[] =
     "Measures, for the classic3 unit in its default configuration: the bit-exact model\n"
     "per input and through the sweep kernel, the float reference likewise, the\n"
     "cycle-accurate model, and the exhaustive sweep on two threads with the projected\n"
-    "time of a full z slice (2^32 inputs). S: seconds per figure (default 1, 0.05..60).\n";
+    "time of a full z slice (2^32 inputs); every unit's per-input, batch and kernel\n"
+    "speeds beside stb_perlin_noise3; and the C cycle models beside the Verilated RTL\n"
+    "on the same stimulus (when CTest has built the co-simulation; skipped with a line\n"
+    "saying why otherwise). S: seconds per figure (default 1, 0.05..60).\n";
 
 /* Sink for results, so that no evaluation is optimised away. */
 static volatile uint64_t sink;
@@ -301,8 +304,12 @@ static int bench_units(double secs, const np_unit *classic)
         np_unit_cfg cfg;
         char err[256];
         if (np_unit_configure(su, &cfg, NULL, err, sizeof err) == 0)
+        {
             side_row("simplex3 + derivatives, sweep kernel (rows)", bench_kernel(su, &cfg, NP_SWEEP_MODEL, secs),
                      stb);
+            side_row("simplex3 float reference, sweep kernel (rows)", bench_kernel(su, &cfg, NP_SWEEP_REF, secs),
+                     stb);
+        }
     }
     side_row("simplex3 float reference (value + gradient)", side_run(side_simplex_ref, in, secs), stb);
     printf("  targets (issue 13, not asserted): classic3 batch >= 1x stb; simplex3 batch with derivatives >= 0.75x\n");
@@ -349,6 +356,74 @@ static rate bench_pipe(const np_unit *u, const void *cfg, int copy_banks, double
     sink = acc + p.stats.delivered;
     np_pipe_free(&p);
     return r;
+}
+
+/*
+ * The C cycle model against the Verilated RTL on the same stimulus (issue
+ * 12): the co-simulation binary that CTest builds (testbench/rtl.cmake,
+ * rtl.<unit>.cosim.build.default) runs its lock-step comparison and then,
+ * with --bench, the same stimulus (same seed, bubbles and stalls) through
+ * each model alone; its figures are printed here. The Verilated model is a
+ * C++ build, so noisepipe runs that program instead of linking it.
+ * NOISEPIPE_COSIM_DIR overrides where the binaries are looked for.
+ */
+#ifndef NP_COSIM_DIR
+#define NP_COSIM_DIR ""
+#endif
+#ifndef NP_HAVE_VERILATOR
+#define NP_HAVE_VERILATOR 0
+#endif
+
+static void bench_verilated(double secs)
+{
+    static const struct {
+        const char *unit, *cfg;
+    } v[] = { { "classic3", "8,12,11" }, { "simplex3", "16,16,1,24,22,22" } };
+    const char *dir = getenv("NOISEPIPE_COSIM_DIR");
+    if (!dir || !*dir)
+        dir = NP_COSIM_DIR;
+    printf("\nC cycle model against the Verilated RTL, same stimulus with bubbles and stalls (cosim --bench)\n");
+    for (unsigned k = 0; k < sizeof v / sizeof v[0]; k++) {
+        char path[1024], cmd[1400], line[1024];
+        snprintf(path, sizeof path, "%s/%s/cosim-default/cosim", dir, v[k].unit);
+        FILE *f = *dir ? fopen(path, "rb") : NULL;
+        if (!f) {
+            if (!NP_HAVE_VERILATOR && !getenv("NOISEPIPE_COSIM_DIR"))
+                printf("  %s: skipped: verilator was not found when noisepipe was configured (Debian package verilator)\n",
+                       v[k].unit);
+            else
+                printf("  %s: skipped: no co-simulation binary %s (ctest -R 'rtl\\.%s\\.cosim\\.build\\.default' "
+                       "builds it)\n", v[k].unit, *dir ? path : "(no build directory known)", v[k].unit);
+            continue;
+        }
+        fclose(f);
+        unsigned long cycles = (unsigned long)(secs * 500000.0);
+        cycles = cycles < 20000ul ? 20000ul : cycles;
+        snprintf(cmd, sizeof cmd, "'%s' --unit %s --cfg %s --cycles %lu --bench 2>&1", path, v[k].unit, v[k].cfg,
+                 cycles);
+        fflush(stdout);
+        FILE *pp = popen(cmd, "r");
+        double c = 0, r = 0;
+        int mism = 0;
+        while (pp && fgets(line, sizeof line, pp)) {
+            const char *a = strstr(line, "C cycle model "), *b = strstr(line, "Verilated RTL ");
+            if (strncmp(line, "bench ", 6) == 0 && a && b) {
+                c = strtod(a + strlen("C cycle model "), NULL);
+                r = strtod(b + strlen("Verilated RTL "), NULL);
+            }
+            if (strstr(line, " mismatch") && !strstr(line, " 0 mismatches"))
+                mism = 1;
+        }
+        int rc = pp ? pclose(pp) : -1;
+        if (rc != 0 || mism || !(c > 0) || !(r > 0)) {
+            printf("  %s: the co-simulation failed (exit status %d): run %s --unit %s --cfg %s --bench\n", v[k].unit,
+                   rc, path, v[k].unit, v[k].cfg);
+            continue;
+        }
+        printf("  %-8s %lu cycles: C cycle model %6.2f M cycles/s, Verilated RTL %6.2f M cycles/s: %.2fx (wall)\n",
+               v[k].unit, cycles, c / 1e6, r / 1e6, c / r);
+    }
+    printf("  target (issue 13, not asserted): the C cycle model >= 5x the Verilated RTL\n");
 }
 
 int np_cmd_bench(int argc, char **argv)
@@ -433,5 +508,7 @@ int np_cmd_bench(int argc, char **argv)
     printf("projected full z slice (2^32 inputs): %.1f s at this run's load, %.1f s on %u idle cores\n",
            per_s(sw) > 0 ? 4294967296.0 / per_s(sw) : 0.0,
            per_cpu_s(sw) > 0 ? 4294967296.0 / per_cpu_s(sw) / r.threads : 0.0, r.threads);
-    return bench_units(secs, u);
+    int rc = bench_units(secs, u);
+    bench_verilated(secs);
+    return rc;
 }

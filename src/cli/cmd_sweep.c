@@ -135,7 +135,7 @@ static void print_hist(const np_sweep_stats *s)
  */
 static void print_summary(const np_unit *u, const void *cfg, const np_sweep_opts *o,
                           const np_sweep_result *r, double bound, unsigned z_first, unsigned z_end,
-                          int range, uint16_t zmax)
+                          int range, uint16_t zmax, double cpu)
 {
     const np_sweep_stats *s = &r->total;
     char cfgtext[256];
@@ -179,9 +179,11 @@ static void print_summary(const np_unit *u, const void *cfg, const np_sweep_opts
            u->tolerance_lsb);
     printf("guaranteed bound    %.6f LSB (the unit's error argument): %s\n", bound,
            s->max_err <= bound ? "holds" : "VIOLATED");
-    printf("wall time           %.2f s on %u thread%s (%s), %llu inputs computed, %.1f M inputs/s\n",
+    /* CPU-seconds beside the wall time: on a shared machine the wall time says little about the work */
+    printf("wall time           %.2f s on %u thread%s (%s), %.2f CPU-seconds, %llu inputs computed, "
+           "%.1f M inputs/s\n",
            r->seconds, r->threads, r->threads == 1 ? "" : "s",
-           r->kernel ? "sweep kernel" : "plain eval/ref per input",
+           r->kernel ? "sweep kernel" : "plain eval/ref per input", cpu,
            (unsigned long long)r->computed,
            r->seconds > 0 ? (double)r->computed / r->seconds * 1e-6 : 0.0);
 }
@@ -342,7 +344,7 @@ static int run_slices(const comm *c, np_sweep_opts *o, const char *jdir, unsigne
     all.kernel = o->use_kernel && o->unit->sweep_rows != NULL;
     all.seconds = np_now() - t0;
     free(res);
-    print_summary(o->unit, o->cfg, o, &all, bound, z_first, z_end, range, zmax);
+    print_summary(o->unit, o->cfg, o, &all, bound, z_first, z_end, range, zmax, cpu);
     if (range || c->size > 1)
         printf("processes           %d (MPI %s), %.2f CPU-seconds in all, %.2f s wall\n", c->size,
                c->mpi ? "on" : "off", cpu, all.seconds);

@@ -3,6 +3,8 @@
 
 #include <math.h>
 
+#include "np_ref_fast.h"
+
 #include "np_hash.h"
 
 double np_ref_grad(unsigned h, double x, double y, double z)
@@ -25,7 +27,7 @@ double np_ref_classic3_in_cell(const uint8_t h[8], double u, double v, double w)
 {
     double g[8];
     for (unsigned c = 0; c < 8; c++)
-        g[c] = np_ref_grad(h[c], (c & 1u) ? u - 1.0 : u, (c & 2u) ? v - 1.0 : v,
+        g[c] = np_ref_grad_fast(h[c], (c & 1u) ? u - 1.0 : u, (c & 2u) ? v - 1.0 : v,
                            (c & 4u) ? w - 1.0 : w);
     double sx = s_curve(u), sy = s_curve(v), sz = s_curve(w);
     double a = lerp(sx, g[0], g[1]), b = lerp(sx, g[2], g[3]);
@@ -50,7 +52,19 @@ double np_ref_classic3(double x, double y, double z)
     return np_ref_classic3_in_cell(h, x - fx, y - fy, z - fz);
 }
 
+/*
+ * At a Q8.8 word w the value w / 256 is exact, floor() of it is w >> 8 (a cell
+ * < 256, so fmod by 256 leaves it) and w / 256 - floor is (w & 255) / 256,
+ * both exact: the same cell, hashes and doubles as np_ref_classic3(w / 256),
+ * without floor and fmod (sweep.kernel_ref_cell compares every bit).
+ */
 double np_ref_classic3_q88(uint16_t x, uint16_t y, uint16_t z)
 {
-    return np_ref_classic3(x / 256.0, y / 256.0, z / 256.0);
+    unsigned i = (unsigned)x >> 8, j = (unsigned)y >> 8, k = (unsigned)z >> 8;
+    uint8_t h[8];
+    for (unsigned c = 0; c < 8; c++)
+        h[c] = np_hash6_fast((uint8_t)((i + (c & 1u)) & 255u), (uint8_t)((j + (c >> 1 & 1u)) & 255u),
+                             (uint8_t)((k + (c >> 2 & 1u)) & 255u));
+    return np_ref_classic3_in_cell(h, (double)(x & 255u) / 256.0, (double)(y & 255u) / 256.0,
+                                   (double)(z & 255u) / 256.0);
 }

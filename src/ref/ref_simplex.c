@@ -4,23 +4,7 @@
 #include <math.h>
 
 #include "np_hash.h"
-
-/*
- * The coefficients (G_x, G_y, G_z) of Appendix B's gradient of index h, that
- * is d/dx, d/dy, d/dz of np_ref_grad(h, x, y, z): Appendix B's p, q, r
- * selection and sign rules applied to the axes instead of the values.
- */
-static void grad_coef(unsigned h, double gc[3])
-{
-    unsigned b5 = h >> 5 & 1u, b4 = h >> 4 & 1u, b3 = h >> 3 & 1u, b2 = h >> 2 & 1u, b = h & 3u;
-    unsigned p = b == 1 ? 0u : b == 2 ? 1u : 2u, q = b == 1 ? 1u : b == 2 ? 2u : 0u, r = b == 1 ? 2u : b == 2 ? 0u : 1u;
-    gc[0] = gc[1] = gc[2] = 0.0;
-    gc[p] = b5 == b3 ? -1.0 : 1.0;
-    if (b == 0 || b2 == 0)
-        gc[q] = b5 == b4 ? -1.0 : 1.0;
-    if (b == 0 || b2 != 0)
-        gc[r] = b5 != (b4 ^ b3) ? -1.0 : 1.0;
-}
+#include "np_ref_fast.h"
 
 /* Low 8 bits of an integer-valued double's two's complement: Appendix B's b() reads these. */
 static uint8_t low8(int64_t n) { return (uint8_t)((uint64_t)n & 255u); }
@@ -46,14 +30,13 @@ double np_ref_simplex3(double x, double y, double z, double grad[3])
         a_off[step[c]]++;
         if (t < 0)
             continue; /* K() returns 0; the sum's order is unchanged by adding 0 */
-        double g = np_ref_grad(h, d[0], d[1], d[2]);
+        double g = np_ref_grad_fast(h, d[0], d[1], d[2]); /* == np_ref_grad, every bit */
         double t2 = t * t;
         f += 8 * t2 * t2 * g;
         if (grad) {
             /* d/dp [8 t^4 (G.d)] = 8 t^4 G - 64 t^3 (G.d) d, with t = .6 - |d|^2. */
             double t3 = t2 * t, t4 = t2 * t2;
-            double gc[3];
-            grad_coef(h, gc);
+            const double *gc = np_ref_grad_coef[h]; /* Appendix B's coefficients (np_ref_fast.h) */
             for (unsigned a = 0; a < 3; a++)
                 df[a] += 8 * t4 * gc[a] - 64 * t3 * g * d[a];
         }

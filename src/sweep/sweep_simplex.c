@@ -7,23 +7,36 @@
  * sweep.simplex_kernel_*), also vectorised across the row.
  *
  * The reference row. np_ref_simplex3 (src/ref/ref_simplex.c) per input, in
- * its order of operations, with three changes that change no bit:
- *  - floor(x + s) is kept as a double fi (an integer < 2^10) instead of an
- *    int64_t: i + j + k and x - i are then exact double operations on the
- *    same integers, and the hash reads (int32_t)fi's low 8 bits;
- *  - the hash and gradient come from the 32-bit tables (np_hash.h; == the
- *    bit loop for every argument, fast.hash_exhaustive), and the gradient
- *    g = p + (q + r) of Appendix B is formed with the unused term as +0.0
- *    (two-term gradients: p + (q + 0) == p + q except for the sign of a zero
- *    result);
- *  - a corner outside the kernel (t < 0) leaves f and df unchanged by a
- *    select instead of a `continue`.
- * Why the sign of a zero g changes nothing: f and df start at +0.0 and only
- * ever have terms added (df: 8 t^4 G_a - 64 t^3 g d_a, itself +0.0 - (+-0.0)
- * = +0.0 when it is zero); under round-to-nearest x + (+-0) == x for x != 0
- * and +0 + (+-0) == +0, so a sum that starts at +0.0 is never -0.0 and a
- * term's zero sign cannot show in it. Every other operation is the
- * reference's, in its order, with -ffp-contract=off (no FMA) in every clone.
+ * its order of operations, in two passes that GCC vectorises (-fopt-info-vec:
+ * both loops in the x86-64-v4 clone; GCC 12 if-converts their selects only
+ * with AVX-512 masks under -ftrapping-math, so the v3 and baseline clones run
+ * them scalar):
+ *  - pass 1 (ref_pass1), per input: the skew, floor(x + s) as a double fi (an
+ *    integer < 2^9, by floor_pos: the same double as floor(), no call), the
+ *    unskew, (u, v, w), and a key = (cell, the three rank comparisons) as an
+ *    exact integer-valued double;
+ *  - a scalar scan cuts the row into runs of one key (one simplex: a row
+ *    crosses a few cells and rank changes); per run, ref_corners finds the
+ *    reference's four corners, hashes (np_hash6_fast == the bit loop,
+ *    fast.hash_exhaustive) and Appendix B gradients (grad_coef, as in the
+ *    reference) once;
+ *  - pass 2 (ref_pass2) per input of the run: the corner loop with the run's
+ *    constants. Appendix B's g = p + (q + r) (q or r unused for 48 of the 64
+ *    gradients) is formed as X + (Y + Z) in the rotation whose first term is
+ *    the p axis, X = G_x d_x etc. with G = 0.0 on an unused axis, and the
+ *    rotation is taken by weights 1.0/0.0 (no select on a loop-invariant
+ *    condition); a corner outside the kernel (t < 0) leaves f and df
+ *    unchanged by a select instead of a `continue`.
+ * None of this changes a nonzero double: X + (Y + 0*d) == X + Y whenever the
+ * result is nonzero, and 1*g + 0*g' + 0*g'' == g when g != 0 (every
+ * operand is finite). Only the sign of a zero g can differ, and it cannot
+ * show: f and df start at +0.0 and only ever have terms added (df: 8 t^4 G_a
+ * - 64 t^3 g d_a, itself +-0.0 when it is zero); under round-to-nearest
+ * x + (+-0) == x for x != 0 and +0 + (+-0) == +0, so a sum that starts at
+ * +0.0 is never -0.0 and a term's zero sign cannot show in it. Every other
+ * operation is the reference's, in its order, with -ffp-contract=off (no
+ * FMA) in every clone. Tests fast.simplex_kernel_block (2^24 inputs) and
+ * fast.simplex_kernel_random compare every double's bits.
  */
 #include <math.h>
 #include <stdint.h>
@@ -34,64 +47,96 @@
 #include "np_simplex.h"
 #include "np_sweep.h"
 
-/* Appendix B's gradient of index h as selectors: p, q, r axes and signs; q/r unused -> coefficient 0. */
-typedef struct ref_grad_sel {
-    double sp, sq, sr; /* +-1.0, or 0.0 for an unused q or r */
-    uint32_t rot;      /* b = h & 3: which axis p is (1: x, 2: y, 0 or 3: z) */
-} ref_grad_sel;
+/* ---- The reference row, in segments ---- */
 
-NP_SWEEP_INLINE double pick(uint32_t rot, double a1, double a2, double a0)
+/*
+ * floor(a) for 0 <= a < 2^51, the same double: a + 1.5 * 2^52 rounds a to a
+ * nearest integer n (the sum lies in [2^52, 2^53), where doubles are the
+ * integers), exactly; n - 1.5 * 2^52 is exact; n - 1 when n > a. A select,
+ * not a call: GCC inlines floor() into a vector loop only with
+ * -fno-trapping-math, which noisepipe does not use.
+ */
+NP_SWEEP_INLINE double floor_pos(double a)
 {
-    return rot == 1u ? a1 : rot == 2u ? a2 : a0;
+    double n = (a + 0x1.8p52) - 0x1.8p52, n1 = n - 1.0;
+    return n > a ? n1 : n;
 }
 
-/* One row of np_ref_simplex3 at (x0 + t) / 256, y / 256, z / 256, t < 256; f and grad into ref[k * stride + t]. */
-NP_SWEEP_INLINE void ref_row(uint16_t x0, uint16_t yw, uint16_t zw, const int deriv, double *restrict rf,
-                             double *restrict rdx, double *restrict rdy, double *restrict rdz)
+/*
+ * Pass 1 of a row: per input the reference's skew, cell and unskewed offsets
+ * (u, v, w) and a key naming its simplex: the cell and the three rank
+ * comparisons. Only doubles: the loop vectorises.
+ */
+NP_SWEEP_INLINE void ref_pass1(const double *restrict xs, double y, double z, double *restrict u,
+                               double *restrict v, double *restrict w, double *restrict key)
 {
-    const double y = (double)yw / 256.0, z = (double)zw / 256.0;
     for (unsigned t = 0; t < NP_SWEEP_ROW; t++) {
-        double x = (double)(uint16_t)(x0 + t) / 256.0;
+        double x = xs[t];
         double s = (x + y + z) / 3;
-        double fi = floor(x + s), fj = floor(y + s), fk = floor(z + s);
+        double fi = floor_pos(x + s), fj = floor_pos(y + s), fk = floor_pos(z + s);
         s = (fi + fj + fk) / 6.;
-        double u = x - fi + s, v = y - fj + s, w = z - fk + s;
-        int hi = u >= w ? u >= v ? 0 : 1 : v >= w ? 1 : 2;
-        int lo = u < w ? u < v ? 0 : 1 : v < w ? 1 : 2;
-        int mid = 3 - hi - lo;
-        uint32_t ci = (uint32_t)(int32_t)fi, cj = (uint32_t)(int32_t)fj, ck = (uint32_t)(int32_t)fk;
+        double uu = x - fi + s, vv = y - fj + s, ww = z - fk + s;
+        /* the ranking reads u >= w, u >= v, v >= w (np_ref_simplex3's hi/lo rule) */
+        double rank = (uu >= ww ? 4.0 : 0.0) + (uu >= vv ? 2.0 : 0.0) + (vv >= ww ? 1.0 : 0.0);
+        u[t] = uu;
+        v[t] = vv;
+        w[t] = ww;
+        /* fi, fj, fk < 2^9: the key is an exact integer < 2^33, one per (cell, rank) */
+        key[t] = ((fi * 1024. + fj) * 1024. + fk) * 8. + rank;
+    }
+}
+
+/* What a corner of one simplex contributes, constant over a segment of a row. */
+typedef struct ref_corner {
+    double a0, a1, a2, sa; /* the corner offset A and (A0 + A1 + A2) / 6 */
+    double gx, gy, gz;     /* Appendix B's gradient coefficients on x, y, z (grad_coef) */
+    double w1, w2, w0;     /* 1.0 for the gradient's p axis: x (h & 3 == 1), y (== 2), z (0, 3); others 0.0 */
+} ref_corner;
+
+/*
+ * One corner of np_ref_simplex3's corner loop at (u, v, w), in its order: d,
+ * t, the gradient p + (q + r), f += 8 t^4 g, df += 8 t^4 G - 64 t^3 g d; a
+ * corner with t < 0 is skipped by a select. The three orders of the gradient
+ * sum are all computed and the one of the p axis is taken by weights 1, 0, 0
+ * (1 g + 0 g' + 0 g'' == g when g != 0, and a zero when g is one): no
+ * operation is under a condition and no select has a loop-invariant
+ * condition, so GCC can if-convert and vectorise the loop.
+ */
+NP_SWEEP_INLINE void ref_corner_add(const ref_corner k, double u, double v, double w, const int deriv, double *f,
+                                    double *df0, double *df1, double *df2)
+{
+    double d0 = u - k.a0 + k.sa, d1 = v - k.a1 + k.sa, d2 = w - k.a2 + k.sa;
+    double tt = .6 - d0 * d0 - d1 * d1 - d2 * d2;
+    double X = k.gx * d0, Y = k.gy * d1, Z = k.gz * d2;
+    double g1 = X + (Y + Z), g2 = Y + (Z + X), g0 = Z + (X + Y);
+    double g = (k.w1 * g1 + k.w2 * g2) + k.w0 * g0; /* one weight 1.0, two 0.0: the selected sum, or a zero */
+    double t2 = tt * tt;
+    double nf = *f + 8 * t2 * t2 * g;
+    *f = tt < 0 ? *f : nf;
+    if (deriv) {
+        double t3 = t2 * tt, t4 = t2 * t2;
+        double n0 = *df0 + (8 * t4 * k.gx - 64 * t3 * g * d0);
+        double n1 = *df1 + (8 * t4 * k.gy - 64 * t3 * g * d1);
+        double n2 = *df2 + (8 * t4 * k.gz - 64 * t3 * g * d2);
+        *df0 = tt < 0 ? *df0 : n0;
+        *df1 = tt < 0 ? *df1 : n1;
+        *df2 = tt < 0 ? *df2 : n2;
+    }
+}
+
+/* Pass 2: the four corners of one simplex for the inputs [t0, t1) of a row. Doubles only. */
+NP_SWEEP_INLINE void ref_pass2(const ref_corner *restrict cn, unsigned t0, unsigned t1, const double *restrict u,
+                               const double *restrict v, const double *restrict w, const int deriv,
+                               double *restrict rf, double *restrict rdx, double *restrict rdy,
+                               double *restrict rdz)
+{
+    const ref_corner k0 = cn[0], k1 = cn[1], k2 = cn[2], k3 = cn[3];
+    for (unsigned t = t0; t < t1; t++) {
         double f = 0.0, df0 = 0.0, df1 = 0.0, df2 = 0.0;
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC unroll 4
-#endif
-        for (unsigned c = 0; c < 4; c++) {
-            /* corner offsets: 0, e_hi, e_hi + e_mid, (1,1,1) */
-            int c1 = c >= 1u, c2 = c >= 2u, c3 = c >= 3u;
-            uint32_t a0 = (uint32_t)((c1 & (hi == 0)) + (c2 & (mid == 0)) + (c3 & (lo == 0)));
-            uint32_t a1 = (uint32_t)((c1 & (hi == 1)) + (c2 & (mid == 1)) + (c3 & (lo == 1)));
-            uint32_t a2 = (uint32_t)((c1 & (hi == 2)) + (c2 & (mid == 2)) + (c3 & (lo == 2)));
-            double sa = (double)(a0 + a1 + a2) / 6.;
-            double d0 = u - (double)a0 + sa, d1 = v - (double)a1 + sa, d2 = w - (double)a2 + sa;
-            double tt = .6 - d0 * d0 - d1 * d1 - d2 * d2;
-            uint32_t h = np_hash6_fast32((ci + a0) & 255u, (cj + a1) & 255u, (ck + a2) & 255u);
-            uint32_t b5 = h >> 5 & 1u, b4 = h >> 4 & 1u, b3 = h >> 3 & 1u, b2 = h >> 2 & 1u, rot = h & 3u;
-            double sp = b5 == b3 ? -1.0 : 1.0;
-            double sq = (rot == 0u || b2 == 0u) ? (b5 == b4 ? -1.0 : 1.0) : 0.0;
-            double sr = (rot == 0u || b2 != 0u) ? (b5 != (b4 ^ b3) ? -1.0 : 1.0) : 0.0;
-            double p = sp * pick(rot, d0, d1, d2), q = sq * pick(rot, d1, d2, d0), r = sr * pick(rot, d2, d0, d1);
-            double g = p + (q + r);
-            double t2 = tt * tt;
-            int in = !(tt < 0);
-            f = in ? f + 8 * t2 * t2 * g : f;
-            if (deriv) {
-                double t3 = t2 * tt, t4 = t2 * t2;
-                /* grad_coef: the coefficient of each axis (p on its axis, q, r on theirs) */
-                double gx = pick(rot, sp, sr, sq), gy = pick(rot, sq, sp, sr), gz = pick(rot, sr, sq, sp);
-                df0 = in ? df0 + (8 * t4 * gx - 64 * t3 * g * d0) : df0;
-                df1 = in ? df1 + (8 * t4 * gy - 64 * t3 * g * d1) : df1;
-                df2 = in ? df2 + (8 * t4 * gz - 64 * t3 * g * d2) : df2;
-            }
-        }
+        ref_corner_add(k0, u[t], v[t], w[t], deriv, &f, &df0, &df1, &df2);
+        ref_corner_add(k1, u[t], v[t], w[t], deriv, &f, &df0, &df1, &df2);
+        ref_corner_add(k2, u[t], v[t], w[t], deriv, &f, &df0, &df1, &df2);
+        ref_corner_add(k3, u[t], v[t], w[t], deriv, &f, &df0, &df1, &df2);
         rf[t] = f;
         if (deriv) {
             rdx[t] = df0;
@@ -101,25 +146,288 @@ NP_SWEEP_INLINE void ref_row(uint16_t x0, uint16_t yw, uint16_t zw, const int de
     }
 }
 
-/* The row with and without the derivative, each compiled without a branch on it (so it vectorises). */
-NP_SWEEP_CLONES static void ref_row_d(uint16_t x0, uint16_t y, uint16_t z, double *rf, double *rdx, double *rdy,
-                                      double *rdz)
+/* Appendix B's gradient coefficients of index h on x, y, z (np_ref_simplex3's grad_coef). */
+static void grad_coef(unsigned h, double gc[3])
 {
-    ref_row(x0, y, z, 1, rf, rdx, rdy, rdz);
+    unsigned b5 = h >> 5 & 1u, b4 = h >> 4 & 1u, b3 = h >> 3 & 1u, b2 = h >> 2 & 1u, b = h & 3u;
+    unsigned p = b == 1 ? 0u : b == 2 ? 1u : 2u, q = b == 1 ? 1u : b == 2 ? 2u : 0u, r = b == 1 ? 2u : b == 2 ? 0u : 1u;
+    gc[0] = gc[1] = gc[2] = 0.0;
+    gc[p] = b5 == b3 ? -1.0 : 1.0;
+    if (b == 0 || b2 == 0)
+        gc[q] = b5 == b4 ? -1.0 : 1.0;
+    if (b == 0 || b2 != 0)
+        gc[r] = b5 != (b4 ^ b3) ? -1.0 : 1.0;
 }
 
-NP_SWEEP_CLONES static void ref_row_f(uint16_t x0, uint16_t y, uint16_t z, double *rf)
+/* The four corners of the simplex that pass 1's key names (cell and rank, as np_ref_simplex3 finds them). */
+static void ref_corners(double key, ref_corner cn[4])
 {
-    ref_row(x0, y, z, 0, rf, NULL, NULL, NULL);
+    uint64_t kk = (uint64_t)key;
+    unsigned ra = (unsigned)(kk >> 2 & 1u), rb = (unsigned)(kk >> 1 & 1u), rc = (unsigned)(kk & 1u);
+    uint32_t fk = (uint32_t)(kk >> 3 & 1023u), fj = (uint32_t)(kk >> 13 & 1023u), fi = (uint32_t)(kk >> 23);
+    /* hi = u >= w ? u >= v ? 0 : 1 : v >= w ? 1 : 2; lo = u < w ? u < v ? 0 : 1 : v < w ? 1 : 2 */
+    unsigned hi = ra ? (rb ? 0u : 1u) : (rc ? 1u : 2u);
+    unsigned lo = !ra ? (!rb ? 0u : 1u) : (!rc ? 1u : 2u);
+    const unsigned step[4] = { hi, 3u - hi - lo, lo, 0u };
+    unsigned a[3] = { 0, 0, 0 };
+    for (unsigned c = 0; c < 4; c++) {
+        ref_corner *k = &cn[c];
+        unsigned h = np_hash6_fast((uint8_t)((fi + a[0]) & 255u), (uint8_t)((fj + a[1]) & 255u),
+                                   (uint8_t)((fk + a[2]) & 255u));
+        double gc[3];
+        grad_coef(h, gc);
+        k->a0 = (double)a[0];
+        k->a1 = (double)a[1];
+        k->a2 = (double)a[2];
+        k->sa = (double)(a[0] + a[1] + a[2]) / 6.;
+        k->gx = gc[0];
+        k->gy = gc[1];
+        k->gz = gc[2];
+        k->w1 = (h & 3u) == 1u ? 1.0 : 0.0;
+        k->w2 = (h & 3u) == 2u ? 1.0 : 0.0;
+        k->w0 = (h & 3u) == 0u || (h & 3u) == 3u ? 1.0 : 0.0;
+        a[step[c]]++;
+    }
+}
+
+/*
+ * The corners of recent keys (rows next to each other cross the same
+ * simplices): direct-mapped, REF_CACHE entries, one cache per thread that
+ * lives across calls (a key's corners depend on the key alone: the reference
+ * has no configuration); key -1 marks an empty entry.
+ */
+enum { REF_CACHE = 64 };
+typedef struct ref_cache {
+    double key[REF_CACHE];
+    ref_corner cn[REF_CACHE][4];
+} ref_cache;
+
+static const ref_corner *ref_corners_cached(ref_cache *cache, double key)
+{
+    uint64_t kk = (uint64_t)key;
+    unsigned e = (unsigned)((kk * 0x9e3779b97f4a7c15u) >> 58); /* 6 bits: REF_CACHE */
+    if (cache->key[e] != key) {
+        ref_corners(key, cache->cn[e]);
+        cache->key[e] = key;
+    }
+    return cache->cn[e];
+}
+
+/* One row of np_ref_simplex3 at xs[t], y / 256, z / 256: pass 1, then pass 2 over each run of one simplex. */
+NP_SWEEP_INLINE void ref_row(ref_cache *cache, const double *restrict xs, uint16_t yw, uint16_t zw,
+                             const int deriv, double *restrict rf, double *restrict rdx, double *restrict rdy,
+                             double *restrict rdz)
+{
+    double u[NP_SWEEP_ROW], v[NP_SWEEP_ROW], w[NP_SWEEP_ROW], key[NP_SWEEP_ROW];
+    ref_pass1(xs, (double)yw / 256.0, (double)zw / 256.0, u, v, w, key);
+    unsigned t0 = 0;
+    while (t0 < NP_SWEEP_ROW) {
+        unsigned t1 = t0 + 1u;
+        while (t1 < NP_SWEEP_ROW && key[t1] == key[t0])
+            t1++;
+        ref_pass2(ref_corners_cached(cache, key[t0]), t0, t1, u, v, w, deriv, rf, rdx, rdy, rdz);
+        t0 = t1;
+    }
+}
+
+/* The row with and without the derivative, each compiled without a branch on it (so it vectorises). */
+NP_SWEEP_CLONES static void ref_row_d(ref_cache *cache, const double *xs, uint16_t y, uint16_t z, double *rf, double *rdx,
+                                      double *rdy, double *rdz)
+{
+    ref_row(cache, xs, y, z, 1, rf, rdx, rdy, rdz);
+}
+
+NP_SWEEP_CLONES static void ref_row_f(ref_cache *cache, const double *xs, uint16_t y, uint16_t z, double *rf)
+{
+    ref_row(cache, xs, y, z, 0, rf, NULL, NULL, NULL);
+}
+
+/* ---- The model row, in segments (the default configurations) ---- */
+
+/*
+ * np_simplex_eval (eval_one in np_simplex.c) for a row, in two passes, the
+ * same inline arithmetic of np_simplex.h with the hash and gradient decode
+ * hoisted out of the per-input loop:
+ *  - pass 1 per input: the skewed cells (SK), the offsets and the three rank
+ *    comparisons (RK), and a key naming the simplex (cells and comparisons);
+ *  - a scan cuts the row into runs of one key; per run the four corners'
+ *    masks, hashes and gradients are found once (np_simplex_corner_mask,
+ *    np_simplex_corner_hash, np_grad_fast: they depend on the cells and the
+ *    rank alone);
+ *  - pass 2 per input of the run: every corner's D, G.D, R2, T, tau powers
+ *    and terms, and the outputs, through the same inline functions with the
+ *    configuration a compile-time constant.
+ * So the codes are eval_one's by construction; fast.simplex_kernel_block and
+ * fast.simplex_kernel_random compare every code with np_simplex_eval.
+ */
+typedef struct mdl_corner {
+    int32_t b0, b1, b2; /* the corner's mask bits */
+    int32_t cx, cy, cz; /* its gradient */
+} mdl_corner;
+
+static const np_simplex_cfg mdl_default_d = { 16, 16, 1, 24, 22, 22 };
+static const np_simplex_cfg mdl_default_f = { 16, 16, 0, 23, 20, 22 };
+
+NP_SWEEP_INLINE void mdl_pass1(uint16_t x0, uint16_t yw, uint16_t zw, int32_t *restrict o0, int32_t *restrict o1,
+                               int32_t *restrict o2, uint32_t *restrict key)
+{
+    for (unsigned t = 0; t < NP_SWEEP_ROW; t++) {
+        uint16_t xw = (uint16_t)(x0 + t);
+        uint32_t c0 = np_simplex_cell(np_simplex_skew(xw, yw, zw));
+        uint32_t c1 = np_simplex_cell(np_simplex_skew(yw, zw, xw));
+        uint32_t c2 = np_simplex_cell(np_simplex_skew(zw, xw, yw));
+        uint32_t n = c0 + c1 + c2;
+        int32_t u = np_simplex_offset(xw, c0, n), v = np_simplex_offset(yw, c1, n), w = np_simplex_offset(zw, c2, n);
+        /* np_simplex_rank's three comparators */
+        uint32_t rank = (uint32_t)(u >= w) << 2 | (uint32_t)(u >= v) << 1 | (uint32_t)(v >= w);
+        o0[t] = u;
+        o1[t] = v;
+        o2[t] = w;
+        key[t] = ((c0 << 9 | c1) << 9 | c2) << 3 | rank; /* cells u9 each */
+    }
+}
+
+static void mdl_corners(uint32_t key, mdl_corner cn[4])
+{
+    uint32_t cell[3] = { key >> 21 & 511u, key >> 12 & 511u, key >> 3 & 511u };
+    uint8_t hi, lo;
+    /* the comparators' results as np_simplex_rank reads them (u >= w, u >= v, v >= w) */
+    int32_t uw = (int32_t)(key >> 2 & 1u), uv = (int32_t)(key >> 1 & 1u), vw = (int32_t)(key & 1u);
+    hi = (uint8_t)(uw ? (uv ? 0 : 1) : (vw ? 1 : 2));
+    lo = (uint8_t)(!uw ? (!uv ? 0 : 1) : (!vw ? 1 : 2));
+    for (unsigned c = 0; c < 4; c++) {
+        unsigned mask = np_simplex_corner_mask(hi, lo, c);
+        np_grad g = np_grad_fast(np_simplex_corner_hash(cell, mask));
+        cn[c].b0 = (int32_t)(mask & 1u);
+        cn[c].b1 = (int32_t)(mask >> 1 & 1u);
+        cn[c].b2 = (int32_t)(mask >> 2 & 1u);
+        cn[c].cx = g.cx;
+        cn[c].cy = g.cy;
+        cn[c].cz = g.cz;
+    }
+}
+
+NP_SWEEP_INLINE void mdl_corner_add(const np_simplex_cfg *cfg, const mdl_corner k, unsigned c, int32_t u, int32_t v,
+                                    int32_t w, int64_t *s, int64_t *q0, int64_t *q1, int64_t *q2)
+{
+    int32_t d[3] = { np_simplex_corner_d(u, (unsigned)k.b0, c), np_simplex_corner_d(v, (unsigned)k.b1, c),
+                     np_simplex_corner_d(w, (unsigned)k.b2, c) };
+    np_grad g = { (int8_t)k.cx, (int8_t)k.cy, (int8_t)k.cz };
+    int32_t gd = np_simplex_gdot(g, d);
+    uint32_t t = np_simplex_kernel_t(np_simplex_r2(d));
+    uint32_t tau2 = np_simplex_tau2(cfg, t);
+    uint32_t tau4 = np_simplex_tau4(cfg, tau2);
+    *s += np_simplex_fterm(cfg, tau4, gd);
+    if (cfg->deriv) {
+        int64_t q = np_simplex_qterm(cfg, np_simplex_tau3(tau2, t), gd);
+        *q0 += np_simplex_eterm(cfg, tau4, k.cx) - np_simplex_mterm(q, d[0]);
+        *q1 += np_simplex_eterm(cfg, tau4, k.cy) - np_simplex_mterm(q, d[1]);
+        *q2 += np_simplex_eterm(cfg, tau4, k.cz) - np_simplex_mterm(q, d[2]);
+    }
+}
+
+NP_SWEEP_INLINE void mdl_pass2(const np_simplex_cfg *cfg, const mdl_corner *restrict cn, unsigned t0, unsigned t1,
+                               const int32_t *restrict o0, const int32_t *restrict o1, const int32_t *restrict o2,
+                               int32_t *restrict f, int32_t *restrict dx, int32_t *restrict dy,
+                               int32_t *restrict dz)
+{
+    const int64_t kf = np_simplex_kf(cfg), kd = np_simplex_kd(cfg);
+    const mdl_corner k0 = cn[0], k1 = cn[1], k2 = cn[2], k3 = cn[3];
+    for (unsigned t = t0; t < t1; t++) {
+        int64_t s = 0, q0 = 0, q1 = 0, q2 = 0;
+        mdl_corner_add(cfg, k0, 0u, o0[t], o1[t], o2[t], &s, &q0, &q1, &q2);
+        mdl_corner_add(cfg, k1, 1u, o0[t], o1[t], o2[t], &s, &q0, &q1, &q2);
+        mdl_corner_add(cfg, k2, 2u, o0[t], o1[t], o2[t], &s, &q0, &q1, &q2);
+        mdl_corner_add(cfg, k3, 3u, o0[t], o1[t], o2[t], &s, &q0, &q1, &q2);
+        f[t] = np_simplex_out_f(cfg, kf, s);
+        if (cfg->deriv) {
+            dx[t] = np_simplex_out_d(cfg, kd, q0);
+            dy[t] = np_simplex_out_d(cfg, kd, q1);
+            dz[t] = np_simplex_out_d(cfg, kd, q2);
+        }
+    }
+}
+
+/*
+ * The corners of recent keys, one direct-mapped cache per thread that lives
+ * across calls, as the reference row's (a key's corners depend on the cells
+ * and the rank alone, not on the configuration); key ~0 (no key: cells are
+ * u9) marks an empty entry.
+ */
+static const mdl_corner *mdl_corners_cached(uint32_t key)
+{
+    static _Thread_local uint32_t keys[REF_CACHE];
+    static _Thread_local mdl_corner cns[REF_CACHE][4];
+    static _Thread_local int ready;
+    if (!ready) {
+        for (unsigned e = 0; e < REF_CACHE; e++)
+            keys[e] = ~0u;
+        ready = 1;
+    }
+    unsigned e = (unsigned)(((uint64_t)key * 0x9e3779b97f4a7c15u) >> 58); /* 6 bits: REF_CACHE */
+    if (keys[e] != key) {
+        mdl_corners(key, cns[e]);
+        keys[e] = key;
+    }
+    return cns[e];
+}
+
+NP_SWEEP_INLINE void mdl_row(const np_simplex_cfg *cfg, uint16_t x0, uint16_t y, uint16_t z, int32_t *f,
+                             int32_t *dx, int32_t *dy, int32_t *dz)
+{
+    int32_t o0[NP_SWEEP_ROW], o1[NP_SWEEP_ROW], o2[NP_SWEEP_ROW];
+    uint32_t key[NP_SWEEP_ROW];
+    mdl_pass1(x0, y, z, o0, o1, o2, key);
+    unsigned t0 = 0;
+    while (t0 < NP_SWEEP_ROW) {
+        unsigned t1 = t0 + 1u;
+        while (t1 < NP_SWEEP_ROW && key[t1] == key[t0])
+            t1++;
+        mdl_pass2(cfg, mdl_corners_cached(key[t0]), t0, t1, o0, o1, o2, f, dx, dy, dz);
+        t0 = t1;
+    }
+}
+
+NP_SWEEP_CLONES static void mdl_row_d(uint16_t x0, uint16_t y, uint16_t z, int32_t *f, int32_t *dx, int32_t *dy,
+                                      int32_t *dz)
+{
+    mdl_row(&mdl_default_d, x0, y, z, f, dx, dy, dz);
+}
+
+NP_SWEEP_CLONES static void mdl_row_f(uint16_t x0, uint16_t y, uint16_t z, int32_t *f)
+{
+    mdl_row(&mdl_default_f, x0, y, z, f, NULL, NULL, NULL);
+}
+
+static int mdl_same(const np_simplex_cfg *a, const np_simplex_cfg *b)
+{
+    return a->out_bits == b->out_bits && a->dout_bits == b->dout_bits && a->deriv == b->deriv &&
+           a->t_frac == b->t_frac && a->p_frac == b->p_frac && a->k_frac == b->k_frac;
 }
 
 void np_sweep_simplex3_rows(const np_simplex_cfg *cfg, uint16_t x0, uint16_t y0, uint16_t z, unsigned rows,
                             unsigned what, int32_t *code, double *ref)
 {
     unsigned nf = cfg->deriv ? 4u : 1u;
+    double xs_ref[NP_SWEEP_ROW]; /* the reference's x = word / 256, the same in every row */
+    static _Thread_local ref_cache cache;
+    static _Thread_local int cache_ready;
+    if (!cache_ready) {
+        for (unsigned e = 0; e < REF_CACHE; e++)
+            cache.key[e] = -1.0;
+        cache_ready = 1;
+    }
     for (unsigned r = 0; r < rows; r++) {
         uint16_t y = (uint16_t)(y0 + r);
-        if (what & NP_SWEEP_MODEL) {
+        int seg_d = mdl_same(cfg, &mdl_default_d), seg_f = mdl_same(cfg, &mdl_default_f);
+        if ((what & NP_SWEEP_MODEL) && (seg_d || seg_f)) {
+            size_t fs = (size_t)rows * NP_SWEEP_ROW;
+            int32_t *c = code + (size_t)r * NP_SWEEP_ROW;
+            if (seg_d)
+                mdl_row_d(x0, y, z, c, c + fs, c + 2 * fs, c + 3 * fs);
+            else
+                mdl_row_f(x0, y, z, c);
+        } else if (what & NP_SWEEP_MODEL) {
             uint16_t xs[NP_SWEEP_ROW], ys[NP_SWEEP_ROW], zs[NP_SWEEP_ROW];
             np_simplex_out o[NP_SWEEP_ROW];
             for (unsigned t = 0; t < NP_SWEEP_ROW; t++) {
@@ -135,12 +443,15 @@ void np_sweep_simplex3_rows(const np_simplex_cfg *cfg, uint16_t x0, uint16_t y0,
             }
         }
         if (what & NP_SWEEP_REF) {
+            if (r == 0)
+                for (unsigned t = 0; t < NP_SWEEP_ROW; t++)
+                    xs_ref[t] = (double)(uint16_t)(x0 + t) / 256.0;
             double *b = ref + (size_t)r * NP_SWEEP_ROW;
             size_t fs = (size_t)rows * NP_SWEEP_ROW;
             if (cfg->deriv)
-                ref_row_d(x0, y, z, b, b + fs, b + 2 * fs, b + 3 * fs);
+                ref_row_d(&cache, xs_ref, y, z, b, b + fs, b + 2 * fs, b + 3 * fs);
             else
-                ref_row_f(x0, y, z, b);
+                ref_row_f(&cache, xs_ref, y, z, b);
         }
     }
 }

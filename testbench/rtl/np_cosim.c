@@ -133,7 +133,7 @@ void np_cosim_drive(np_cosim *c, np_cosim_cycle *cy, int traffic)
 
 void np_cosim_eval(np_cosim *c, np_cosim_cycle *cy)
 {
-    memset(&c->in, 0, sizeof c->in);
+    /* Only the inputs change: the rest of the bundle stays as calloc left it (the stages write banks, never in_sig). */
     if (c->simplex) {
         c->in.s.x = cy->x;
         c->in.s.y = cy->y;
