@@ -553,13 +553,32 @@ size_t np_simplex_datapath(const np_simplex_cfg *cfg, np_op *ops, size_t max)
      * nn = SX >> 8 <= 1535 (u11), 683 nn = 2 (32 - 1)(2 (4 + 1) + 1) nn + nn
      * as four shift-adds in series: 5 nn <= 7675 (u13), 11 nn <= 16885 (u15),
      * 341 nn <= 523435 < 2^19 (u19), 683 nn <= 1048405 < 2^20 (u20).
+     * Each shift-add (X << s) + Y is priced by its bit positions: below s
+     * Y's bits (wiring), where both operands have bits a full adder, above
+     * Y's top bit an incrementer of X's bits (the carry), and where only the
+     * carry out of a position is read (SX below bit 8, 683 nn below bit 11:
+     * the cell reads SX[18:8] and (683 nn)[19:11]) a carry chain, priced
+     * as a comparator's:
+     *   bc = b + c: 16 full adders;  SX = (a << 2) + bc: bits 2..7 carry,
+     *   8..16 full, 17..18 increment;  5 nn = (nn << 2) + nn: 2..10 full,
+     *   11..12 increment;  11 nn = (5 nn << 1) + nn: 1..10 full, 11..14
+     *   increment;  341 nn = (11 nn << 5) - 11 nn: 0..4 the borrow of
+     *   -11 nn (increment), 5..14 full, 15..19 increment;  683 nn =
+     *   (341 nn << 1) + nn: 1..10 carry, 11..19 increment.
+     * The RTL (np_simplex3.v, cell_of) writes the same chain.
      */
-    OP("SK", "bc", NP_OP_ADD, 3, 17, 0, 17, 0, 0);
-    OP("SK", "sk", NP_OP_ADD, 3, NP_SIMPLEX_SKEW_BITS, 0, NP_SIMPLEX_SKEW_BITS, 0, 1);
-    OP("SK", "n5", NP_OP_ADD, 3, 13, 0, 13, 0, 2);
-    OP("SK", "n11", NP_OP_ADD, 3, 15, 0, 15, 0, 3);
-    OP("SK", "n341", NP_OP_ADD, 3, 19, 0, 19, 0, 4);
-    OP("SK", "n683", NP_OP_ADD, 3, 20, 0, 20, 0, 5);
+    OP("SK", "bc", NP_OP_ADD, 3, 16, 0, 17, 0, 0);
+    OP("SK", "sk", NP_OP_ADD, 3, 9, 0, NP_SIMPLEX_SKEW_BITS, 0, 1);
+    OP("SK", NULL, NP_OP_CMP, 3, 6, 0, 0, 0, 1);
+    OP("SK", NULL, NP_OP_INC, 3, 2, 0, 0, 0, 1);
+    OP("SK", "n5", NP_OP_ADD, 3, 9, 0, 13, 0, 2);
+    OP("SK", NULL, NP_OP_INC, 3, 2, 0, 0, 0, 2);
+    OP("SK", "n11", NP_OP_ADD, 3, 10, 0, 15, 0, 3);
+    OP("SK", NULL, NP_OP_INC, 3, 4, 0, 0, 0, 3);
+    OP("SK", "n341", NP_OP_ADD, 3, 10, 0, 19, 0, 4);
+    OP("SK", NULL, NP_OP_INC, 3, 10, 0, 0, 0, 4);
+    OP("SK", NULL, NP_OP_CMP, 3, 10, 0, 0, 0, 5);
+    OP("SK", "n683", NP_OP_INC, 3, 9, 0, 20, 0, 6);
     /*
      * Live after SK: each input word mod 2^11 (all that U mod 2^12 reads) and
      * each cell mod 256 (bit 8 is never read: the hash takes the cell mod 256,
@@ -572,33 +591,37 @@ size_t np_simplex_datapath(const np_simplex_cfg *cfg, np_op *ops, size_t max)
      * s12 holds it and it is computed mod 2^12 exactly: U[7:0] = (6a)[7:0],
      * U[11:8] = (6a)[11:8] + (n - 2 (3i mod 8)) mod 16, with 6a mod 2^12 =
      * 2 ((2a + a) mod 2^11), 3i mod 8 = (2i + i) mod 8, n mod 16 =
-     * (i + j + k) mod 16. The far-corner cells (cell + 1) mod 256 are formed
-     * here too (they read only the cell), which keeps CH to eight levels.
+     * (i + j + k) mod 16.
      */
     OP("RK", NULL, NP_OP_ADD, 3, 11, 0, 0, 0, 0);             /* (2a + a) mod 2^11 */
     OP("RK", NULL, NP_OP_ADD, 3, 3, 0, 0, 0, 0);              /* 3i mod 8 */
     OP("RK", NULL, NP_OP_ADD, 1, 4, 0, 0, 0, 0);              /* (i + j) mod 16 */
-    OP("RK", NULL, NP_OP_INC, 3, CELL_LIVE, 0, 0, 0, 0);      /* cell + 1 mod 256 */
     OP("RK", NULL, NP_OP_ADD, 1, 4, 0, 0, 0, 1);              /* n mod 16 */
     OP("RK", NULL, NP_OP_ADD, 3, 4, 0, 0, 0, 2);              /* (n - 6i) mod 16 */
     OP("RK", "off", NP_OP_ADD, 3, 4, 0, ob, 1, 3);            /* U[11:8] */
-    /* Appendix B's ranking: three comparators, then the corner masks of corners 1 and 2. */
+    /*
+     * Appendix B's ranking: three comparators, encoded as the axes of the
+     * largest and the smallest offset (2 bits each; the RTL's hi and lo).
+     */
     OP("RK", NULL, NP_OP_CMP, 3, ob, 0, 0, 0, 4);
-    OP("RK", NULL, NP_OP_LUT, 1, 3, 6, 0, 0, 5);
-    OP("RK", NULL, NP_OP_REG, 1, 3 * ob + 6 + 2 * 3 * CELL_LIVE + 1, 0, 0, 0, 0); /* U; masks; cell, cell + 1 */
+    OP("RK", NULL, NP_OP_LUT, 1, 3, 4, 0, 0, 5);
+    OP("RK", NULL, NP_OP_REG, 1, 3 * ob + 4 + 3 * CELL_LIVE + 1, 0, 0, 0, 0); /* U; hi, lo; cell */
 
     /*
      * CH. D_c = U - 1536 A + 256 c for corners 1..3 (corner 0's is U): |D| <= 1536
      * (|d| <= 1, the longest simplex edge), s12, so D[7:0] = U[7:0] and
      * D[11:8] = U[11:8] + (c - 6 A_a) mod 16, the constant picked by the mask
-     * bit. Hash: corner cells (cell or cell + 1 by the mask: corners 1, 2),
+     * bit. The corner masks of corners 1 and 2 decoded from hi, lo. Hash: the
+     * corner cells, cell + mask bit (mod 256: an incrementer whose carry-in
+     * is the mask bit; cell + 1 at corner 3, the cell itself at corner 0),
      * then per corner 8 lookups 3 -> 6 and 7 six-bit adders (4, 2, 1), as in
      * classic3. G . D: -D formed beside the hash, then per axis a 3:1 select of
      * D_a, -D_a or 0 by the gradient coefficient (np_grad_decode's bit logic,
      * not counted, as in classic3), and two additions:
      * |D_x c_x + D_y c_y| <= sqrt(2) 1536 = 2172 (s13), |gd| <= 2660 (s13).
      */
-    OP("CH", NULL, NP_OP_MUX, 6, CELL_LIVE, 2, 0, 0, 0);
+    OP("CH", NULL, NP_OP_LUT, 1, 4, 6, 0, 0, 0);
+    OP("CH", NULL, NP_OP_INC, 9, CELL_LIVE, 0, 0, 0, 0);
     OP("CH", "d", NP_OP_ADD, 9, 4, 0, ob, 1, 0);
     OP("CH", NULL, NP_OP_LUT, 32, 3, 6, 0, 0, 1);
     OP("CH", NULL, NP_OP_ADD, 16, 6, 0, 0, 0, 2);
@@ -611,17 +634,19 @@ size_t np_simplex_datapath(const np_simplex_cfg *cfg, np_op *ops, size_t max)
     OP("CH", NULL, NP_OP_REG, 1, 4 * 3 * ob + 4 * GD_BITS + h_live + 1, 0, 0, 0, 0); /* D; gd; (h) */
 
     /*
-     * KT. D_a^2 <= 1536^2 = 2359296 < 2^22 (u22, a 12-bit squarer); R2 and
+     * KT. |D_a| <= 1536 (u11: a conditional negate of the s12 word, then an
+     * 11-bit squarer), D_a^2 <= 1536^2 = 2359296 < 2^22 (u22); R2 and
      * its partial sum <= 1536^2 (u22);
      * 5 R2 = 4 R2 + R2 <= 11796480 < 2^24 (u24); 7077888 - 5 R2 in
      * [-4718592, 7077888] (s24); T = the clamp at 0 by the sign bit (u23).
      */
-    OP("KT", "dsq", NP_OP_SQR, 12, ob, 0, NP_SIMPLEX_R2_BITS, 0, 0);
-    OP("KT", "r2p", NP_OP_ADD, 4, NP_SIMPLEX_R2_BITS, 0, NP_SIMPLEX_R2_BITS, 0, 1);
-    OP("KT", "r2", NP_OP_ADD, 4, NP_SIMPLEX_R2_BITS, 0, NP_SIMPLEX_R2_BITS, 0, 2);
-    OP("KT", "r2x5", NP_OP_ADD, 4, NP_SIMPLEX_TD_BITS, 0, NP_SIMPLEX_TD_BITS, 0, 3);
-    OP("KT", "td", NP_OP_INC, 4, NP_SIMPLEX_TD_BITS, 0, NP_SIMPLEX_TD_BITS, 1, 4); /* a constant minus 5 R2 */
-    OP("KT", "t", NP_OP_MUX, 4, NP_SIMPLEX_T_BITS, 2, NP_SIMPLEX_T_BITS, 0, 5);
+    OP("KT", NULL, NP_OP_NEG, 12, ob, 0, 0, 0, 0);
+    OP("KT", "dsq", NP_OP_SQR, 12, ob - 1u, 0, NP_SIMPLEX_R2_BITS, 0, 1);
+    OP("KT", "r2p", NP_OP_ADD, 4, NP_SIMPLEX_R2_BITS, 0, NP_SIMPLEX_R2_BITS, 0, 2);
+    OP("KT", "r2", NP_OP_ADD, 4, NP_SIMPLEX_R2_BITS, 0, NP_SIMPLEX_R2_BITS, 0, 3);
+    OP("KT", "r2x5", NP_OP_ADD, 4, NP_SIMPLEX_TD_BITS, 0, NP_SIMPLEX_TD_BITS, 0, 4);
+    OP("KT", "td", NP_OP_INC, 4, NP_SIMPLEX_TD_BITS, 0, NP_SIMPLEX_TD_BITS, 1, 5); /* a constant minus 5 R2 */
+    OP("KT", "t", NP_OP_MUX, 4, NP_SIMPLEX_T_BITS, 2, NP_SIMPLEX_T_BITS, 0, 6);
     OP("KT", NULL, NP_OP_REG, 1, 4 * NP_SIMPLEX_T_BITS + 4 * GD_BITS + d_live + h_live + 1, 0, 0, 0, 0);
 
     /*

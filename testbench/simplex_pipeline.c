@@ -220,3 +220,78 @@ int simplex_datapath_widths(void)
          "deriv=0 declares no derivative operator and prices below deriv=1");
     return 0;
 }
+
+/* The declared output width of signal sig (0 when not declared). */
+static unsigned declared_width(const np_op *ops, size_t n, const char *sig)
+{
+    for (size_t i = 0; i < n; i++)
+        if (ops[i].signal && ops[i].out && strcmp(ops[i].signal, sig) == 0)
+            return ops[i].out;
+    return 0;
+}
+
+/* 1 when signal sig's last operator is a multiplexer (O's saturation). */
+static int declared_saturation(const np_op *ops, size_t n, const char *sig)
+{
+    for (size_t i = 0; i < n; i++)
+        if (ops[i].signal && strcmp(ops[i].signal, sig) == 0 && ops[i].kind == NP_OP_MUX)
+            return 1;
+    return 0;
+}
+
+/*
+ * The reference RTL (rtl_model/verilog/np_simplex3.v) holds M..O at the
+ * declaration's widths when TIGHT (WT >= 9 and WP >= 9): e, e_a - m_a, S,
+ * Q_a, q and m in WP + 1 bits, fc in WP, 5q in WP + 3, and it leaves O's
+ * saturation out. Every configuration of the key ranges with WT, WP >= 9
+ * must have declared widths within those (the declaration's range argument
+ * is then the RTL's) and no saturation; below the threshold some do not
+ * (the RTL then keeps its never-wrapping widths and the saturation).
+ */
+int simplex_rtl_widths(void)
+{
+    static const char *const sig[] = { "fc", "q", "e", "m", "em", "s", "qs", "q5" };
+    static const unsigned extra[] = { 0, 1, 1, 1, 1, 1, 1, 3 };
+    enum { NS = sizeof sig / sizeof sig[0] };
+    np_op ops[DP_MAX_OPS];
+    unsigned long checked = 0, tight_at_default = 0, beyond = 0;
+    for (unsigned wt = 1; wt <= 30; wt++)
+        for (unsigned wp = 1; wp <= 32; wp++) {
+            int tight = wt >= 9 && wp >= 9;
+            np_simplex_cfg cfg = { 16, 16, 1, wt, wp, 22 };
+            size_t n = np_simplex_datapath(&cfg, ops, DP_MAX_OPS);
+            NP_CHECK(n <= DP_MAX_OPS, "%zu ops", n);
+            int fits = 1;
+            for (unsigned k = 0; k < NS; k++) {
+                unsigned w = declared_width(ops, n, sig[k]);
+                NP_CHECK(w > 0, "no width declared for %s", sig[k]);
+                if (w > wp + extra[k])
+                    fits = 0;
+                NP_CHECK(!tight || w <= wp + extra[k], "t_frac=%u p_frac=%u: %s declared %u bits, the RTL holds %u",
+                         wt, wp, sig[k], w, wp + extra[k]);
+            }
+            beyond += !fits;
+            if (!tight)
+                continue;
+            for (unsigned wk = 1; wk <= 26; wk++)
+                for (unsigned nb = 4; nb <= 20; nb++)
+                    for (unsigned nd = 5; nd <= 20; nd++) {
+                        np_simplex_cfg c = { nb, nd, 1, wt, wp, wk };
+                        size_t m = np_simplex_datapath(&c, ops, DP_MAX_OPS);
+                        NP_CHECK(!declared_saturation(ops, m, "f") && !declared_saturation(ops, m, "df"),
+                                 "out_bits=%u dout_bits=%u t_frac=%u p_frac=%u k_frac=%u: the declaration "
+                                 "saturates, the RTL (TIGHT) does not", nb, nd, wt, wp, wk);
+                        checked++;
+                    }
+        }
+    np_simplex_cfg d = np_simplex_cfg_default(16, 16, 1);
+    size_t n = np_simplex_datapath(&d, ops, DP_MAX_OPS);
+    for (unsigned k = 0; k < NS; k++)
+        tight_at_default += declared_width(ops, n, sig[k]) == d.p_frac + extra[k];
+    printf("%lu configurations with t_frac, p_frac >= 9: every M..A width within the RTL's, no saturation; "
+           "%u of %u widths equal at the default; %lu (t_frac, p_frac) pairs need wider words\n",
+           checked, (unsigned)tight_at_default, (unsigned)NS, beyond);
+    NP_CHECK(beyond > 0, "no configuration needs the never-wrapping widths: TIGHT's threshold is not needed");
+    NP_CHECK(tight_at_default == NS, "the default's declared widths are not the RTL's");
+    return 0;
+}

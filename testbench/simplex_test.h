@@ -106,5 +106,6 @@ int simplex_deriv_off_same_f(void);
 int simplex_error_bound_configs(void);
 int simplex_registry(void);
 int simplex_datapath_widths(void);
+int simplex_rtl_widths(void);
 
 #endif /* SIMPLEX_TEST_H */

@@ -28,6 +28,7 @@ static const np_test_case cases[] = {
     { "error_bound_configs", simplex_error_bound_configs },
     { "registry", simplex_registry },
     { "datapath_widths", simplex_datapath_widths },
+    { "rtl_widths", simplex_rtl_widths },
     { NULL, NULL },
 };
 

@@ -16,12 +16,18 @@
 // np_classic3.v). Register contents are listed in docs/rtl.md.
 //
 // Widths. The front end (SK..KT) holds the exact integers at the widths that
-// np_simplex.h proves (s12 offsets, s14 G.D, u23 T). From M on, every signal
-// is held wide enough that it never wraps at ANY configuration (the model
-// holds them in int64_t and never wraps; at t_frac = 1 the nominal ranges are
-// exceeded and the output saturates): |fc|, |q| < 9 * 2^WP (|T^k| < 2^WT
-// words times |G.D| <= 4608 = 9 * 2^9), |m| < 34 * 2^WP, |e| <= 2^WP, sums of
-// four. The rounding rule everywhere is np_shr_round_half_up: add half an
+// np_simplex.h proves (s12 offsets, s13 G.D, u23 T). From M on, when TIGHT
+// (T_FRAC >= 9 and P_FRAC >= 9), the datapath declaration's widths
+// (np_simplex_datapath's range argument, checked over every such
+// configuration by simplex.rtl_widths) and no output saturation; otherwise
+// every signal is held wide enough that it never wraps at ANY configuration
+// (the model holds them in int64_t and never wraps; at t_frac = 1 the nominal
+// ranges are exceeded and the output saturates): |fc|, |q| < 9 * 2^WP (|T^k|
+// < 2^WT words times |G.D| <= 4608 = 9 * 2^9), |m| < 34 * 2^WP, |e| <= 2^WP,
+// sums of four. The arithmetic is written as the declaration prices it (SK's
+// shift-adds, KT's squares of |D_a|, O's signed-digit shift-adds), so that
+// `noisepipe report gates --synth` compares one circuit with its estimate.
+// The rounding rule everywhere is np_shr_round_half_up: add half an
 // LSB, then an arithmetic shift (floor). A negative term is formed BEFORE its
 // rounding: e_a = round(G_a * tau4), not -round(tau4).
 // Lint waivers (Verilator -Wall), each for the whole file:
@@ -62,13 +68,45 @@ module np_simplex3 #(
     localparam integer NB = DERIV != 0 ? 10 : 9;  // banks = latency
     localparam integer OW = N + 3 * ND;           // the output bundle
     localparam integer XW = 96;                   // width of the M..O arithmetic (never wraps)
-    localparam integer FW = WP + 6;               // fc, q: |.| < 9 * 2^WP (+ rounding)
-    localparam integer MW = WP + 8;               // m: |.| < 34 * 2^WP
-    localparam integer EW = WP + 2;               // e: |.| <= 2^WP
-    localparam integer SW = WP + 10;              // S, Q_a: sums of four
+    // TIGHT (WT >= 9 and WP >= 9): the widths of the datapath declaration
+    // (np_simplex_datapath, its range argument; every configuration of the
+    // key ranges with WT, WP >= 9 is checked to fit them by the test
+    // simplex.rtl_widths), and neither output can leave its range, so the
+    // saturation is left out. Otherwise the widths that never wrap at any
+    // configuration (|tau^k| < 1, |G.D| <= 9) and the saturation.
+    localparam integer TIGHT = (WT >= 9 && WP >= 9) ? 1 : 0;
+    localparam integer FW = TIGHT != 0 ? WP : WP + 6;       // fc: |.| < 9 * 2^WP (+ rounding)
+    localparam integer QW = TIGHT != 0 ? WP + 1 : WP + 6;   // q: the same bound
+    localparam integer Q5W = TIGHT != 0 ? WP + 3 : WP + 9;  // 5q
+    localparam integer MW = TIGHT != 0 ? WP + 1 : WP + 8;   // m: |.| < 34 * 2^WP
+    localparam integer EW = TIGHT != 0 ? WP + 1 : WP + 2;   // e: |.| <= 2^WP
+    localparam integer DW = TIGHT != 0 ? WP + 1 : WP + 9;   // e_a - m_a: |.| < 35 * 2^WP
+    localparam integer SW = TIGHT != 0 ? WP + 1 : WP + 10;  // S, Q_a: sums of four
     // The constants Kf' = round(Kf 2^WK), Kd' = round(Kd 2^WK) (np_simplex_kf/kd).
     localparam [63:0] KF = ((64'd8388608 << WK) + 64'd6150937) / 64'd12301875;
     localparam [63:0] KD = ((64'd8388608 << WK) + 64'd2050312) / 64'd4100625;
+    // Their canonical signed digits (non-adjacent form): the positions of the
+    // +1 digits and of the -1 digits. O multiplies by a constant as the
+    // declaration prices it: one shifted operand per non-zero digit.
+    function [63:0] csd_digits;
+        input [63:0] k;
+        input integer negative;  // 0: the +1 digits; 1: the -1 digits
+        reg [64:0] kk;
+        integer i;
+        begin
+            kk = {1'b0, k};
+            csd_digits = 64'd0;
+            for (i = 0; i < 64; i = i + 1) begin
+                if (kk[0]) begin
+                    csd_digits[i] = kk[1] ? negative != 0 : negative == 0;
+                    kk = kk[1] ? kk + 65'd1 : kk - 65'd1;
+                end
+                kk = kk >> 1;
+            end
+        end
+    endfunction
+    localparam [63:0] KF_P = csd_digits(KF, 0), KF_N = csd_digits(KF, 1);
+    localparam [63:0] KD_P = csd_digits(KD, 0), KD_N = csd_digits(KD, 1);
 
     // ---------------------------------------------------------------- handshake
     wire core_in_valid, core_in_ready, core_out_valid, core_out_ready;
@@ -107,16 +145,26 @@ module np_simplex3 #(
     endfunction
 
     // ---------------------------------------------------------------- SK
-    // Skewed numerators SX = 4X + Y + Z (u19) and cells floor(SX / 768) =
-    // (683 * (SX >> 8)) >> 11 (u9; exact for SX >> 8 < 2048).
+    // Skewed numerators SX = 4X + (Y + Z) (u19) and cells floor(SX / 768) =
+    // (683 nn) >> 11 with nn = SX >> 8 (u9; exact for nn < 2048), 683 nn as
+    // the declaration's chain of shift-adds: 5 nn, 11 nn, 341 nn = 32 (11 nn)
+    // - 11 nn, 683 nn = 2 (341 nn) + nn.
     function [8:0] cell_of;
         input [15:0] a, b, c;
+        reg [16:0] bc;
         reg [18:0] sx;
-        reg [21:0] prod;
+        reg [12:0] n5;
+        reg [14:0] n11;
+        reg [19:0] n341;
+        reg [19:0] n683;
         begin
-            sx = {1'b0, a, 2'b00} + {3'b000, b} + {3'b000, c};
-            prod = {11'd0, sx[18:8]} * 22'd683;
-            cell_of = prod[19:11];
+            bc = {1'b0, b} + {1'b0, c};
+            sx = {1'b0, a, 2'b00} + {2'b00, bc};
+            n5 = {sx[18:8], 2'b00} + {2'b00, sx[18:8]};
+            n11 = {1'b0, n5, 1'b0} + {4'd0, sx[18:8]};
+            n341 = {n11, 5'd0} - {5'd0, n11};  // < 2^19: bit 19 is 0
+            n683 = {n341[18:0], 1'b0} + {9'd0, sx[18:8]};
+            cell_of = n683[19:11];
         end
     endfunction
     reg [15:0] r0_x, r0_y, r0_z;
@@ -195,10 +243,10 @@ module np_simplex3 #(
     endfunction
     reg signed [11:0] r2_d[0:11];    // D of corner c_ch, axis a_ch at [3c + a_ch]: s12
     reg [5:0] r2_g[0:3];             // coefficients {cz, cy, cx}
-    reg signed [13:0] r2_gd[0:3];    // G . D: s14
+    reg signed [12:0] r2_gd[0:3];    // G . D: s13 (|G . D| <= |D|_1 <= sqrt(3) 1536 < 2661)
     integer c_ch, a_ch;  // loop variables: one pair per process
     reg [2:0] msk;
-    reg signed [13:0] dsum;
+    reg signed [12:0] dsum;
     reg signed [11:0] dd[0:2];
     reg [5:0] gg;
     always @(posedge clk) if (en[2] && v[1]) begin
@@ -210,31 +258,36 @@ module np_simplex3 #(
             end
             gg = coefs(hash6(r1_cell[0] + {7'd0, msk[0]}, r1_cell[1] + {7'd0, msk[1]},
                              r1_cell[2] + {7'd0, msk[2]}));
-            dsum = 14'sd0;
+            dsum = 13'sd0;
             for (a_ch = 0; a_ch < 3; a_ch = a_ch + 1)
-                if (gg[2*a_ch+:2] == 2'b01) dsum = dsum + {{2{dd[a_ch][11]}}, dd[a_ch]};
-                else if (gg[2*a_ch+:2] == 2'b11) dsum = dsum - {{2{dd[a_ch][11]}}, dd[a_ch]};
+                if (gg[2*a_ch+:2] == 2'b01) dsum = dsum + {dd[a_ch][11], dd[a_ch]};
+                else if (gg[2*a_ch+:2] == 2'b11) dsum = dsum - {dd[a_ch][11], dd[a_ch]};
             r2_g[c_ch] <= gg;
             r2_gd[c_ch] <= dsum;
         end
     end
 
     // ---------------------------------------------------------------- KT
-    // R2 = |D|^2 (u22), T = max(0, 7077888 - 5 R2) (u23).
+    // R2 = |D|^2 (u22), T = max(0, 7077888 - 5 R2) (u23). Each D_a^2 is the
+    // square of |D_a| <= 1536 (u11): a conditional negate, then an 11-bit squarer.
     integer c_kt, a_kt;
     reg [22:0] r3_t[0:3];
     reg signed [11:0] r3_d[0:11];
     reg [5:0] r3_g[0:3];
-    reg signed [13:0] r3_gd[0:3];
+    reg signed [12:0] r3_gd[0:3];
     reg [21:0] r2sq;
     reg signed [24:0] td;
-    reg [21:0] sq0, sq1, sq2;
+    reg [21:0] sq[0:2];
+    reg signed [11:0] dn;
+    reg [10:0] dab;
     always @(posedge clk) if (en[3] && v[2]) begin
         for (c_kt = 0; c_kt < 4; c_kt = c_kt + 1) begin
-            sq0 = $unsigned({{10{r2_d[3*c_kt][11]}}, r2_d[3*c_kt]} * {{10{r2_d[3*c_kt][11]}}, r2_d[3*c_kt]});
-            sq1 = $unsigned({{10{r2_d[3*c_kt+1][11]}}, r2_d[3*c_kt+1]} * {{10{r2_d[3*c_kt+1][11]}}, r2_d[3*c_kt+1]});
-            sq2 = $unsigned({{10{r2_d[3*c_kt+2][11]}}, r2_d[3*c_kt+2]} * {{10{r2_d[3*c_kt+2][11]}}, r2_d[3*c_kt+2]});
-            r2sq = sq0 + sq1 + sq2;
+            for (a_kt = 0; a_kt < 3; a_kt = a_kt + 1) begin
+                dn = r2_d[3*c_kt+a_kt][11] ? -r2_d[3*c_kt+a_kt] : r2_d[3*c_kt+a_kt];
+                dab = dn[10:0];
+                sq[a_kt] = {11'd0, dab} * {11'd0, dab};
+            end
+            r2sq = sq[0] + sq[1] + sq[2];
             td = 25'sd7077888 - $signed({3'd0, r2sq} * 25'd5);
             r3_t[c_kt] <= td > 25'sd0 ? td[22:0] : 23'd0;
             r3_g[c_kt] <= r2_g[c_kt];
@@ -250,7 +303,7 @@ module np_simplex3 #(
     reg [22:0] r4_t[0:3];
     reg signed [11:0] r4_d[0:11];
     reg [5:0] r4_g[0:3];
-    reg signed [13:0] r4_gd[0:3];
+    reg signed [12:0] r4_gd[0:3];
     reg [46:0] tsq;
     always @(posedge clk) if (en[4] && v[3]) begin
         for (c_p2 = 0; c_p2 < 4; c_p2 = c_p2 + 1) begin
@@ -270,7 +323,7 @@ module np_simplex3 #(
     reg [WT-1:0] r5_tau4[0:3], r5_tau3[0:3];
     reg signed [11:0] r5_d[0:11];
     reg [5:0] r5_g[0:3];
-    reg signed [13:0] r5_gd[0:3];
+    reg signed [12:0] r5_gd[0:3];
     reg [61:0] pp;
     always @(posedge clk) if (en[5] && v[4]) begin
         for (c_p4 = 0; c_p4 < 4; c_p4 = c_p4 + 1) begin
@@ -290,7 +343,8 @@ module np_simplex3 #(
     // fc = round(tau4 gd) and q = round(tau3 gd) from WT + 9 to WP bits;
     // e_a = round(G_a tau4) from WT to WP bits (the sign applied first).
     integer c_mm, a_mm;
-    reg signed [FW-1:0] r6_fc[0:3], r6_q[0:3];
+    reg signed [FW-1:0] r6_fc[0:3];
+    reg signed [QW-1:0] r6_q[0:3];
     reg signed [EW-1:0] r6_e[0:11];
     reg signed [11:0] r6_d[0:11];
     reg signed [XW-1:0] wt4, wt3, wgd, wr;
@@ -298,11 +352,11 @@ module np_simplex3 #(
         for (c_mm = 0; c_mm < 4; c_mm = c_mm + 1) begin
             wt4 = {{(XW-WT){1'b0}}, r5_tau4[c_mm]};
             wt3 = {{(XW-WT){1'b0}}, r5_tau3[c_mm]};
-            wgd = {{(XW-14){r5_gd[c_mm][13]}}, r5_gd[c_mm]};
+            wgd = {{(XW-13){r5_gd[c_mm][12]}}, r5_gd[c_mm]};
             wr = requant(wt4 * wgd, WT + 9, WP);
             r6_fc[c_mm] <= wr[FW-1:0];
             wr = requant(wt3 * wgd, WT + 9, WP);
-            r6_q[c_mm] <= DERIV != 0 ? wr[FW-1:0] : {FW{1'b0}};
+            r6_q[c_mm] <= DERIV != 0 ? wr[QW-1:0] : {QW{1'b0}};
             for (a_mm = 0; a_mm < 3; a_mm = a_mm + 1) begin
                 if (r5_g[c_mm][2*a_mm+:2] == 2'b01) wr = requant(wt4, WT, WP);
                 else if (r5_g[c_mm][2*a_mm+:2] == 2'b11) wr = requant(-wt4, WT, WP);
@@ -314,7 +368,7 @@ module np_simplex3 #(
     end
 
     // ---------------------------------------------------------------- M2 (DERIV)
-    // m_a = round(5 q D_a / 2^11), WP bits.
+    // 5q = 4q + q (Q5W bits); m_a = round(5 q D_a / 2^11), WP bits.
     wire signed [FW-1:0] a_fc[0:3];
     wire signed [EW-1:0] a_e[0:11];
     wire signed [MW-1:0] a_m[0:11];
@@ -324,12 +378,14 @@ module np_simplex3 #(
             reg signed [FW-1:0] r7_fc[0:3];
             reg signed [EW-1:0] r7_e[0:11];
             reg signed [MW-1:0] r7_m[0:11];
+            reg signed [Q5W-1:0] q5n;
             reg signed [XW-1:0] q5, md;
             integer c2, a2;
             always @(posedge clk) if (en[7] && v[6]) begin
                 for (c2 = 0; c2 < 4; c2 = c2 + 1) begin
-                    q5 = {{(XW-FW){r6_q[c2][FW-1]}}, r6_q[c2]};
-                    q5 = (q5 <<< 2) + q5;
+                    q5n = {{(Q5W-QW){r6_q[c2][QW-1]}}, r6_q[c2]};
+                    q5n = (q5n <<< 2) + q5n;
+                    q5 = {{(XW-Q5W){q5n[Q5W-1]}}, q5n};
                     for (a2 = 0; a2 < 3; a2 = a2 + 1) begin
                         md = {{(XW-12){r6_d[3*c2+a2][11]}}, r6_d[3*c2+a2]};
                         md = requant(q5 * md, 11, 0);
@@ -359,31 +415,40 @@ module np_simplex3 #(
     endgenerate
 
     // ---------------------------------------------------------------- A
+    // S = the sum of the four fc; Q_a = the sum of the four e_a - m_a (each
+    // difference fits DW bits). Computed in XW bits and kept mod 2^SW (only
+    // the low bits of a sum depend on the low bits of its terms): the sum
+    // fits SW bits (the range argument when TIGHT), so it is exact.
     integer c_a, a_a;
     reg signed [SW-1:0] r8_s;
     reg [3*SW-1:0] r8_q;  // Q_x, Q_y, Q_z: [SW*a +: SW]
-    reg signed [SW-1:0] acc;
+    reg signed [XW-1:0] acc, dem;
     always @(posedge clk) if (en[B_A] && v[B_A-1]) begin
-        r8_s <= {{(SW-FW){a_fc[0][FW-1]}}, a_fc[0]} + {{(SW-FW){a_fc[1][FW-1]}}, a_fc[1]}
-              + {{(SW-FW){a_fc[2][FW-1]}}, a_fc[2]} + {{(SW-FW){a_fc[3][FW-1]}}, a_fc[3]};
+        acc = 0;
+        for (c_a = 0; c_a < 4; c_a = c_a + 1) acc = acc + {{(XW-FW){a_fc[c_a][FW-1]}}, a_fc[c_a]};
+        r8_s <= acc[SW-1:0];
         for (a_a = 0; a_a < 3; a_a = a_a + 1) begin
             acc = 0;
-            for (c_a = 0; c_a < 4; c_a = c_a + 1)
-                acc = acc + {{(SW-EW){a_e[3*c_a+a_a][EW-1]}}, a_e[3*c_a+a_a]}
-                          - {{(SW-MW){a_m[3*c_a+a_a][MW-1]}}, a_m[3*c_a+a_a]};
-            r8_q[SW*a_a+:SW] <= acc;
+            for (c_a = 0; c_a < 4; c_a = c_a + 1) begin
+                dem = {{(XW-EW){a_e[3*c_a+a_a][EW-1]}}, a_e[3*c_a+a_a]}
+                    - {{(XW-MW){a_m[3*c_a+a_a][MW-1]}}, a_m[3*c_a+a_a]};
+                acc = acc + {{(XW-DW){dem[DW-1]}}, dem[DW-1:0]};
+            end
+            r8_q[SW*a_a+:SW] <= acc[SW-1:0];
         end
     end
 
     // ---------------------------------------------------------------- O
-    // f = sat(round(Kf' S)) to sN Q-1.N; df_a = sat(round(Kd' Q_a)) to sND Q1.(ND-2).
+    // f = round(Kf' S) to sN Q-1.N; df_a = round(Kd' Q_a) to sND Q1.(ND-2),
+    // Kf' S and Kd' Q_a as sums of the operand shifted to each signed digit;
+    // each saturated unless TIGHT (then the rounded word always fits).
     function [N-1:0] sat_f;
         input signed [XW-1:0] val;
         reg signed [XW-1:0] hi_, lo_;
         begin
             hi_ = (96'sd1 <<< (N - 1)) - 96'sd1;
             lo_ = -(96'sd1 <<< (N - 1));
-            sat_f = val > hi_ ? hi_[N-1:0] : val < lo_ ? lo_[N-1:0] : val[N-1:0];
+            sat_f = TIGHT != 0 ? val[N-1:0] : val > hi_ ? hi_[N-1:0] : val < lo_ ? lo_[N-1:0] : val[N-1:0];
         end
     endfunction
     function [ND-1:0] sat_d;
@@ -392,21 +457,29 @@ module np_simplex3 #(
         begin
             hi_ = (96'sd1 <<< (ND - 1)) - 96'sd1;
             lo_ = -(96'sd1 <<< (ND - 1));
-            sat_d = val > hi_ ? hi_[ND-1:0] : val < lo_ ? lo_[ND-1:0] : val[ND-1:0];
+            sat_d = TIGHT != 0 ? val[ND-1:0] : val > hi_ ? hi_[ND-1:0] : val < lo_ ? lo_[ND-1:0] : val[ND-1:0];
         end
     endfunction
-    integer a_o;
+    integer a_o, k_o;
     reg [OW-1:0] r9_out;
-    reg signed [XW-1:0] kfw, kdw, ws;
+    reg signed [XW-1:0] kprod, ws;
     reg [OW-1:0] o_w;
     always @(*) begin
-        kfw = {32'd0, KF};
-        kdw = {32'd0, KD};
         ws = {{(XW-SW){r8_s[SW-1]}}, r8_s};
-        o_w[OW-1-:N] = sat_f(requant(kfw * ws, WK + WP, N));
+        kprod = 0;
+        for (k_o = 0; k_o < 64; k_o = k_o + 1) begin
+            if (KF_P[k_o]) kprod = kprod + (ws <<< k_o);
+            if (KF_N[k_o]) kprod = kprod - (ws <<< k_o);
+        end
+        o_w[OW-1-:N] = sat_f(requant(kprod, WK + WP, N));
         for (a_o = 0; a_o < 3; a_o = a_o + 1) begin
             ws = {{(XW-SW){r8_q[SW*a_o+SW-1]}}, r8_q[SW*a_o+:SW]};
-            o_w[ND*(2-a_o)+:ND] = DERIV != 0 ? sat_d(requant(kdw * ws, WK + WP, ND - 2)) : {ND{1'b0}};
+            kprod = 0;
+            for (k_o = 0; k_o < 64; k_o = k_o + 1) begin
+                if (KD_P[k_o]) kprod = kprod + (ws <<< k_o);
+                if (KD_N[k_o]) kprod = kprod - (ws <<< k_o);
+            end
+            o_w[ND*(2-a_o)+:ND] = DERIV != 0 ? sat_d(requant(kprod, WK + WP, ND - 2)) : {ND{1'b0}};
         end
 `ifdef NP_FAULT_FLIP
         if (r8_s[3:0] == 4'h5) o_w[OW-N] = !o_w[OW-N];  // fault: bit 0 of f, 1 input in 16

@@ -33,7 +33,7 @@ static int g_sized;
 static const char usage_text[] =
     "usage: noisepipe report gates  [--unit U] [--config K=V,...] [--levels N] [-o DIR]\n"
     "       noisepipe report gates  --scene SCENE.json [--sized] [--levels N] [-o DIR]\n"
-    "       noisepipe report gates  --synth [--unit U] [--config K=V,...] [--rtl DIR] [--tolerance PCT]\n"
+    "       noisepipe report gates  --synth [--unit U] [--config K=V,...] [--rtl DIR] [--per-stage] [--tolerance PCT]\n"
     "       noisepipe report pareto [--unit U] [--samples N] [--seed S] [-o DIR]\n"
     "       noisepipe report runtime [--scene SCENE.json] [--repeat N] -o DIR\n"
     "       noisepipe report all    -o DIR        (what docs/ holds: gates + every pareto sweep + runtime in DIR/plots)\n"
@@ -60,7 +60,8 @@ static const char usage_text[] =
     "  --synth: synthesise the reference RTL (rtl_model/verilog, or --rtl DIR) with Yosys + ABC\n"
     "  and print its NAND2 equivalents per stage beside the cost model's (classic3, simplex3;\n"
     "  docs/cost-model.md). Needs yosys (exit 2 without it); --tolerance PCT: exit 1 when a\n"
-    "  stage is more than PCT % from synthesis.\n"
+    "  stage is more than PCT % from synthesis; --per-stage: ABC on each stage's cone alone\n"
+    "  (much faster on simplex3; within a few % of the whole-design flow on classic3).\n"
     "pareto: the design-space sweep of a unit's internal widths: each configuration's verdict\n"
     "  (faithful (proved), no counterexample in N adversarial inputs, not faithful with the\n"
     "  counterexample) and the adversarial search's max error against gates and latency;\n"
@@ -772,7 +773,7 @@ int np_cmd_report(int argc, char **argv)
     }
     const char *what = argv[1], *dir = NULL, *spec = NULL, *scene = NULL, *rtl = NULL;
     const np_unit *unit = NULL;
-    int synth = 0;
+    int synth = 0, per_stage = 0;
     double tolerance = -1.0;
     uint64_t samples = 262144, seed = 1, repeat = 3, frames = 8;
     for (int i = 2; i < argc; i++) {
@@ -788,6 +789,10 @@ int np_cmd_report(int argc, char **argv)
         }
         if (strcmp(a, "--sized") == 0) {
             g_sized = 1;
+            continue;
+        }
+        if (strcmp(a, "--per-stage") == 0) {
+            per_stage = 1;
             continue;
         }
         if (!v) {
@@ -902,12 +907,12 @@ int np_cmd_report(int argc, char **argv)
         }
         return np_report_dims(dir);
     }
-    if ((synth || rtl || tolerance >= 0.0) && (strcmp(what, "gates") != 0 || scene || dir || !synth)) {
-        np_err("report", "--synth (with --rtl, --tolerance) goes with gates, without --scene or -o (Markdown on stdout)");
+    if ((synth || rtl || per_stage || tolerance >= 0.0) && (strcmp(what, "gates") != 0 || scene || dir || !synth)) {
+        np_err("report", "--synth (with --rtl, --per-stage, --tolerance) goes with gates, without --scene or -o (Markdown on stdout)");
         return NP_EXIT_USAGE;
     }
     if (synth)
-        return np_report_gates_synth(unit, spec, rtl, tolerance);
+        return np_report_gates_synth(unit, spec, rtl, per_stage, tolerance);
     if (strcmp(what, "gates") == 0)
         return !scene ? write_gates(dir, unit, spec)
                : is_wave_scene(scene) ? write_wave_scene(dir, scene)

@@ -36,11 +36,12 @@ int np_synth_has_rtl(const np_unit *u);
 
 /*
  * Synthesise u's RTL (files in rtl_dir) at configuration cfg with the
- * stages of model c (np_unit_cost_compute). 0; -1 with a message in err;
+ * stages of model c (np_unit_cost_compute); per_stage: ABC on each bank's
+ * input cone alone (docs/cost-model.md, "--per-stage"). 0; -1 with a message in err;
  * -2 when yosys cannot be run (message in err).
  */
-int np_synth_run(const np_unit *u, const void *cfg, const np_unit_cost *c, const char *rtl_dir, np_synth_result *r,
-                 char *err, size_t errlen);
+int np_synth_run(const np_unit *u, const void *cfg, const np_unit_cost *c, const char *rtl_dir, int per_stage,
+                 np_synth_result *r, char *err, size_t errlen);
 
 /*
  * Markdown: per stage the model's logic, registers and total beside Yosys's,
@@ -50,11 +51,12 @@ double np_synth_print(FILE *f, const np_unit_cost *c, const np_synth_result *r);
 
 /*
  * The command: `noisepipe report gates --synth [--unit U] [--config K=V,...]
- * [--rtl DIR] [--tolerance PCT]`. Every unit with RTL (or U), each at its
+ * [--rtl DIR] [--per-stage] [--tolerance PCT]`. Every unit with RTL (or U), each at its
  * default or at --config. NP_EXIT_USAGE when yosys is absent or the input is
  * bad; NP_EXIT_FAIL when a stage is more than PCT % from synthesis.
  */
-int np_report_gates_synth(const np_unit *only, const char *spec, const char *rtl_dir, double tolerance_pct);
+int np_report_gates_synth(const np_unit *only, const char *spec, const char *rtl_dir, int per_stage,
+                          double tolerance_pct);
 
 /* The RTL folder compiled in (the source tree's rtl_model/verilog). */
 const char *np_synth_default_rtl_dir(void);

@@ -77,9 +77,8 @@ static const char *prefix_of(const rtl_desc *d, const char *stage)
     return NULL;
 }
 
-/* The script: synthesis, then one selection per bank and a stat of what only it holds. */
-static int write_script(FILE *f, const rtl_desc *d, const np_unit *u, const void *cfg, const np_unit_cost *c,
-                        const char *dir, const char *out, char *err, size_t errlen)
+/* The script's head: the RTL at the configuration (every key, upper case, is a parameter). */
+static void write_read(FILE *f, const rtl_desc *d, const np_unit *u, const void *cfg, const char *dir)
 {
     fprintf(f, "read_verilog -I%s", dir);
     for (unsigned i = 0; i < 4 && d->files[i]; i++)
@@ -94,17 +93,36 @@ static int write_script(FILE *f, const rtl_desc *d, const np_unit *u, const void
         fprintf(f, " %u", np_unit_key_get(key, cfg));
     }
     fprintf(f, " %s\n", d->top);
-    fprintf(f, "synth -top %s -flatten\ndfflegalize -cell $_DFF_P_ 01\nabc -g NAND\nopt_clean\n", d->top);
-    fprintf(f, "tee -q -o %s log NP_TOTAL\ntee -q -a %s stat -tech cmos\n", out, out);
+}
+
+/* The cone of every bank (c0, c1, ...) and of the valid bits (cv); stop at the flip-flops' outputs. */
+static int write_cones(FILE *f, const rtl_desc *d, const np_unit *u, const np_unit_cost *c, const char *ff,
+                       const char *extra, char *err, size_t errlen)
+{
+    fprintf(f, "select -set cv w:v %s %%ci1 %%ci*:-%s[Q]\n", extra, ff);
     for (unsigned k = 0; k < c->n_stages; k++) {
         const char *p = prefix_of(d, c->st[k].name);
         if (!p) {
             snprintf(err, errlen, "%s: stage %s has no register bank in %s", u->name, c->st[k].name, d->files[0]);
             return -1;
         }
-        fprintf(f, "select -set c%u w:*%s_* %%ci1 %%ci*:-$_DFF_P_[Q]\n", k, p);
+        fprintf(f, "select -set c%u w:*%s_* %%ci1 %%ci*:-%s[Q]%s\n", k, p, ff, *extra ? " @cv %d" : "");
     }
-    fprintf(f, "select -set cv w:v %%ci1 %%ci*:-$_DFF_P_[Q]\n");
+    return 0;
+}
+
+/*
+ * The whole-design script: synthesis, then one selection per bank and a stat
+ * of what only it holds.
+ */
+static int write_script(FILE *f, const rtl_desc *d, const np_unit *u, const void *cfg, const np_unit_cost *c,
+                        const char *dir, const char *out, char *err, size_t errlen)
+{
+    write_read(f, d, u, cfg, dir);
+    fprintf(f, "synth -top %s -flatten\ndfflegalize -cell $_DFF_P_ 01\nabc -g NAND\nopt_clean\n", d->top);
+    fprintf(f, "tee -q -o %s log NP_TOTAL\ntee -q -a %s stat -tech cmos\n", out, out);
+    if (write_cones(f, d, u, c, "$_DFF_P_", "", err, errlen) != 0)
+        return -1;
     for (unsigned k = 0; k < c->n_stages; k++) {
         fprintf(f, "tee -q -a %s log NP_STAGE %u\ntee -q -a %s stat -tech cmos @c%u", out, k, out, k);
         for (unsigned j = 0; j < c->n_stages; j++)
@@ -115,16 +133,61 @@ static int write_script(FILE *f, const rtl_desc *d, const np_unit *u, const void
     return 0;
 }
 
-/* Parse the tee'd statistics: "NP_TOTAL" / "NP_STAGE k" markers, then $_DFF_P_ and transistor counts. */
+/*
+ * The per-stage script (--per-stage): the whole design to gates without ABC
+ * (`synth -noabc`, the flip-flops legalised), saved; then for each bank its
+ * input cone alone (stopping at other flip-flops' outputs and at the valid
+ * bits and their enables, whose drivers become inputs; the bank's flip-flops
+ * become outputs) through ABC, and last what no bank's cone holds (the
+ * shared row). ABC, the slow part, then sees one stage at a time; a cell two
+ * cones share is counted in both (the whole-design flow puts it in shared).
+ */
+static int write_script_stages(FILE *f, const rtl_desc *d, const np_unit *u, const void *cfg, const np_unit_cost *c,
+                               const char *dir, const char *out, char *err, size_t errlen)
+{
+    write_read(f, d, u, cfg, dir);
+    fprintf(f, "synth -top %s -flatten -noabc\ndfflegalize -cell $_DFF_P_ 01\nopt_clean\n", d->top);
+    fprintf(f, "tee -q -o %s log NP_FLOPS\ntee -q -a %s stat\ndesign -save np_gates\n", out, out);
+    for (unsigned k = 0; k <= c->n_stages; k++) {
+        fprintf(f, "design -load np_gates\n");
+        if (write_cones(f, d, u, c, "$_DFF_P_", "w:en", err, errlen) != 0)
+            return -1;
+        if (k < c->n_stages) {
+            fprintf(f, "delete t:* @c%u %%d\n", k);
+        } else { /* shared: the rest */
+            fprintf(f, "select -set call");
+            for (unsigned j = 0; j < c->n_stages; j++)
+                fprintf(f, " @c%u", j);
+            fprintf(f, "\ndelete @call t:* %%i\n");
+        }
+        fprintf(f, "setundef -undriven -expose\nexpose t:$_DFF_P_ %%co1:+$_DFF_P_[Q]\nabc -g NAND\nopt_clean\n");
+        if (k < c->n_stages)
+            fprintf(f, "tee -q -a %s log NP_STAGE %u\n", out, k);
+        else
+            fprintf(f, "tee -q -a %s log NP_SHARED\n", out);
+        fprintf(f, "tee -q -a %s stat -tech cmos\n", out);
+    }
+    return 0;
+}
+
+/*
+ * Parse the tee'd statistics: "NP_TOTAL" / "NP_STAGE k" markers, then $_DFF_P_
+ * and transistor counts; the per-stage flow's "NP_FLOPS" (the whole design's
+ * flip-flops) and "NP_SHARED" (what no bank's cone holds), whose total is the
+ * sum of the parts.
+ */
 static int parse_stats(FILE *f, np_synth_result *r, unsigned n_stages)
 {
     char line[512];
-    int cur = -2, seen_total = 0; /* -1: the whole design; k: stage k */
+    int cur = -2, seen_total = 0, parts = 0; /* -1: the whole design; -3: shared; k: stage k */
     while (fgets(line, sizeof line, f)) {
         const char *p;
-        if (strncmp(line, "NP_TOTAL", 8) == 0) {
+        if (strncmp(line, "NP_TOTAL", 8) == 0 || strncmp(line, "NP_FLOPS", 8) == 0) {
             cur = -1;
             seen_total = 1;
+            parts = line[3] == 'F';
+        } else if (strncmp(line, "NP_SHARED", 9) == 0) {
+            cur = -3;
         } else if (strncmp(line, "NP_STAGE ", 9) == 0) {
             long k = strtol(line + 9, NULL, 10);
             cur = k >= 0 && (unsigned long)k < n_stages ? (int)k : -2;
@@ -138,15 +201,22 @@ static int parse_stats(FILE *f, np_synth_result *r, unsigned n_stages)
             double g = atof(p + strlen("Estimated number of transistors:")) / 4.0;
             if (cur == -1)
                 r->total = g;
+            else if (cur == -3)
+                r->shared = g;
             else if (cur >= 0)
                 r->st[cur].gates = g;
         }
     }
+    if (parts) {
+        r->total = r->shared;
+        for (unsigned k = 0; k < n_stages; k++)
+            r->total += r->st[k].gates;
+    }
     return seen_total && r->total > 0 ? 0 : -1;
 }
 
-int np_synth_run(const np_unit *u, const void *cfg, const np_unit_cost *c, const char *rtl_dir, np_synth_result *r,
-                 char *err, size_t errlen)
+int np_synth_run(const np_unit *u, const void *cfg, const np_unit_cost *c, const char *rtl_dir, int per_stage,
+                 np_synth_result *r, char *err, size_t errlen)
 {
     memset(r, 0, sizeof *r);
     const rtl_desc *d = rtl_of(u);
@@ -181,7 +251,8 @@ int np_synth_run(const np_unit *u, const void *cfg, const np_unit_cost *c, const
     if (!f) {
         snprintf(err, errlen, "cannot write %s", script);
     } else {
-        int w = write_script(f, d, u, cfg, c, rtl_dir, out, err, errlen);
+        int w = per_stage ? write_script_stages(f, d, u, cfg, c, rtl_dir, out, err, errlen)
+                          : write_script(f, d, u, cfg, c, rtl_dir, out, err, errlen);
         if (fclose(f) != 0 && w == 0) {
             snprintf(err, errlen, "cannot write %s", script);
             w = -1;
@@ -200,10 +271,12 @@ int np_synth_run(const np_unit *u, const void *cfg, const np_unit_cost *c, const
                 if (parse_stats(s, r, c->n_stages) != 0) {
                     snprintf(err, errlen, "no statistics in yosys's output %s (log %s)", out, log);
                 } else {
-                    double sum = 0.0;
-                    for (unsigned k = 0; k < r->n_stages; k++)
-                        sum += r->st[k].gates;
-                    r->shared = r->total - sum;
+                    if (!per_stage) {
+                        double sum = 0.0;
+                        for (unsigned k = 0; k < r->n_stages; k++)
+                            sum += r->st[k].gates;
+                        r->shared = r->total - sum;
+                    }
                     rc = 0;
                 }
                 fclose(s);
@@ -253,7 +326,8 @@ double np_synth_print(FILE *f, const np_unit_cost *c, const np_synth_result *r)
     return worst;
 }
 
-int np_report_gates_synth(const np_unit *only, const char *spec, const char *rtl_dir, double tolerance_pct)
+int np_report_gates_synth(const np_unit *only, const char *spec, const char *rtl_dir, int per_stage,
+                          double tolerance_pct)
 {
     if (!rtl_dir)
         rtl_dir = np_synth_default_rtl_dir();
@@ -279,7 +353,7 @@ int np_report_gates_synth(const np_unit *only, const char *spec, const char *rtl
                     u->name, c->cfg);
         double t0 = np_now();
         np_synth_result r;
-        int s = np_synth_run(u, &cfg, c, rtl_dir, &r, err, sizeof err);
+        int s = np_synth_run(u, &cfg, c, rtl_dir, per_stage, &r, err, sizeof err);
         if (s != 0) {
             np_err("report", "%s: %s", u->name, err);
             free(c);
@@ -288,8 +362,8 @@ int np_report_gates_synth(const np_unit *only, const char *spec, const char *rtl
         printf("## %s (`%s`): cost model against Yosys\n\n", u->name, c->cfg);
         double worst = np_synth_print(stdout, c, &r);
         printf("\nNAND2 equivalents: Yosys 0.23 + ABC (`abc -g NAND`, `stat -tech cmos` transistors / 4; "
-               "enables and the valid bits' logic included); largest stage deviation %.1f %%; yosys took %.0f s.\n\n",
-               100.0 * worst, np_now() - t0);
+               "enables and the valid bits' logic included; %s); largest stage deviation %.1f %%; yosys took %.0f s.\n\n",
+               per_stage ? "ABC per stage, --per-stage" : "the whole design", 100.0 * worst, np_now() - t0);
         if (tolerance_pct >= 0.0 && 100.0 * worst > tolerance_pct) {
             np_err("report", "%s: a stage is %.1f %% from synthesis (tolerance %.1f %%)", u->name, 100.0 * worst,
                    tolerance_pct);
