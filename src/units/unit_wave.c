@@ -215,6 +215,164 @@ static void trace(const void *cfg, unsigned k, const void *sig, np_trace *t, siz
     np_wave_trace(&((const wave_block *)cfg)->u, k, sig, t, n);
 }
 
+/* The bit-exact pipe's stages run on one input: its signals (for the rounding probes below). */
+static void sig_of(const np_wave_unit *u, const np_wave_in *in, np_wave_sig *s)
+{
+    const np_stage_desc *st = np_wave_stage_table();
+    memset(s, 0, sizeof *s);
+    s->in = *in;
+    for (unsigned k = 0; k < np_wave_stage_count_of(&u->c); k++)
+        st[k].fn(u, s);
+}
+
+/* The stage G outputs from (possibly altered) sums: y, dx, dz as out_of in np_wave.c. */
+static np_wave_out out_from(const np_wave_regs *r, int64_t ys, int64_t xs, int64_t zs, int64_t bc, uint32_t gm)
+{
+    unsigned ml = r->mlog2;
+    np_wave_out o;
+    o.y = (int16_t)np_sat_s(np_shr_round_half_up(ys * (int64_t)gm + bc * ((int64_t)1 << (NP_WAVE_GAIN_FRAC + ml)),
+                                                 31u + ml),
+                            NP_WAVE_OUT_BITS);
+    o.dx = (int16_t)np_sat_s(np_shr_round_half_up(xs * (int64_t)gm, 35u + ml), NP_WAVE_OUT_BITS);
+    o.dz = (int16_t)np_sat_s(np_shr_round_half_up(zs * (int64_t)gm, 35u + ml), NP_WAVE_OUT_BITS);
+    return o;
+}
+
+static uint64_t probe_mix(uint64_t x)
+{
+    x += UINT64_C(0x9e3779b97f4a7c15);
+    x = (x ^ (x >> 30)) * UINT64_C(0xbf58476d1ce4e5b9);
+    x = (x ^ (x >> 27)) * UINT64_C(0x94d049bb133111eb);
+    return x ^ (x >> 31);
+}
+
+/*
+ * A ROM-read probe: train 0's sin (cosine = 0) or cos (cosine = 1) read at
+ * phase th, where a misreading of the ROM read gives thm's value instead (the
+ * one's-complement mirror: th + 1 in quadrants 1 and 3; f rounded from the
+ * dropped bits: th rounded up to the next f). Searches i = 0 .. 1023 (j = u =
+ * t = r = 0, mid-box, gain 1, ph putting train 0 at its phase) for a point
+ * whose output changes under that misreading; 1 and the input when found.
+ */
+static int rom_probe(const np_wave_unit *u, uint32_t th, uint32_t thm, int cosine, np_wave_in *in)
+{
+    const np_wave_regs *r = &u->r;
+    const np_wave_train *t0 = &r->tr[0];
+    const unsigned L = u->c.rom_log2;
+    const int64_t vm = np_wave_sin(thm, L), vs = np_wave_sin(th, L);
+    if (vm == vs)
+        return 0;
+    for (uint16_t i = 0; i < 1024; i++) {
+        np_wave_sig s;
+        const uint32_t th0 = cosine ? th - (UINT32_C(1) << 30) : th;
+        *in = (np_wave_in){ .i = i, .ph = th0 - (uint32_t)t0->kx * i - t0->phi, .v = (uint16_t)(r->width / 2u), .g = 16384 };
+        sig_of(u, in, &s);
+        int64_t ys = s.ys, xs = s.xs, zs = s.zs;
+        if (cosine) {
+            ys += np_shr_round_half_up((int64_t)s.ap[0] * vm, 7) - s.yc[0];
+        } else {
+            const int64_t d = np_shr_round_half_up((int64_t)s.ap[0] * vm, NP_WAVE_SIN_FRAC) - s.sa[0];
+            xs -= d * t0->cx;
+            zs -= d * t0->cz;
+        }
+        const np_wave_out o = out_from(r, ys, xs, zs, s.bc, s.gm);
+        if (o.y != s.out.y || o.dx != s.out.dx || o.dz != s.out.dz)
+            return 1;
+    }
+    return 0;
+}
+
+/*
+ * Rounding and ROM-read probes (appended to the boundary table; the ROM's
+ * sin/cos configurations only): inputs where a plausible misreading of
+ * docs/wave.md changes an output, found by search from the register set.
+ *  - y's rounding at a tie from the capillary term alone: g = 0, r = 1, t
+ *    with b sc = 2^16 mod 2^17 (3 positive, 3 negative);
+ *  - y's rounding at a tie from the trains: r = 0 (bc = 0), ph with Y having
+ *    e >= 16 trailing zeros, g = 2^(30-e), so Y G / 2^(31+mlog2) is odd/2
+ *    (3 positive, 3 negative);
+ *  - the ROM mirror: train 0's sin and cos in quadrants 1 and 3 at an x' whose
+ *    dropped bits are 0, where 2^30 - 1 - x (the one's complement) reads
+ *    another value (2 each);
+ *  - the dropped phase bits: train 0's sin and cos in quadrants 0 and 2 with
+ *    dropped bits >= half of f's LSB, where rounding them into f reads another
+ *    value (2 each).
+ */
+static size_t probes(const np_wave_unit *u, uint64_t (*in)[NP_UNIT_MAX_FIELDS], size_t max, size_t n)
+{
+    const np_wave_regs *r = &u->r;
+    const unsigned L = u->c.rom_log2, drop = 30u - L - NP_WAVE_IFRAC;
+    const uint16_t mid = (uint16_t)(r->width / 2u);
+    np_wave_in x;
+#define PUTIN(X)                                                                                                 \
+    do {                                                                                                         \
+        if (n < max) {                                                                                           \
+            const uint64_t w_[8] = { (X).i, (X).j, (X).t, (X).ph, (X).u, (X).v, (X).r, (X).g };                 \
+            memcpy(in[n], w_, sizeof w_);                                                                        \
+        }                                                                                                        \
+        n++;                                                                                                     \
+    } while (0)
+    if (u->c.cap && r->b) {
+        unsigned pos = 0, neg = 0;
+        for (uint32_t t = 0; t < (UINT32_C(1) << 22) && (pos < 3 || neg < 3); t++) {
+            const int64_t bc = (int64_t)r->b * np_wave_sin(r->omc * t, L);
+            if ((bc & 0x1ffff) != 0x10000 || (bc > 0 ? pos >= 3 : neg >= 3))
+                continue;
+            *(bc > 0 ? &pos : &neg) += 1;
+            x = (np_wave_in){ .t = t, .v = mid, .r = 1, .g = 0 };
+            PUTIN(x);
+        }
+    }
+    {
+        unsigned pos = 0, neg = 0;
+        for (uint32_t k = 0; k < (UINT32_C(1) << 20) && (pos < 3 || neg < 3); k++) {
+            np_wave_sig s;
+            x = (np_wave_in){ .ph = k * UINT32_C(0x9e3779b9), .v = mid, .g = 16384 };
+            sig_of(u, &x, &s);
+            if (s.ys == 0 || (s.ys > 0 ? pos >= 3 : neg >= 3))
+                continue;
+            unsigned e = 0;
+            while (!((s.ys >> e) & 1))
+                e++;
+            if (e < 16 || e > 30 || (UINT32_C(1) << (30 - e)) > r->gcap)
+                continue;
+            *(s.ys > 0 ? &pos : &neg) += 1;
+            x.g = (uint16_t)(1u << (30 - e));
+            PUTIN(x);
+        }
+    }
+    for (unsigned kind = 0; kind < 8; kind++) {
+        /* kind: bit 0 cos, bit 1 the second quadrant of the pair, bit 2 dropped bits (else mirror). */
+        const int cosine = (int)(kind & 1u), dropped = (int)(kind >> 2);
+        const uint32_t q = dropped ? (kind & 2u) : 1u + (kind & 2u);
+        unsigned found = 0;
+        for (uint64_t k = 0; k < 4096 && found < 2; k++) {
+            const uint32_t h = (uint32_t)probe_mix(((uint64_t)kind << 32) | k) & UINT32_C(0x3fffffff);
+            uint32_t th, thm;
+            if (dropped) {
+                const uint32_t m = (UINT32_C(1) << drop) - 1u;
+                const uint32_t xv = (h & ~m) | (UINT32_C(1) << (drop - 1)) | (h & (m >> 1));
+                if ((xv | m) + 1u >= (UINT32_C(1) << 30))
+                    continue;
+                th = (q << 30) + xv;
+                thm = (q << 30) + (xv | m) + 1u;
+            } else {
+                const uint32_t xp = h & ~((UINT32_C(1) << drop) - 1u);
+                if (xp == 0)
+                    continue;
+                th = (q << 30) + ((UINT32_C(1) << 30) - xp);
+                thm = th + 1u;
+            }
+            if (rom_probe(u, th, thm, cosine, &x)) {
+                PUTIN(x);
+                found++;
+            }
+        }
+    }
+#undef PUTIN
+    return n;
+}
+
 /*
  * Hand-annotated boundary inputs, from the register set: train 0's phase
  * put at 0, 1/4, 1/2 and 3/4 turn and one phase LSB (2^-32 turn) either side
@@ -267,6 +425,8 @@ static size_t boundary(const void *cfg, uint64_t (*in)[NP_UNIT_MAX_FIELDS], size
     PUT(0xffff, 0xffff, 0xffffffffu, 0xffffffffu, 0xffff, mid, 0xff, 0x7fff);
     PUT(0, 0, 0, 0, 0, mid, 0, 0x4000);
 #undef PUT
+    if (((const wave_block *)cfg)->u.c.sincos == NP_WAVE_SINCOS_ROM)
+        n = probes(&((const wave_block *)cfg)->u, in, max, n);
     return n;
 }
 
