@@ -33,7 +33,11 @@ foreach(set "classic3;cheap;out_bits=8,s_frac=4,lerp_frac=6"
             "hatch;best64;set=best64"
             "hatch;g0;guard=0"
             "hatch;rot45;rot=45"
-            "hatch;fkm16_l1;set=fkm16,layers=1")
+            "hatch;fkm16_l1;set=fkm16,layers=1"
+            "wave;rom6;rom_log2=6"
+            "wave;rom10;rom_log2=10"
+            "wave;irr0_cap0;irr=0,cap=0"
+            "wave;trains4;trains=4")
   list(GET set 0 unit)
   list(GET set 1 name)
   list(GET set 2 config)
