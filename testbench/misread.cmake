@@ -4,7 +4,7 @@
 #   misread.<unit>_regen_<name> the set regenerates byte for byte (text and $readmemh)
 np_test_program(test_misread test_misread.c)
 target_compile_definitions(test_misread PRIVATE NP_VEC_DIR="${PROJECT_SOURCE_DIR}/vectors")
-np_add_cases(test_misread misread classic3 simplex3 hatch)
+np_add_cases(test_misread misread classic3 simplex3 hatch wave)
 
 file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/np_regen_cfg_set.cmake [=[
 # Written by testbench/misread.cmake: regenerate SET.{vec,memh} of UNIT at CONFIG and compare.
