@@ -9,8 +9,7 @@
  * at least one of the sets at non-default configurations (the default set
  * alone misses some: the table printed says which), every misreading of
  * hatch by at least one of its six sets (docs/hatch.md lists which), every
- * misreading of wave by one of its six ROM sets but the known gaps listed in
- * w_known_gap (docs/wave.md).
+ * misreading of wave by at least one of its six ROM sets (docs/wave.md).
  *
  * simplex3 misreadings (np_simplex.h):
  *   e_neg_after   e_a = -round(tau4) instead of round(-tau4) (sign after rounding)
@@ -591,22 +590,6 @@ static void wave_variant(const np_wave_unit *un, int variant, const uint64_t in[
     out[2] = np_sat_s(w_rnd(variant, WR_DXZ, Z * G, 35u + m), 16);
 }
 
-/*
- * Misreadings no checked-in set catches yet (docs/wave.md, "What the vectors
- * catch"): printed, not asserted; every other one must be caught.
- */
-static int w_known_gap(unsigned v)
-{
-    static const unsigned gap[] = { W_TIES0 + 2 * WR_INTERP,     W_TIES0 + 2 * WR_W,      W_TIES0 + 2 * WR_W + 1,
-                                    W_TIES0 + 2 * WR_AP,         W_TIES0 + 2 * WR_AP + 1, W_TIES0 + 2 * WR_YC,
-                                    W_TIES0 + 2 * WR_YC + 1,     W_TIES0 + 2 * WR_SA,     W_TIES0 + 2 * WR_SA + 1,
-                                    W_TIES0 + 2 * WR_DXZ,        W_TIES0 + 2 * WR_DXZ + 1, W_YC_TRUNC };
-    for (size_t k = 0; k < sizeof gap / sizeof gap[0]; k++)
-        if (gap[k] == v)
-            return 1;
-    return 0;
-}
-
 /* The wave sets: the default, normals (its y, dx, dz), then the non-default ones (seed3 is the recurrence's). */
 static const char *const w_sets[] = { "wave-l1-seed1",           "wave-l1-seed2",       "wave-l1-seed1-rom6",
                                       "wave-l1-seed1-rom10",     "wave-l1-seed1-irr0_cap0", "wave-l1-seed1-trains4" };
@@ -681,9 +664,6 @@ static int case_wave(void)
                 NP_CHECK(missed[v][si] == 0, "%s misses %llu vectors of %s (%s)", nm,
                          (unsigned long long)missed[v][si], w_sets[si],
                          v == W_SPEC ? "the spec's model" : "should be invisible at the output");
-        else if (w_known_gap(v))
-            printf("  %-14s (known gap, docs/wave.md: %s)\n", "", caught ? "now caught: move it out of the list"
-                                                                           : "caught by no set");
         else
             NP_CHECK(caught > 0, "misreading %s is caught by no checked-in wave set", nm);
     }

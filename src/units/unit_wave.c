@@ -248,19 +248,18 @@ static uint64_t probe_mix(uint64_t x)
 
 /*
  * A ROM-read probe: train 0's sin (cosine = 0) or cos (cosine = 1) read at
- * phase th, where a misreading of the ROM read gives thm's value instead (the
- * one's-complement mirror: th + 1 in quadrants 1 and 3; f rounded from the
- * dropped bits: th rounded up to the next f). Searches i = 0 .. 1023 (j = u =
+ * phase th, where a misreading of the ROM read gives the value vm instead (the
+ * one's-complement mirror: th + 1's in quadrants 1 and 3; f rounded from the
+ * dropped bits: th rounded up to the next f's; the interpolation's tie
+ * rounded down). Searches i = 0 .. 1023 (j = u =
  * t = r = 0, mid-box, gain 1, ph putting train 0 at its phase) for a point
  * whose output changes under that misreading; 1 and the input when found.
  */
-static int rom_probe(const np_wave_unit *u, uint32_t th, uint32_t thm, int cosine, np_wave_in *in)
+static int rom_probe(const np_wave_unit *u, uint32_t th, int64_t vm, int cosine, np_wave_in *in)
 {
     const np_wave_regs *r = &u->r;
     const np_wave_train *t0 = &r->tr[0];
-    const unsigned L = u->c.rom_log2;
-    const int64_t vm = np_wave_sin(thm, L), vs = np_wave_sin(th, L);
-    if (vm == vs)
+    if (vm == np_wave_sin(th, u->c.rom_log2))
         return 0;
     for (uint16_t i = 0; i < 1024; i++) {
         np_wave_sig s;
@@ -280,6 +279,159 @@ static int rom_probe(const np_wave_unit *u, uint32_t th, uint32_t thm, int cosin
             return 1;
     }
     return 0;
+}
+
+/* y, dx, dz's sums (stage T) of a transaction. */
+typedef struct wave_sums {
+    int64_t ys, xs, zs;
+} wave_sums;
+
+/* Lane k's yc and sa replaced by those of (ap, c, s) in the sums m. */
+static void relane(const np_wave_unit *u, const np_wave_sig *s, unsigned k, int64_t ap, int64_t c, int64_t sv,
+                   wave_sums *m)
+{
+    const np_wave_train *t = &u->r.tr[k];
+    const int64_t sa = np_shr_round_half_up(ap * sv, NP_WAVE_SIN_FRAC);
+    m->ys += np_shr_round_half_up(ap * c, 7) - s->yc[k];
+    m->xs -= (sa - s->sa[k]) * t->cx;
+    m->zs -= (sa - s->sa[k]) * t->cz;
+}
+
+/* The first gain g = 1 .. gcap (mid-box: sm = M) at which the outputs of the sums m differ from the spec's; 0 if none. */
+static uint16_t flip_gain(const np_wave_unit *u, const np_wave_sig *s, const wave_sums *m)
+{
+    const uint32_t M = UINT32_C(1) << u->r.mlog2;
+    for (uint32_t g = 1; g <= u->r.gcap && g < 0x8000u; g++) {
+        const np_wave_out a = out_from(&u->r, s->ys, s->xs, s->zs, s->bc, M * g);
+        const np_wave_out b = out_from(&u->r, m->ys, m->xs, m->zs, s->bc, M * g);
+        if (a.y != b.y || a.dx != b.dx || a.dz != b.dz)
+            return (uint16_t)g;
+    }
+    return 0;
+}
+
+/*
+ * 1 when v / 2^sh is a tie that a misread rounding takes down where the
+ * spec's half-up takes it up under both misreadings: negative (ties away
+ * from zero) and an even floor (ties to even).
+ */
+static int low_tie(int64_t v, unsigned sh)
+{
+    const int64_t half = (int64_t)1 << (sh - 1u);
+    return v < 0 && ((uint64_t)v & (((uint64_t)1 << sh) - 1u)) == (uint64_t)half &&
+           (((v - half) / ((int64_t)1 << sh)) & 1) == 0;
+}
+
+/*
+ * Internal-rounding tie probes (ROM configurations): points at which one of
+ * the roundings w, ap (lane k), yc, sa, or dx/dz's final one, is at a tie
+ * that ties to even and ties away from zero both take down, with the gain
+ * chosen so that the output changes by it (flip_gain; for dx/dz the exact
+ * tie). A tie in yc is also where yc truncated differs. At most two each;
+ * the searches are bounded (about 2^18 points each), so a register set may
+ * give fewer.
+ */
+static size_t tie_probes(const np_wave_unit *u, uint64_t (*in)[NP_UNIT_MAX_FIELDS], size_t max, size_t n)
+{
+    const np_wave_regs *r = &u->r;
+    const unsigned L = u->c.rom_log2, lanes = r->n < u->c.trains ? r->n : u->c.trains;
+    const uint16_t mid = (uint16_t)(r->width / 2u);
+    enum { P_W, P_AP, P_YC, P_SA, P_DXZ, P_KINDS }; /* P_DXZ: its own search, first */
+    unsigned found[P_KINDS] = { 0, 0, 0, 0, 0 };
+    if (!u->c.irr)
+        found[P_W] = found[P_AP] = 2; /* no w, ap = A 2^7 */
+    /*
+     * dx's or dz's exact tie needs X (or Z) with e >= 20 trailing zeros: with
+     * two lanes, ph puts lane 1's phase at 0 (its sa = 0), so X = -sa0 cx0 and
+     * the test sets' cx0 = 2^14 leaves 6 bits to find in sa0.
+     */
+    for (uint64_t k = 0; k < (UINT64_C(1) << 16) && found[P_DXZ] < 2; k++) {
+        const uint64_t h = probe_mix(UINT64_C(0x64787a) ^ k);
+        np_wave_in x = { .i = (uint16_t)h, .u = (uint16_t)(h >> 16), .v = (uint16_t)(mid - ((h >> 32) & 255u)),
+                         .ph = (uint32_t)(h >> 32) * UINT32_C(0x9e3779b9), .g = 16384 };
+        if (lanes == 2)
+            x.ph = 0u - (uint32_t)r->tr[1].kx * x.i - r->tr[1].phi;
+        np_wave_sig s;
+        sig_of(u, &x, &s);
+        for (unsigned c = 0; c < 2 && found[P_DXZ] < 2; c++) {
+            /* X G / 2^(35+mlog2) with G = M g, g = 2^(34-e) h (h odd): an exact tie. */
+            const int64_t X = c ? s.zs : s.xs;
+            unsigned e = 0;
+            while (X != 0 && e < 40 && !((X >> e) & 1))
+                e++;
+            if (X >= 0 || e < 20 || e > 34)
+                continue;
+            const uint32_t gb = UINT32_C(1) << (34u - e);
+            for (uint32_t hh = 1; gb * hh <= r->gcap; hh += 2)
+                if (low_tie(X * gb * hh, 35)) {
+                    if (n < max) {
+                        const uint64_t w_[8] = { x.i, x.j, x.t, x.ph, x.u, x.v, x.r, gb * hh };
+                        memcpy(in[n], w_, sizeof w_);
+                    }
+                    n++;
+                    found[P_DXZ]++;
+                    break;
+                }
+        }
+    }
+    for (uint64_t k = 0; k < (UINT64_C(1) << 18); k++) {
+        int more = 0;
+        for (unsigned q = 0; q < P_DXZ; q++)
+            more |= found[q] < 2;
+        if (!more)
+            break;
+        const uint64_t h = probe_mix(UINT64_C(0x7761766574696573) ^ k);
+        np_wave_in x = { .i = (uint16_t)h, .u = (uint16_t)(h >> 16), .v = (uint16_t)(mid - ((h >> 32) & 255u)),
+                         .ph = (uint32_t)(h >> 32) * UINT32_C(0x9e3779b9), .g = 16384 };
+        const int64_t s1 = u->c.irr ? np_wave_sin(r->pu * x.u, L) : 0, s2 = u->c.irr ? np_wave_sin(r->pv * x.v, L) : 0;
+        const int w_tie = u->c.irr && found[P_W] < 2 && low_tie(s1 * s2, NP_WAVE_SIN_FRAC);
+        if (k % 64u != 0 && !w_tie && found[P_YC] >= 2 && found[P_SA] >= 2 && found[P_AP] >= 2)
+            continue;
+        np_wave_sig s;
+        sig_of(u, &x, &s);
+        for (unsigned q = 0; q < P_DXZ; q++) {
+            if (found[q] >= 2)
+                continue;
+            for (unsigned lk = 0; lk < (q == P_W ? 1u : lanes); lk++) {
+                wave_sums m = { s.ys, s.xs, s.zs };
+                const np_wave_train *t = &r->tr[lk];
+                if (q == P_W) {
+                    if (!w_tie)
+                        continue;
+                    for (unsigned kk = 0; kk < lanes; kk++) {
+                        const np_wave_train *tk = &r->tr[kk];
+                        const int64_t ap = (int64_t)tk->amp * 128 -
+                                           np_shr_round_half_up((int64_t)tk->airr * (s.w - 1), NP_WAVE_AMP_FRAC);
+                        relane(u, &s, kk, ap, s.c[kk], s.s[kk], &m);
+                    }
+                } else if (q == P_AP) {
+                    if (!low_tie((int64_t)t->airr * s.w, NP_WAVE_AMP_FRAC))
+                        continue;
+                    relane(u, &s, lk, s.ap[lk] + 1, s.c[lk], s.s[lk], &m);
+                } else if (q == P_YC) {
+                    if (!low_tie((int64_t)s.ap[lk] * s.c[lk], 7))
+                        continue;
+                    m.ys -= 1;
+                } else {
+                    if (!low_tie((int64_t)s.ap[lk] * s.s[lk], NP_WAVE_SIN_FRAC))
+                        continue;
+                    m.xs += t->cx;
+                    m.zs += t->cz;
+                }
+                const uint16_t g = flip_gain(u, &s, &m);
+                if (!g)
+                    continue;
+                if (n < max) {
+                    const uint64_t w_[8] = { x.i, x.j, x.t, x.ph, x.u, x.v, x.r, g };
+                    memcpy(in[n], w_, sizeof w_);
+                }
+                n++;
+                found[q]++;
+                break;
+            }
+        }
+    }
+    return n;
 }
 
 /*
@@ -363,14 +515,36 @@ static size_t probes(const np_wave_unit *u, uint64_t (*in)[NP_UNIT_MAX_FIELDS], 
                 th = (q << 30) + ((UINT32_C(1) << 30) - xp);
                 thm = th + 1u;
             }
-            if (rom_probe(u, th, thm, cosine, &x)) {
+            if (rom_probe(u, th, np_wave_sin(thm, L), cosine, &x)) {
+                PUTIN(x);
+                found++;
+            }
+        }
+    }
+    /* The interpolation's tie, taken down by ties to even: train 0's sin and cos at f = 2^(15-e) h (h odd, D = 2^e o). */
+    for (unsigned cosine = 0; cosine < 2; cosine++) {
+        unsigned found = 0;
+        for (uint64_t k = 0; k < 4096 && found < 2; k++) {
+            const uint32_t hk = (uint32_t)probe_mix(UINT64_C(0x696e74657270) + 2 * k + cosine);
+            const uint32_t a = hk & ((UINT32_C(1) << L) - 1u), sh = 30u - L;
+            const int64_t D = (int64_t)np_wave_rom((a + 1u) << (10u - L)) - (int64_t)np_wave_rom(a << (10u - L));
+            unsigned e = 0;
+            while (D > 0 && e < 16 && !((D >> e) & 1))
+                e++;
+            if (D <= 0 || e > 15)
+                continue;
+            const uint32_t f = (UINT32_C(1) << (15u - e)) * (((hk >> 12) | 1u) & ((UINT32_C(1) << (e + 1u)) - 1u));
+            if (f >= (UINT32_C(1) << 16) || !(((D * f) >> 16) % 2 == 0) || (D * f) % 65536 != 32768)
+                continue;
+            const uint32_t th = (a << sh) | (f << (sh - NP_WAVE_IFRAC));
+            if (rom_probe(u, th, np_wave_sin(th, L) - 1, (int)cosine, &x)) {
                 PUTIN(x);
                 found++;
             }
         }
     }
 #undef PUTIN
-    return n;
+    return tie_probes(u, in, max, n);
 }
 
 /*
