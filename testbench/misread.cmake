@@ -4,7 +4,7 @@
 #   misread.<unit>_regen_<name> the set regenerates byte for byte (text and $readmemh)
 np_test_program(test_misread test_misread.c)
 target_compile_definitions(test_misread PRIVATE NP_VEC_DIR="${PROJECT_SOURCE_DIR}/vectors")
-np_add_cases(test_misread misread classic3 simplex3 hatch simplex2 simplex4 simplex5 classic2 classic4 classic5)
+np_add_cases(test_misread misread classic3 simplex3 hatch simplex2 simplex4 simplex5 classic2 classic4 classic5 wave)
 
 file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/np_regen_cfg_set.cmake [=[
 # Written by testbench/misread.cmake: regenerate SET.{vec,memh} of UNIT at CONFIG and compare.
@@ -39,7 +39,11 @@ foreach(set "classic3;cheap;out_bits=8,s_frac=4,lerp_frac=6"
             "simplex5;coarse;t_frac=14,p_frac=20" "simplex5;narrow;out_bits=20,t_frac=3,p_frac=14"
             "classic2;wide_l;out_bits=12,s_frac=3,lerp_frac=12"
             "classic4;wide_l;out_bits=12,s_frac=3,lerp_frac=12"
-            "classic5;wide_l;out_bits=12,s_frac=3,lerp_frac=12")
+            "classic5;wide_l;out_bits=12,s_frac=3,lerp_frac=12"
+            "wave;rom6;rom_log2=6"
+            "wave;rom10;rom_log2=10"
+            "wave;irr0_cap0;irr=0,cap=0"
+            "wave;trains4;trains=4")
   list(GET set 0 unit)
   list(GET set 1 name)
   list(GET set 2 config)

@@ -8,7 +8,8 @@
  * must miss none; every misreading of classic3 and simplex3 must be caught by
  * at least one of the sets at non-default configurations (the default set
  * alone misses some: the table printed says which), every misreading of
- * hatch by at least one of its six sets (docs/hatch.md lists which).
+ * hatch by at least one of its six sets (docs/hatch.md lists which), every
+ * misreading of wave by at least one of its six ROM sets (docs/wave.md).
  *
  * simplex3 misreadings (np_simplex.h):
  *   e_neg_after   e_a = -round(tau4) instead of round(-tau4) (sign after rounding)
@@ -63,6 +64,24 @@
  * offset sign, pairing, s-curve truncated or held in WS bits, interpolators
  * truncating or rounding ties away, the output truncated. Two go unseen by
  * every set and are checked to be (run_ndim says why).
+ * wave misreadings (np_wave.h, docs/wave.md; from the second independent
+ * review's list of what no vector caught): each of the seven roundings
+ * (interp: the ROM interpolation, w, ap: eq. (8)'s a w, yc, sa, y, dxz: dx and
+ * dz) rounding ties half to even (_even) or half away from zero (_away)
+ * instead of half up, and
+ *   yc_trunc      yc = floor(ap c / 2^7)
+ *   mirror_ones   quadrants 1 and 3 read x' = 2^30 - 1 - x (one's complement)
+ *   drop_round    the dropped phase bits rounded into f (carry into a)
+ *   cap_separate  y = round(Y G / 2^(31+m)) + round(bc / 2^17): two roundings
+ *   no_gcap       G = sm g (the gain's cap not applied)
+ *   sm_m1         sm = min(d, M - 1)
+ *   ramp_far      d = min(v, V - v) (the far side ramp one ray late)
+ *   ramp_near     d = min(v + 1, V - 1 - v) (the near side ramp one ray early)
+ *   interp_away   INVISIBLE, and the case checks that it is: (R[a+1] - R[a]) f
+ *                 is never negative, so ties away from zero are ties up.
+ * The wave sets are read from their text files (.vec: eight inputs); the
+ * registers come from the configuration line (regs=N, np_wave_regs_test), as
+ * the files' '# reg' lines state (vectors.reg_lines checks that they agree).
  */
 #include <stdint.h>
 #include <stdio.h>
@@ -75,6 +94,7 @@
 #include "np_hashn.h"
 #include "np_simplex.h"
 #include "np_simplexn.h"
+#include "np_wave.h"
 #include "np_test.h"
 #include "np_unit.h"
 
@@ -670,6 +690,196 @@ static int32_t classicn_variant(const np_classicn_cfg *cfg, int v, const uint16_
     return (int32_t)np_sat_s(r, cfg->out_bits);
 }
 
+/* ------------------------------------------------------------ wave variants */
+
+/* The seven roundings of the datapath (docs/wave.md), in the order of the variants below. */
+enum { WR_INTERP, WR_W, WR_AP, WR_YC, WR_SA, WR_Y, WR_DXZ, WR_SITES };
+enum {
+    W_SPEC,
+    W_TIES0, /* W_TIES0 + 2 site: half to even; + 1: half away from zero */
+    W_YC_TRUNC = W_TIES0 + 2 * WR_SITES,
+    W_MIRROR_ONES,
+    W_DROP_ROUND,
+    W_CAP_SEPARATE,
+    W_NO_GCAP,
+    W_SM_M1,
+    W_RAMP_FAR,
+    W_RAMP_NEAR,
+    W_VARIANTS
+};
+static const char *const w_site[WR_SITES] = { "interp", "w", "ap", "yc", "sa", "y", "dxz" };
+static const char *const w_names[] = { "yc_trunc", "mirror_ones", "drop_round", "cap_separate",
+                                       "no_gcap",  "sm_m1",       "ramp_far",   "ramp_near" };
+
+static void w_name(unsigned v, char *buf, size_t len)
+{
+    if (v == W_SPEC)
+        snprintf(buf, len, "spec");
+    else if (v < W_YC_TRUNC)
+        snprintf(buf, len, "%s_%s", w_site[(v - W_TIES0) / 2u], (v - W_TIES0) % 2u ? "away" : "even");
+    else
+        snprintf(buf, len, "%s", w_names[v - W_YC_TRUNC]);
+}
+
+/* v / 2^sh rounded at site: half up (the spec), or the variant's tie rule there. */
+static int64_t w_rnd(int variant, unsigned site, int64_t v, unsigned sh)
+{
+    const int64_t one = (int64_t)1 << sh, fl = v >= 0 ? v / one : -((-v + one - 1) / one), rem = v - fl * one;
+    const int64_t half = one / 2;
+    if (rem != half)
+        return rem > half ? fl + 1 : fl;
+    if (variant == W_TIES0 + 2 * (int)site)
+        return fl + (fl & 1); /* half to even */
+    if (variant == W_TIES0 + 2 * (int)site + 1)
+        return v < 0 ? fl : fl + 1; /* half away from zero */
+    return fl + 1;
+}
+
+static int64_t w_floor(int64_t v, unsigned sh)
+{
+    const int64_t one = (int64_t)1 << sh;
+    return v >= 0 ? v / one : -((-v + one - 1) / one);
+}
+
+/* sin of phase th (Q0.32 turns) as s19 Q1.17, written from docs/wave.md with the variant's ROM read. */
+static int64_t w_sin(int variant, uint32_t th, unsigned L)
+{
+    const uint32_t q = th >> 30, x = th & UINT32_C(0x3fffffff), sh = 30u - L;
+    uint32_t xp = (q & 1u) ? (variant == W_MIRROR_ONES ? UINT32_C(0x3fffffff) - x : (UINT32_C(1) << 30) - x) : x;
+    if (variant == W_DROP_ROUND)
+        xp += UINT32_C(1) << (sh - NP_WAVE_IFRAC - 1u);
+    uint32_t a = xp >> sh, f = (xp >> (sh - NP_WAVE_IFRAC)) & UINT32_C(0xffff);
+    if (a >= (UINT32_C(1) << L)) {
+        a = UINT32_C(1) << L;
+        f = 0;
+    }
+    const uint32_t a1 = a < (UINT32_C(1) << L) ? a + 1u : a;
+    const int64_t r0 = np_wave_rom(a << (10u - L)), r1 = np_wave_rom(a1 << (10u - L));
+    const int64_t v = r0 + w_rnd(variant, WR_INTERP, (r1 - r0) * (int64_t)f, NP_WAVE_IFRAC);
+    return (q & 2u) ? -v : v;
+}
+
+/* y, dx, dz of one transaction (inputs i j t ph u v r g) under a variant. */
+static void wave_variant(const np_wave_unit *un, int variant, const uint64_t in[8], int64_t out[3])
+{
+    const np_wave_regs *r = &un->r;
+    const unsigned L = un->c.rom_log2, m = r->mlog2, M = 1u << m, V = r->width;
+    const uint32_t i = (uint32_t)in[0], j = (uint32_t)in[1], t = (uint32_t)in[2], ph = (uint32_t)in[3];
+    const uint32_t u = (uint32_t)in[4], v = (uint32_t)in[5], rr = (uint32_t)in[6], g = (uint32_t)in[7];
+    unsigned d;
+    if (variant == W_RAMP_FAR)
+        d = v <= V ? (v < V - v ? v : V - v) : 0;
+    else if (variant == W_RAMP_NEAR)
+        d = v < V ? (v + 1 < V - 1 - v ? v + 1 : V - 1 - v) : 0;
+    else
+        d = v < V ? (v < V - 1 - v ? v : V - 1 - v) : 0;
+    const unsigned mm = variant == W_SM_M1 ? M - 1u : M, sm = d < mm ? d : mm;
+    const int64_t G = (int64_t)sm * (variant == W_NO_GCAP ? g : (g < r->gcap ? g : r->gcap));
+    const int64_t s1 = un->c.irr ? w_sin(variant, r->pu * u + r->pt * t, L) : 0;
+    const int64_t s2 = un->c.irr ? w_sin(variant, r->pv * v, L) : 0;
+    const int64_t sc = un->c.cap ? w_sin(variant, rr * r->omc * t, L) : 0;
+    const int64_t w = w_rnd(variant, WR_W, s1 * s2, NP_WAVE_SIN_FRAC);
+    int64_t Y = 0, X = 0, Z = 0;
+    for (unsigned k = 0; k < r->n && k < un->c.trains; k++) {
+        const np_wave_train *tr = &r->tr[k];
+        const uint32_t th = (uint32_t)tr->kx * i + (uint32_t)tr->kz * j + tr->phi + ph - tr->om * t;
+        const int64_t c = w_sin(variant, th + (UINT32_C(1) << 30), L), s = w_sin(variant, th, L);
+        const int64_t ap = (int64_t)tr->amp * 128 - (un->c.irr ? w_rnd(variant, WR_AP, (int64_t)tr->airr * w, 10) : 0);
+        const int64_t yc = variant == W_YC_TRUNC ? w_floor(ap * c, 7) : w_rnd(variant, WR_YC, ap * c, 7);
+        const int64_t sa = w_rnd(variant, WR_SA, ap * s, NP_WAVE_SIN_FRAC);
+        Y += yc;
+        X -= sa * tr->cx;
+        Z -= sa * tr->cz;
+    }
+    const int64_t bc = un->c.cap ? (int64_t)r->b * sc : 0;
+    const int64_t y = variant == W_CAP_SEPARATE
+                          ? w_rnd(variant, WR_Y, Y * G, 31u + m) + w_rnd(variant, WR_Y, bc, 17)
+                          : w_rnd(variant, WR_Y, Y * G + bc * ((int64_t)1 << (14u + m)), 31u + m);
+    out[0] = np_sat_s(y, 16);
+    out[1] = np_sat_s(w_rnd(variant, WR_DXZ, X * G, 35u + m), 16);
+    out[2] = np_sat_s(w_rnd(variant, WR_DXZ, Z * G, 35u + m), 16);
+}
+
+/* The wave sets: the default, normals (its y, dx, dz), then the non-default ones (seed3 is the recurrence's). */
+static const char *const w_sets[] = { "wave-l1-seed1",           "wave-l1-seed2",       "wave-l1-seed1-rom6",
+                                      "wave-l1-seed1-rom10",     "wave-l1-seed1-irr0_cap0", "wave-l1-seed1-trains4" };
+enum { W_NSETS = sizeof w_sets / sizeof w_sets[0] };
+
+static int case_wave(void)
+{
+    const np_unit *un = np_unit_find("wave");
+    NP_CHECK(un != NULL, "unit wave not registered");
+    static uint64_t missed[W_VARIANTS][W_NSETS];
+    memset(missed, 0, sizeof missed);
+    for (unsigned si = 0; si < W_NSETS; si++) {
+        char path[1024], err[512], line[1024], config[1024] = "";
+        snprintf(path, sizeof path, "%s/wave/%s.vec", NP_VEC_DIR, w_sets[si]);
+        FILE *f = fopen(path, "r");
+        NP_CHECK(f != NULL, "cannot read %s", path);
+        union {
+            np_wave_unit w;
+            unsigned char raw[NP_UNIT_CFG_MAX];
+        } cb;
+        size_t n = 0;
+        int configured = 0;
+        while (fgets(line, sizeof line, f)) {
+            if (strncmp(line, "# config ", 9) == 0) {
+                snprintf(config, sizeof config, "%s", line + 9);
+                config[strcspn(config, "\n")] = 0;
+                if (np_unit_configure_all(un, &cb, config, err, sizeof err) != 0) {
+                    fclose(f);
+                    NP_CHECK(0, "%s: config '%s': %s", path, config, err);
+                }
+                configured = 1;
+            }
+            if (line[0] == '#' || line[0] == '\n')
+                continue;
+            uint64_t w[11];
+            char *p = line;
+            for (unsigned a = 0; a < 11; a++)
+                w[a] = strtoull(p, &p, 16);
+            if (!configured)
+                break;
+            for (unsigned v = 0; v < W_VARIANTS; v++) {
+                int64_t o[3];
+                wave_variant(&cb.w, (int)v, w, o);
+                int differs = 0;
+                for (unsigned k = 0; k < 3; k++)
+                    differs |= ((uint64_t)o[k] & 0xffffu) != w[8 + k];
+                missed[v][si] += (uint64_t)differs;
+            }
+            n++;
+        }
+        fclose(f);
+        NP_CHECK(configured && n > 0, "%s: no configuration line or no vectors", path);
+        printf("%-24s %6zu vectors  config %s\n", w_sets[si], n, config);
+    }
+    printf("vectors whose expected y, dx, dz each variant misses (a misreading is caught where > 0):\n");
+    printf("  %-14s", "variant");
+    for (unsigned si = 0; si < W_NSETS; si++)
+        printf(" %9s", si == 0 ? "default" : si == 1 ? "seed2" : w_sets[si] + sizeof "wave-l1-seed1");
+    printf("\n");
+    for (unsigned v = 0; v < W_VARIANTS; v++) {
+        char nm[32];
+        uint64_t caught = 0;
+        w_name(v, nm, sizeof nm);
+        printf("  %-14s", nm);
+        for (unsigned si = 0; si < W_NSETS; si++) {
+            printf(" %9llu", (unsigned long long)missed[v][si]);
+            caught += missed[v][si];
+        }
+        printf("\n");
+        if (v == W_SPEC || v == W_TIES0 + 2 * WR_INTERP + 1)
+            for (unsigned si = 0; si < W_NSETS; si++)
+                NP_CHECK(missed[v][si] == 0, "%s misses %llu vectors of %s (%s)", nm,
+                         (unsigned long long)missed[v][si], w_sets[si],
+                         v == W_SPEC ? "the spec's model" : "should be invisible at the output");
+        else
+            NP_CHECK(caught > 0, "misreading %s is caught by no checked-in wave set", nm);
+    }
+    return 0;
+}
+
 /* ------------------------------------------------------------ cases */
 
 enum { NSETS_MAX = 3 };
@@ -879,6 +1089,7 @@ static const np_test_case cases[] = {
     { "classic3", case_classic3 }, { "hatch", case_hatch },       { "simplex3", case_simplex3 },
     { "simplex2", case_simplex2 }, { "simplex4", case_simplex4 }, { "simplex5", case_simplex5 },
     { "classic2", case_classic2 }, { "classic4", case_classic4 }, { "classic5", case_classic5 },
+    { "wave", case_wave },
     { NULL, NULL },
 };
 NP_TEST_MAIN(cases)
