@@ -356,6 +356,12 @@ static void golden_one(const np_unit *u, const np_conf_env *e, const char *dir, 
     }
     np_vec_header h;
     int ok = header(&h, u, r.h.cfg_text) == 0;
+    /* The refresh hint names the set's configuration ("K=V K=V" in the file, "K=V,K=V" for --config). */
+    char cfg[1024];
+    snprintf(cfg, sizeof cfg, "%s", r.h.cfg_text);
+    for (char *c = cfg; *c; c++)
+        if (*c == ' ')
+            *c = ',';
     np_vec_close(&r);
     if (!ok)
         return;
@@ -367,8 +373,8 @@ static void golden_one(const np_unit *u, const np_conf_env *e, const char *dir, 
         return;
     }
     int same = same_bytes(out, set);
-    NP_CHECK(same, "regenerated %s differs from %s\nrefresh with: noisepipe vectors --unit %s --seed %" PRIu64
-             " --level %u --format %s -o %s", out, set, u->name, seed, level, fmt == NP_VEC_TEXT ? "text" : "readmemh",
+    NP_CHECK(same, "regenerated %s differs from %s\nrefresh with: noisepipe vectors --unit %s --config %s --seed %" PRIu64
+             " --level %u --format %s -o %s", out, set, u->name, cfg, seed, level, fmt == NP_VEC_TEXT ? "text" : "readmemh",
              set);
     printf("%s: regenerated level %u seed %" PRIu64 " (%" PRIu64 " vectors): %s %s\n", u->name, level, seed, h.count,
            same ? "identical to" : "DIFFERS from", set);
