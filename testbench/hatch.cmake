@@ -20,7 +20,7 @@ set_tests_properties(hatch.cli_seeds_usage PROPERTIES
   PASS_REGULAR_EXPRESSION "noisepipe seeds: --order '4': expected a decimal number in 1\\.\\.3")
 # Scenes hatched through the G-buffer renderer (docs/hatch.md, "Scenes"): coverage against brute
 # force on the hatched cube (4 x 16 and 4 x 64 seeds), the host's level of detail, the scene keys.
-np_test_program(test_hatch_scene test_hatch_scene.c)
+np_test_program(test_hatch_scene test_hatch_scene.c np_golden.c)
 target_link_libraries(test_hatch_scene PRIVATE np_render)
 target_compile_definitions(test_hatch_scene PRIVATE NP_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 np_add_cases(test_hatch_scene hatch scene_cover_identical scene_lod scene_keys scene_gates)

@@ -1,9 +1,27 @@
 /* SPDX-License-Identifier: MIT */
-/* The golden image hashes (np_golden.h). */
+/* The checked-in scenes and golden image hashes (np_golden.h). */
 #include "np_golden.h"
 
 #include <stdio.h>
 #include <string.h>
+
+#include "np_test.h"
+
+void np_golden_scene_path(const char *dir, const char *name, char *buf, size_t n)
+{
+    snprintf(buf, n, "%s/vectors/scenes/%s.json", dir, name);
+}
+
+int np_golden_scene_load(const char *dir, const char *name, np_scene *s)
+{
+    char path[1024], err[1024];
+    np_golden_scene_path(dir, name, path, sizeof path);
+    if (np_scene_load(path, s, err, sizeof err)) {
+        NP_CHECK(0, "%s", err);
+        return -1;
+    }
+    return 0;
+}
 
 int np_golden_hash(const char *dir, const char *file, const char *scene, const char *image, char hex[65])
 {

@@ -18,17 +18,6 @@
 #include "np_render_aa.h"
 #include "np_test.h"
 
-static int load(const char *name, np_scene *s)
-{
-    char path[1024], err[1024];
-    snprintf(path, sizeof path, "%s/vectors/scenes/%s.json", NP_SOURCE_DIR, name);
-    if (np_scene_load(path, s, err, sizeof err)) {
-        NP_CHECK(0, "%s", err);
-        return -1;
-    }
-    return 0;
-}
-
 /* The scene's texel unit (np_render_units), into us; the index or -1. */
 static int texel_of(const np_scene *sc, np_render_unit_cfg *us)
 {
@@ -68,7 +57,7 @@ static int thresholds_zero_full(void)
     const char *names[2] = { "marble", "boxes" };
     for (int i = 0; i < 2; i++) {
         np_scene sc;
-        if (load(names[i], &sc))
+        if (np_golden_scene_load(NP_SOURCE_DIR, names[i], &sc))
             return 1;
         np_render_unit_cfg us[NP_RENDER_MAX_UNITS];
         int t = texel_of(&sc, us);
@@ -108,7 +97,7 @@ static int c_zero_one_sample(void)
     const char *names[2] = { "marble", "wood" };
     for (int i = 0; i < 2; i++) {
         np_scene sc;
-        if (load(names[i], &sc))
+        if (np_golden_scene_load(NP_SOURCE_DIR, names[i], &sc))
             return 1;
         np_render_unit_cfg us[NP_RENDER_MAX_UNITS];
         int t = texel_of(&sc, us);
@@ -144,7 +133,7 @@ static int c_zero_one_sample(void)
 static int cycle_model(void)
 {
     np_scene sc;
-    if (load("boxes", &sc))
+    if (np_golden_scene_load(NP_SOURCE_DIR, "boxes", &sc))
         return 1;
     np_render_unit_cfg us[NP_RENDER_MAX_UNITS];
     int t = texel_of(&sc, us);
@@ -178,7 +167,7 @@ static int mse_budget(void)
     const char *names[2] = { "marble", "boxes" };
     for (int i = 0; i < 2; i++) {
         np_scene sc;
-        if (load(names[i], &sc))
+        if (np_golden_scene_load(NP_SOURCE_DIR, names[i], &sc))
             return 1;
         np_render_unit_cfg us[NP_RENDER_MAX_UNITS];
         int t = texel_of(&sc, us);
@@ -237,7 +226,7 @@ static int beats_full_3x3(void)
     const char *names[2] = { "marble", "boxes" };
     for (int i = 0; i < 2; i++) {
         np_scene sc;
-        if (load(names[i], &sc))
+        if (np_golden_scene_load(NP_SOURCE_DIR, names[i], &sc))
             return 1;
         np_render_unit_cfg us[NP_RENDER_MAX_UNITS];
         int t = texel_of(&sc, us);
@@ -289,7 +278,7 @@ static int beats_full_3x3(void)
 static int host_conversion(void)
 {
     np_scene sc;
-    if (load("boxes", &sc))
+    if (np_golden_scene_load(NP_SOURCE_DIR, "boxes", &sc))
         return 1;
     sc.aa.have_cd = sc.aa.have_cn = sc.aa.have_cs = 1;
     sc.aa.c_d = 1.0e4;
@@ -325,7 +314,7 @@ static int host_conversion(void)
 static int borders(void)
 {
     np_scene sc;
-    if (load("boxes", &sc))
+    if (np_golden_scene_load(NP_SOURCE_DIR, "boxes", &sc))
         return 1;
     np_render_unit_cfg us[NP_RENDER_MAX_UNITS];
     int t = texel_of(&sc, us);
@@ -383,7 +372,7 @@ static int borders(void)
 static int boxes_knobs(void)
 {
     np_scene sc;
-    if (load("boxes", &sc))
+    if (np_golden_scene_load(NP_SOURCE_DIR, "boxes", &sc))
         return 1;
     np_render_unit_cfg us[NP_RENDER_MAX_UNITS];
     int t = texel_of(&sc, us);

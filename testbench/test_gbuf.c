@@ -14,22 +14,6 @@
 #include "np_test.h"
 #include "np_texel.h"
 
-static void scene_path(char *buf, size_t n, const char *name)
-{
-    snprintf(buf, n, "%s/vectors/scenes/%s.json", NP_SOURCE_DIR, name);
-}
-
-static int load(const char *name, np_scene *s)
-{
-    char path[1024], err[1024];
-    scene_path(path, sizeof path, name);
-    if (np_scene_load(path, s, err, sizeof err)) {
-        NP_CHECK(0, "%s", err);
-        return -1;
-    }
-    return 0;
-}
-
 /* The units that render scene sc (the registry), configured for it. */
 static int units(const np_scene *sc, np_render_unit_cfg *us)
 {
@@ -281,7 +265,7 @@ static int depth_far(void)
 static int shade_cycles(void)
 {
     np_scene s;
-    if (load("wood", &s))
+    if (np_golden_scene_load(NP_SOURCE_DIR, "wood", &s))
         return 1;
     np_render_unit_cfg us[NP_RENDER_MAX_UNITS];
     int nu = units(&s, us);
@@ -426,7 +410,7 @@ static int centre_golden(void)
     const char *names[2] = { "wood", "marble" };
     for (int i = 0; i < 2; i++) {
         np_scene s;
-        if (load(names[i], &s))
+        if (np_golden_scene_load(NP_SOURCE_DIR, names[i], &s))
             return 1;
         np_render_unit_cfg us[NP_RENDER_MAX_UNITS];
         int nu = units(&s, us);
@@ -479,7 +463,7 @@ static int centre_golden(void)
 static int full_ssaa(void)
 {
     np_scene s;
-    if (load("marble", &s))
+    if (np_golden_scene_load(NP_SOURCE_DIR, "marble", &s))
         return 1;
     np_render_unit_cfg us[NP_RENDER_MAX_UNITS];
     int nu = units(&s, us);
@@ -557,7 +541,7 @@ static int ground_truth(void)
 {
     np_scene s;
     char err[512];
-    if (load("marble", &s))
+    if (np_golden_scene_load(NP_SOURCE_DIR, "marble", &s))
         return 1;
     const size_t npx = (size_t)s.width * s.height;
     double *gt = malloc(npx * 3 * sizeof *gt), *ss = malloc(npx * 3 * sizeof *ss);
@@ -573,7 +557,7 @@ static int ground_truth(void)
     np_scene_free(&s);
     free(gt);
     free(ss);
-    if (load("wood", &s))
+    if (np_golden_scene_load(NP_SOURCE_DIR, "wood", &s))
         return 1;
     s.width = s.height = 64; /* the same view, 4x coarser pixels: the ground truth stays quick */
     const size_t n64 = 64 * 64;
@@ -619,7 +603,7 @@ static int ground_truth(void)
 static int light(void)
 {
     np_scene s;
-    if (load("boxes", &s))
+    if (np_golden_scene_load(NP_SOURCE_DIR, "boxes", &s))
         return 1;
     NP_CHECK(s.light_image == 1, "boxes.json lights its image");
     np_gbuf_lightq q;
@@ -784,7 +768,7 @@ static int mesh_sphere(void)
     }
     np_scene_free(&s);
     /* sphere.json: 998,000 triangles (the time is printed, not asserted). */
-    if (load("sphere", &s))
+    if (np_golden_scene_load(NP_SOURCE_DIR, "sphere", &s))
         return 1;
     np_gbuf g;
     double t0 = np_now();
@@ -803,13 +787,13 @@ static int mesh_sphere(void)
 static int scene_keys(void)
 {
     np_scene s;
-    if (load("boxes", &s))
+    if (np_golden_scene_load(NP_SOURCE_DIR, "boxes", &s))
         return 1;
     NP_CHECK(s.aa.present && s.aa.m == 3 && !s.aa.have_cd && s.aa.luma_taps == 4 && s.aa.tile == 0 &&
                  fabs(s.aa.t_min - 16.0 / 255.0) < 1e-15 && s.aa.t_edge == 0.125,
              "boxes aa defaults");
     np_scene_free(&s);
-    if (load("wood", &s))
+    if (np_golden_scene_load(NP_SOURCE_DIR, "wood", &s))
         return 1;
     NP_CHECK(!s.aa.present && !s.light_image && !s.cam.have_depth_range && s.n_prims == 6, "wood has none");
     np_scene_free(&s);
@@ -859,7 +843,7 @@ static int scene_keys(void)
 static int perspective_depth(void)
 {
     np_scene s;
-    if (load("boxes", &s))
+    if (np_golden_scene_load(NP_SOURCE_DIR, "boxes", &s))
         return 1;
     np_gbuf g;
     if (build(&s, 2, &g))

@@ -15,19 +15,9 @@
 #include "np_report.h"
 #include "np_rng.h"
 #include "np_scene.h"
+#include "np_golden.h"
 #include "np_test.h"
 #include "np_unit.h"
-
-static int load(const char *name, np_scene *s)
-{
-    char path[1024], err[1024];
-    snprintf(path, sizeof path, "%s/vectors/scenes/%s.json", NP_SOURCE_DIR, name);
-    if (np_scene_load(path, s, err, sizeof err)) {
-        NP_CHECK(0, "%s", err);
-        return -1;
-    }
-    return 0;
-}
 
 /*
  * The hatched wood cube with 4 x 16 and 4 x 64 seeds: the coverage unit's
@@ -38,7 +28,7 @@ static int t_scene_cover_identical(void)
 {
     np_scene sc;
     char err[512];
-    if (load("hatch_wood", &sc))
+    if (np_golden_scene_load(NP_SOURCE_DIR, "hatch_wood", &sc))
         return 1;
     NP_CHECK(sc.hatch.present && sc.hatch.coverage == 1, "the scene's hatch section");
     int bad = 0;

@@ -23,11 +23,6 @@
 #define NP_SOURCE_DIR "."
 #endif
 
-static void scene_path(char *buf, size_t n, const char *name)
-{
-    snprintf(buf, n, "%s/vectors/scenes/%s.json", NP_SOURCE_DIR, name);
-}
-
 /* --- Image files --- */
 
 static int sha256_kat(void)
@@ -214,7 +209,7 @@ static int scene_seed(void)
 {
     char path[1024], err[1024];
     np_scene s;
-    scene_path(path, sizeof path, "wood");
+    np_golden_scene_path(NP_SOURCE_DIR, "wood", path, sizeof path);
     NP_CHECK(np_scene_load(path, &s, err, sizeof err) == 0, "%s", err);
     NP_CHECK(s.width == 256 && s.height == 256 && s.n_poly == 6, "wood image/geometry");
     NP_CHECK(s.tex.quad[0] == 10 && s.tex.quad[7] == 10 && s.tex.n_oct == 1 && s.tex.oct[0].m[0][0] == 5 &&
@@ -248,7 +243,7 @@ static int scene_seed(void)
     NP_CHECK(stop > 2.9 && sbot < 0.1, "texture origin / top vertex misplaced");
     np_render_frame_free(&fr);
     np_scene_free(&s);
-    scene_path(path, sizeof path, "marble");
+    np_golden_scene_path(NP_SOURCE_DIR, "marble", path, sizeof path);
     NP_CHECK(np_scene_load(path, &s, err, sizeof err) == 0, "%s", err);
     NP_CHECK(s.tex.n_oct == 4 && s.tex.quad[8] == 0.5 && s.tex.oct[3].m[0][0] == 8, "marble is not equation 24");
     NP_CHECK(np_render_prepare(&s, &fr, err, sizeof err) == 0, "%s", err);
@@ -281,7 +276,7 @@ static int scene_seed(void)
 static int render_default(const char *name, np_scene *s, np_render_frame *fr, np_render_run *fd, np_render_run *tx)
 {
     char path[1024], err[1024];
-    scene_path(path, sizeof path, name);
+    np_golden_scene_path(NP_SOURCE_DIR, name, path, sizeof path);
     if (np_scene_load(path, s, err, sizeof err) || np_render_prepare(s, fr, err, sizeof err)) {
         NP_CHECK(0, "%s", err);
         return -1;
@@ -478,7 +473,7 @@ static int scanline(void)
     np_scene s;
     np_render_frame fr;
     char path[1024], err[1024];
-    scene_path(path, sizeof path, "wood");
+    np_golden_scene_path(NP_SOURCE_DIR, "wood", path, sizeof path);
     if (np_scene_load(path, &s, err, sizeof err) || np_render_prepare(&s, &fr, err, sizeof err)) {
         NP_CHECK(0, "%s", err);
         return 1;
@@ -562,7 +557,7 @@ static int builtin_textures(void)
     for (int i = 0; i < 2; i++) {
         char path[1024], err[1024];
         np_scene s;
-        scene_path(path, sizeof path, names[i]);
+        np_golden_scene_path(NP_SOURCE_DIR, names[i], path, sizeof path);
         NP_CHECK(np_scene_load(path, &s, err, sizeof err) == 0, "%s", err);
         const np_ref_texture *b = np_texreg_builtin(names[i]);
         NP_CHECK(b && memcmp(b, &s.tex, sizeof *b) == 0, "built-in %s differs from %s", names[i], path);
