@@ -124,14 +124,23 @@ NP_SWEEP_INLINE void ref_corner_add(const ref_corner k, double u, double v, doub
     }
 }
 
-/* Pass 2: the four corners of one simplex for the inputs [t0, t1) of a row. Doubles only. */
+/*
+ * Pass 2: the four corners of one simplex for the inputs [t0, t1) of a row.
+ * Doubles only, in whole blocks of REF_LANES (one AVX-512 vector): a run is
+ * 63 inputs on average and a remainder loop would run scalar. The last block
+ * reads and writes up to REF_LANES - 1 inputs past t1; ref_row gives every
+ * array that room, and the next run, or nothing, overwrites them.
+ */
+enum { REF_LANES = 8 };
 NP_SWEEP_INLINE void ref_pass2(const ref_corner *restrict cn, unsigned t0, unsigned t1, const double *restrict u,
                                const double *restrict v, const double *restrict w, const int deriv,
                                double *restrict rf, double *restrict rdx, double *restrict rdy,
                                double *restrict rdz)
 {
     const ref_corner k0 = cn[0], k1 = cn[1], k2 = cn[2], k3 = cn[3];
-    for (unsigned t = t0; t < t1; t++) {
+    for (unsigned b = t0; b < t1; b += REF_LANES)
+        for (unsigned j = 0; j < REF_LANES; j++) {
+        unsigned t = b + j;
         double f = 0.0, df0 = 0.0, df1 = 0.0, df2 = 0.0;
         ref_corner_add(k0, u[t], v[t], w[t], deriv, &f, &df0, &df1, &df2);
         ref_corner_add(k1, u[t], v[t], w[t], deriv, &f, &df0, &df1, &df2);
@@ -218,15 +227,24 @@ NP_SWEEP_INLINE void ref_row(ref_cache *cache, const double *restrict xs, uint16
                              const int deriv, double *restrict rf, double *restrict rdx, double *restrict rdy,
                              double *restrict rdz)
 {
-    double u[NP_SWEEP_ROW], v[NP_SWEEP_ROW], w[NP_SWEEP_ROW], key[NP_SWEEP_ROW];
+    enum { PAD = NP_SWEEP_ROW + REF_LANES };
+    double u[PAD], v[PAD], w[PAD], key[NP_SWEEP_ROW], of[PAD], ox[PAD], oy[PAD], oz[PAD];
     ref_pass1(xs, (double)yw / 256.0, (double)zw / 256.0, u, v, w, key);
+    for (unsigned t = NP_SWEEP_ROW; t < PAD; t++)
+        u[t] = v[t] = w[t] = 0.0; /* finite values for the spilled lanes */
     unsigned t0 = 0;
     while (t0 < NP_SWEEP_ROW) {
         unsigned t1 = t0 + 1u;
         while (t1 < NP_SWEEP_ROW && key[t1] == key[t0])
             t1++;
-        ref_pass2(ref_corners_cached(cache, key[t0]), t0, t1, u, v, w, deriv, rf, rdx, rdy, rdz);
+        ref_pass2(ref_corners_cached(cache, key[t0]), t0, t1, u, v, w, deriv, of, ox, oy, oz);
         t0 = t1;
+    }
+    memcpy(rf, of, NP_SWEEP_ROW * sizeof *rf);
+    if (deriv) {
+        memcpy(rdx, ox, NP_SWEEP_ROW * sizeof *rdx);
+        memcpy(rdy, oy, NP_SWEEP_ROW * sizeof *rdy);
+        memcpy(rdz, oz, NP_SWEEP_ROW * sizeof *rdz);
     }
 }
 
@@ -349,6 +367,133 @@ NP_SWEEP_INLINE void mdl_pass2(const np_simplex_cfg *cfg, const mdl_corner *rest
 }
 
 /*
+ * Pass 2 for the default configuration with the derivative (mdl_default_d:
+ * N = ND = 16, WT = 24, WP = 22, WK = 22) in int32 lanes, so that a vector
+ * holds 16 inputs (AVX-512) and no 64-bit multiply (vpmullq) is needed:
+ * np_simplex.h's signals all fit 32 bits at these widths, only some of its
+ * rounded products do not (T^2, tau2^2, tau2 T up to 2^47; tau4 gd and
+ * tau3 gd up to 2^37; 5q D up to 2^40). Each such product is formed from
+ * 32-bit partial products, one operand split as a = ah 2^k + al
+ * (ah = floor(a / 2^k), 0 <= al < 2^k), with
+ *   floor((A + floor(B / C)) / D) == floor((A C + B) / (C D))
+ * for integers A, B and C, D > 0: exact identities, so every value is
+ * np_simplex.h's (fast.simplex_kernel_* compare every code). Only Kf' S and
+ * Kd' Q (four per input) stay 64-bit.
+ *
+ * Ranges at these widths (s12 D, s14 gd, u23 T: np_simplex.h):
+ *   T < 2^23; tau2, tau3, tau4 < 2^24 (round(tau^k 2^24), tau < 0.85);
+ *   |fterm|, |qterm| <= 2^24 * 4608 / 2^11 + 1 < 2^25.2 (|gd| <= 3 * 1536);
+ *   |5q| < 2^27.6; |mterm| <= |5q| |D| / 2^11 + 1 <= 2^27.6; |eterm| <= 2^22;
+ *   S = sum of 4 fterms: |S| < 2^27.2; Q_a = sum of 4 (eterm - mterm):
+ *   |Q_a| < 4 (2^22 + 2^27.6) < 2^29.7. All below 2^31.
+ */
+
+/* v >> sh, arithmetic (floor(v / 2^sh)), without implementation-defined behaviour (np_asr in 32 bits). */
+static inline int32_t m32_asr(int32_t v, unsigned sh)
+{
+    uint32_t u = (uint32_t)v, sign = 0u - (u >> 31);
+    return (int32_t)((u >> sh) | (sign & ~(~0u >> sh)));
+}
+
+/*
+ * tau2 = floor((T^2 + 2^21) / 2^22) (np_simplex_tau2, WT = 24) for
+ * 0 <= T < 2^23: T = th 2^11 + tl, T^2 = th^2 2^22 + th tl 2^12 + tl^2, so
+ * tau2 = th^2 + floor((th tl + floor((tl^2 + 2^21) / 2^12)) / 2^10);
+ * th^2 < 2^24, th tl < 2^23, tl^2 + 2^21 < 2^23.
+ */
+static inline int32_t m32_tau2(int32_t t)
+{
+    int32_t th = t >> 11, tl = t & 2047;
+    return th * th + ((th * tl + ((tl * tl + (1 << 21)) >> 12)) >> 10);
+}
+
+/*
+ * tau4 = floor((tau2^2 + 2^23) / 2^24) (np_simplex_tau4, WT = 24) for
+ * 0 <= tau2 < 2^24: tau2 = a 2^12 + b, tau2^2 = a^2 2^24 + a b 2^13 + b^2,
+ * tau4 = a^2 + floor((a b + floor((b^2 + 2^23) / 2^13)) / 2^11).
+ */
+static inline int32_t m32_tau4(int32_t tau2)
+{
+    int32_t a = tau2 >> 12, b = tau2 & 4095;
+    return a * a + ((a * b + ((b * b + (1 << 23)) >> 13)) >> 11);
+}
+
+/*
+ * tau3 = floor((tau2 T + 2^22) / 2^23) (np_simplex_tau3) for tau2 < 2^24,
+ * T < 2^23: tau2 T = a th 2^23 + a tl 2^12 + b th 2^11 + b tl, so
+ * tau3 = a th + floor((2 a tl + b th + floor((b tl + 2^22) / 2^11)) / 2^12);
+ * a th < 2^24, 2 a tl < 2^24, b th < 2^24, b tl + 2^22 < 2^24.
+ */
+static inline int32_t m32_tau3(int32_t tau2, int32_t t)
+{
+    int32_t a = tau2 >> 12, b = tau2 & 4095, th = t >> 11, tl = t & 2047;
+    return a * th + ((2 * a * tl + b * th + ((b * tl + (1 << 22)) >> 11)) >> 12);
+}
+
+/*
+ * floor((p g + 2^10) / 2^11) = np_shr_round_half_up(p g, 11) for signed p
+ * and g with |floor(p / 2^11) g| < 2^30 and |g| < 2^19: p = ph 2^11 + pl
+ * (0 <= pl < 2^11), the result is ph g + floor((pl g + 2^10) / 2^11).
+ * Used for fterm and qterm (tau4 gd, tau3 gd from Q.33 to WP = 22 bits:
+ * |ph gd| < 2^13 4608) and mterm (5q D, np_simplex_mterm's shift of 11:
+ * |ph D| < 2^16.6 2^11).
+ */
+static inline int32_t m32_mul_rq11(int32_t p, int32_t g)
+{
+    int32_t ph = m32_asr(p, 11), pl = p & 2047;
+    return ph * g + m32_asr(pl * g + (1 << 10), 11);
+}
+
+/* One corner of pass 2, as mdl_corner_add with the default widths, in int32. */
+NP_SWEEP_INLINE void m32_corner_add(const mdl_corner k, unsigned c, int32_t u, int32_t v, int32_t w, int32_t *s,
+                                    int32_t *q0, int32_t *q1, int32_t *q2)
+{
+    int32_t d0 = np_simplex_corner_d(u, (unsigned)k.b0, c), d1 = np_simplex_corner_d(v, (unsigned)k.b1, c),
+            d2 = np_simplex_corner_d(w, (unsigned)k.b2, c);
+    int32_t gd = k.cx * d0 + k.cy * d1 + k.cz * d2;            /* np_simplex_gdot */
+    int32_t r2 = d0 * d0 + d1 * d1 + d2 * d2;                  /* np_simplex_r2 */
+    int32_t td = NP_SIMPLEX_T_VERTEX - NP_SIMPLEX_R2_SCALE * r2; /* np_simplex_kernel_t */
+    int32_t t = td > 0 ? td : 0;
+    int32_t tau2 = m32_tau2(t), tau4 = m32_tau4(tau2), tau3 = m32_tau3(tau2, t);
+    *s += m32_mul_rq11(tau4, gd);                              /* np_simplex_fterm: Q.33 -> Q.22 */
+    int32_t q = m32_mul_rq11(tau3, gd);                        /* np_simplex_qterm */
+    int32_t q5 = 4 * q + q;                                    /* np_simplex_mterm's 5q */
+    /* np_simplex_eterm: G_a tau4 from Q.24 to Q.22, round half up; np_simplex_mterm: 5q D_a / 2^11 */
+    *q0 += m32_asr(k.cx * tau4 + 2, 2) - m32_mul_rq11(q5, d0);
+    *q1 += m32_asr(k.cy * tau4 + 2, 2) - m32_mul_rq11(q5, d1);
+    *q2 += m32_asr(k.cz * tau4 + 2, 2) - m32_mul_rq11(q5, d2);
+}
+
+/*
+ * Pass 2 over the inputs [t0, t1) of one run, in whole blocks of M32_LANES
+ * (one AVX-512 vector of int32): a run is 63 inputs on average, and a
+ * remainder loop would run scalar. The last block reads and writes up to
+ * M32_LANES - 1 inputs past t1: o0..o2 and the outputs have that much room
+ * (m32_row), and the next run, or nothing, overwrites what it wrote.
+ */
+enum { M32_LANES = 16 };
+NP_SWEEP_INLINE void m32_pass2(const mdl_corner *restrict cn, unsigned t0, unsigned t1, const int32_t *restrict o0,
+                               const int32_t *restrict o1, const int32_t *restrict o2, int32_t *restrict f,
+                               int32_t *restrict dx, int32_t *restrict dy, int32_t *restrict dz)
+{
+    const int64_t kf = np_simplex_kf(&mdl_default_d), kd = np_simplex_kd(&mdl_default_d);
+    const mdl_corner k0 = cn[0], k1 = cn[1], k2 = cn[2], k3 = cn[3];
+    for (unsigned b = t0; b < t1; b += M32_LANES)
+        for (unsigned j = 0; j < M32_LANES; j++) {
+        unsigned t = b + j;
+        int32_t s = 0, q0 = 0, q1 = 0, q2 = 0;
+        m32_corner_add(k0, 0u, o0[t], o1[t], o2[t], &s, &q0, &q1, &q2);
+        m32_corner_add(k1, 1u, o0[t], o1[t], o2[t], &s, &q0, &q1, &q2);
+        m32_corner_add(k2, 2u, o0[t], o1[t], o2[t], &s, &q0, &q1, &q2);
+        m32_corner_add(k3, 3u, o0[t], o1[t], o2[t], &s, &q0, &q1, &q2);
+        f[t] = np_simplex_out_f(&mdl_default_d, kf, s);
+        dx[t] = np_simplex_out_d(&mdl_default_d, kd, q0);
+        dy[t] = np_simplex_out_d(&mdl_default_d, kd, q1);
+        dz[t] = np_simplex_out_d(&mdl_default_d, kd, q2);
+    }
+}
+
+/*
  * The corners of recent keys, one direct-mapped cache per thread that lives
  * across calls, as the reference row's (a key's corners depend on the cells
  * and the rank alone, not on the configuration); key ~0 (no key: cells are
@@ -388,10 +533,37 @@ NP_SWEEP_INLINE void mdl_row(const np_simplex_cfg *cfg, uint16_t x0, uint16_t y,
     }
 }
 
+/*
+ * The model row for the default configuration with the derivative: pass 1,
+ * then m32_pass2 per run into padded scratch (a run's last block spills past
+ * its end), copied out.
+ */
+NP_SWEEP_INLINE void m32_row(uint16_t x0, uint16_t y, uint16_t z, int32_t *f, int32_t *dx, int32_t *dy, int32_t *dz)
+{
+    enum { PAD = NP_SWEEP_ROW + M32_LANES };
+    int32_t o0[PAD], o1[PAD], o2[PAD], of[PAD], ox[PAD], oy[PAD], oz[PAD];
+    uint32_t key[NP_SWEEP_ROW];
+    mdl_pass1(x0, y, z, o0, o1, o2, key);
+    for (unsigned t = NP_SWEEP_ROW; t < PAD; t++)
+        o0[t] = o1[t] = o2[t] = 0; /* a valid offset (the cell's corner 0): no overflow in the spilled lanes */
+    unsigned t0 = 0;
+    while (t0 < NP_SWEEP_ROW) {
+        unsigned t1 = t0 + 1u;
+        while (t1 < NP_SWEEP_ROW && key[t1] == key[t0])
+            t1++;
+        m32_pass2(mdl_corners_cached(key[t0]), t0, t1, o0, o1, o2, of, ox, oy, oz);
+        t0 = t1;
+    }
+    memcpy(f, of, NP_SWEEP_ROW * sizeof *f);
+    memcpy(dx, ox, NP_SWEEP_ROW * sizeof *dx);
+    memcpy(dy, oy, NP_SWEEP_ROW * sizeof *dy);
+    memcpy(dz, oz, NP_SWEEP_ROW * sizeof *dz);
+}
+
 NP_SWEEP_CLONES static void mdl_row_d(uint16_t x0, uint16_t y, uint16_t z, int32_t *f, int32_t *dx, int32_t *dy,
                                       int32_t *dz)
 {
-    mdl_row(&mdl_default_d, x0, y, z, f, dx, dy, dz);
+    m32_row(x0, y, z, f, dx, dy, dz);
 }
 
 NP_SWEEP_CLONES static void mdl_row_f(uint16_t x0, uint16_t y, uint16_t z, int32_t *f)
