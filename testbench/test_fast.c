@@ -17,6 +17,7 @@
 #include "np_rng.h"
 #include "np_simplex.h"
 #include "np_sweep.h"
+#include "sweep_simplex32.h"
 #include "np_unit.h"
 #include "np_test.h"
 
@@ -278,6 +279,56 @@ static uint64_t simplex_kernel_check(const char *config, uint16_t xcell, uint16_
     return bad;
 }
 
+/*
+ * The int32 forms of simplex3's rounded products (sweep_simplex32.h) ==
+ * np_simplex.h's 64-bit ones at the default widths with the derivative:
+ * tau2 and tau3(tau2(T), T) for every T < 2^23, tau4 for every tau2 < 2^24,
+ * tau3 on 2^22 random (tau2, T) pairs besides, fterm/qterm (tau gd) for
+ * every tau < 2^24 at 16 gd from the extremes +-4608 in and random ones, and
+ * mterm (5q D) for every D in s12 at 4096 q from the extremes of |q| < 2^25.2.
+ */
+static int t_simplex32_exhaustive(void)
+{
+    const np_simplex_cfg cfg = np_simplex_cfg_default(16, 16, 1);
+    NP_CHECK(cfg.t_frac == 24 && cfg.p_frac == 22 && cfg.k_frac == 22, "default widths WT/WP/WK = 24/22/22 (%u/%u/%u)",
+             cfg.t_frac, cfg.p_frac, cfg.k_frac);
+    uint64_t bad = 0, n = 0;
+    for (int32_t t = 0; t < (1 << 23); t++, n += 2) {
+        uint32_t tau2 = np_simplex_tau2(&cfg, (uint32_t)t);
+        bad += (uint32_t)m32_tau2(t) != tau2;
+        bad += (uint32_t)m32_tau3((int32_t)tau2, t) != np_simplex_tau3(tau2, (uint32_t)t);
+    }
+    for (int32_t a = 0; a < (1 << 24); a++, n++)
+        bad += (uint32_t)m32_tau4(a) != np_simplex_tau4(&cfg, (uint32_t)a);
+    np_rng r;
+    np_rng_seed(&r, 0x73696d3332ull);
+    for (unsigned k = 0; k < (1u << 22); k++, n++) {
+        uint64_t w = np_rng_next(&r);
+        uint32_t a = (uint32_t)(w & 0xffffffu), t = (uint32_t)(w >> 24 & 0x7fffffu);
+        bad += (uint32_t)m32_tau3((int32_t)a, (int32_t)t) != np_simplex_tau3(a, t);
+    }
+    int32_t gds[16] = { -4608, -4607, -4097, -2048, -1, 0, 1, 2047, 2048, 4096, 4607, 4608 };
+    for (unsigned k = 12; k < 16; k++)
+        gds[k] = (int32_t)(np_rng_next(&r) % 9217u) - 4608;
+    for (int32_t a = 0; a < (1 << 24); a++)
+        for (unsigned k = 0; k < 16; k++, n += 2) {
+            bad += m32_mul_rq11(a, gds[k]) != np_simplex_fterm(&cfg, (uint32_t)a, gds[k]);
+            bad += m32_mul_rq11(a, gds[k]) != np_simplex_qterm(&cfg, (uint32_t)a, gds[k]);
+        }
+    const int32_t qmax = 37748737; /* 2^24 4608 / 2^11 + 1 > |q| */
+    for (unsigned k = 0; k < 4096; k++) {
+        int32_t q = k < 8 ? (k & 1 ? -1 : 1) * (qmax - (int32_t)(k >> 1)) : k < 16 ? (int32_t)k - 12
+                  : (int32_t)(np_rng_next(&r) % (2u * (uint32_t)qmax + 1u)) - qmax;
+        for (int32_t d = -2048; d < 2048; d++, n++)
+            bad += m32_mul_rq11(4 * q + q, d) != np_simplex_mterm(q, d);
+    }
+    NP_CHECK(bad == 0, "%llu of %llu int32 products differ from np_simplex.h's", (unsigned long long)bad,
+             (unsigned long long)n);
+    printf("simplex3 int32 products (WT/WP = 24/22): %llu compared, %llu differ\n", (unsigned long long)n,
+           (unsigned long long)bad);
+    return 0;
+}
+
 /* A whole x cell (2^24 inputs), x cell 0xff at z = 0xfff1 (the input words wrap), default config. */
 static int t_simplex_kernel_block(void)
 {
@@ -424,6 +475,7 @@ static const np_test_case cases[] = {
     { "simplex_batch_block", t_simplex_batch_block },
     { "simplex_kernel_block", t_simplex_kernel_block },
     { "simplex_kernel_random", t_simplex_kernel_random },
+    { "simplex32_exhaustive", t_simplex32_exhaustive },
     { "pipe_no_copy", t_pipe_no_copy },
     { NULL, NULL },
 };
