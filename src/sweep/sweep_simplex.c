@@ -368,14 +368,40 @@ NP_SWEEP_INLINE void mdl_pass2(const np_simplex_cfg *cfg, const mdl_corner *rest
 }
 
 
-/* One corner of pass 2, as mdl_corner_add with the default widths, in int32. */
-NP_SWEEP_INLINE void m32_corner_add(const mdl_corner k, unsigned c, int32_t u, int32_t v, int32_t w, int32_t *s,
-                                    int32_t *q0, int32_t *q1, int32_t *q2)
+/*
+ * One corner of pass 2 as mdl_corner_add with the default widths, in int32.
+ * Along a run only the x offset changes: the cells and n are the run's, so
+ * V = 6 Y - 1536 j + 256 n and W likewise are constant over it (pass 1's key
+ * names the cells). m32_run_corner takes what depends on them alone once per
+ * run: D1, D2, G1 D1 + G2 D2 and D1^2 + D2^2 (exact int32 sums, so
+ * gd = G0 D0 + that and R2 = D0^2 + that are np_simplex_gdot's and
+ * np_simplex_r2's values).
+ */
+typedef struct m32_corner {
+    int32_t off0, cx, cy, cz; /* D0 = U + off0 (np_simplex_corner_d), the gradient */
+    int32_t d1, d2, gd12, r212; /* D1, D2, G1 D1 + G2 D2, D1^2 + D2^2 */
+} m32_corner;
+
+static m32_corner m32_run_corner(const mdl_corner k, unsigned c, int32_t v, int32_t w)
 {
-    int32_t d0 = np_simplex_corner_d(u, (unsigned)k.b0, c), d1 = np_simplex_corner_d(v, (unsigned)k.b1, c),
-            d2 = np_simplex_corner_d(w, (unsigned)k.b2, c);
-    int32_t gd = k.cx * d0 + k.cy * d1 + k.cz * d2;            /* np_simplex_gdot */
-    int32_t r2 = d0 * d0 + d1 * d1 + d2 * d2;                  /* np_simplex_r2 */
+    m32_corner m;
+    m.off0 = np_simplex_corner_d(0, (unsigned)k.b0, c);
+    m.cx = k.cx;
+    m.cy = k.cy;
+    m.cz = k.cz;
+    m.d1 = np_simplex_corner_d(v, (unsigned)k.b1, c);
+    m.d2 = np_simplex_corner_d(w, (unsigned)k.b2, c);
+    m.gd12 = k.cy * m.d1 + k.cz * m.d2;
+    m.r212 = m.d1 * m.d1 + m.d2 * m.d2;
+    return m;
+}
+
+NP_SWEEP_INLINE void m32_corner_add(const m32_corner k, int32_t u, int32_t *s, int32_t *q0, int32_t *q1,
+                                    int32_t *q2)
+{
+    int32_t d0 = u + k.off0;
+    int32_t gd = k.cx * d0 + k.gd12;                           /* np_simplex_gdot */
+    int32_t r2 = d0 * d0 + k.r212;                             /* np_simplex_r2 */
     int32_t td = NP_SIMPLEX_T_VERTEX - NP_SIMPLEX_R2_SCALE * r2; /* np_simplex_kernel_t */
     int32_t t = td > 0 ? td : 0;
     int32_t tau2 = m32_tau2(t), tau4 = m32_tau4(tau2), tau3 = m32_tau3(tau2, t);
@@ -384,37 +410,41 @@ NP_SWEEP_INLINE void m32_corner_add(const mdl_corner k, unsigned c, int32_t u, i
     int32_t q5 = 4 * q + q;                                    /* np_simplex_mterm's 5q */
     /* np_simplex_eterm: G_a tau4 from Q.24 to Q.22, round half up; np_simplex_mterm: 5q D_a / 2^11 */
     *q0 += m32_asr(k.cx * tau4 + 2, 2) - m32_mul_rq11(q5, d0);
-    *q1 += m32_asr(k.cy * tau4 + 2, 2) - m32_mul_rq11(q5, d1);
-    *q2 += m32_asr(k.cz * tau4 + 2, 2) - m32_mul_rq11(q5, d2);
+    *q1 += m32_asr(k.cy * tau4 + 2, 2) - m32_mul_rq11(q5, k.d1);
+    *q2 += m32_asr(k.cz * tau4 + 2, 2) - m32_mul_rq11(q5, k.d2);
 }
 
 /*
  * Pass 2 over the inputs [t0, t1) of one run, in whole blocks of M32_LANES
  * (one AVX-512 vector of int32): a run is 63 inputs on average, and a
  * remainder loop would run scalar. The last block reads and writes up to
- * M32_LANES - 1 inputs past t1: o0..o2 and the outputs have that much room
- * (m32_row), and the next run, or nothing, overwrites what it wrote.
+ * M32_LANES - 1 inputs past t1: o0 and the outputs have that much room
+ * (m32_row), and the next run, or nothing, overwrites what it wrote. Those
+ * spilled lanes pair another run's U (or 0) with this run's corners: still
+ * |D| < 2^11 + 1536 + 768, so R2 < 2^26 and nothing overflows; and T > 0
+ * only when every |D_a| < 1190, within the ranges of sweep_simplex32.h.
  */
 enum { M32_LANES = 16 };
 NP_SWEEP_INLINE void m32_pass2(const mdl_corner *restrict cn, unsigned t0, unsigned t1, const int32_t *restrict o0,
-                               const int32_t *restrict o1, const int32_t *restrict o2, int32_t *restrict f,
-                               int32_t *restrict dx, int32_t *restrict dy, int32_t *restrict dz)
+                               int32_t v, int32_t w, int32_t *restrict f, int32_t *restrict dx,
+                               int32_t *restrict dy, int32_t *restrict dz)
 {
     const int64_t kf = np_simplex_kf(&mdl_default_d), kd = np_simplex_kd(&mdl_default_d);
-    const mdl_corner k0 = cn[0], k1 = cn[1], k2 = cn[2], k3 = cn[3];
+    const m32_corner k0 = m32_run_corner(cn[0], 0u, v, w), k1 = m32_run_corner(cn[1], 1u, v, w),
+                     k2 = m32_run_corner(cn[2], 2u, v, w), k3 = m32_run_corner(cn[3], 3u, v, w);
     for (unsigned b = t0; b < t1; b += M32_LANES)
         for (unsigned j = 0; j < M32_LANES; j++) {
-        unsigned t = b + j;
-        int32_t s = 0, q0 = 0, q1 = 0, q2 = 0;
-        m32_corner_add(k0, 0u, o0[t], o1[t], o2[t], &s, &q0, &q1, &q2);
-        m32_corner_add(k1, 1u, o0[t], o1[t], o2[t], &s, &q0, &q1, &q2);
-        m32_corner_add(k2, 2u, o0[t], o1[t], o2[t], &s, &q0, &q1, &q2);
-        m32_corner_add(k3, 3u, o0[t], o1[t], o2[t], &s, &q0, &q1, &q2);
-        f[t] = np_simplex_out_f(&mdl_default_d, kf, s);
-        dx[t] = np_simplex_out_d(&mdl_default_d, kd, q0);
-        dy[t] = np_simplex_out_d(&mdl_default_d, kd, q1);
-        dz[t] = np_simplex_out_d(&mdl_default_d, kd, q2);
-    }
+            unsigned t = b + j;
+            int32_t s = 0, q0 = 0, q1 = 0, q2 = 0;
+            m32_corner_add(k0, o0[t], &s, &q0, &q1, &q2);
+            m32_corner_add(k1, o0[t], &s, &q0, &q1, &q2);
+            m32_corner_add(k2, o0[t], &s, &q0, &q1, &q2);
+            m32_corner_add(k3, o0[t], &s, &q0, &q1, &q2);
+            f[t] = np_simplex_out_f(&mdl_default_d, kf, s);
+            dx[t] = np_simplex_out_d(&mdl_default_d, kd, q0);
+            dy[t] = np_simplex_out_d(&mdl_default_d, kd, q1);
+            dz[t] = np_simplex_out_d(&mdl_default_d, kd, q2);
+        }
 }
 
 /*
@@ -469,13 +499,13 @@ NP_SWEEP_INLINE void m32_row(uint16_t x0, uint16_t y, uint16_t z, int32_t *f, in
     uint32_t key[NP_SWEEP_ROW];
     mdl_pass1(x0, y, z, o0, o1, o2, key);
     for (unsigned t = NP_SWEEP_ROW; t < PAD; t++)
-        o0[t] = o1[t] = o2[t] = 0; /* a valid offset (the cell's corner 0): no overflow in the spilled lanes */
+        o0[t] = 0; /* an offset: no overflow in the spilled lanes (m32_pass2) */
     unsigned t0 = 0;
     while (t0 < NP_SWEEP_ROW) {
         unsigned t1 = t0 + 1u;
         while (t1 < NP_SWEEP_ROW && key[t1] == key[t0])
             t1++;
-        m32_pass2(mdl_corners_cached(key[t0]), t0, t1, o0, o1, o2, of, ox, oy, oz);
+        m32_pass2(mdl_corners_cached(key[t0]), t0, t1, o0, o1[t0], o2[t0], of, ox, oy, oz);
         t0 = t1;
     }
     memcpy(f, of, NP_SWEEP_ROW * sizeof *f);
