@@ -95,21 +95,50 @@ typedef struct ref_corner {
 } ref_corner;
 
 /*
+ * A corner's constants over one run, with what depends on v and w alone:
+ * along a run only x (so u) changes; the cell, so fj, fk and the unskew
+ * (fi + fj + fk) / 6, are the run's (pass 1's key names them), and
+ * v = y - fj + s, w = z - fk + s are the same doubles for every input of it.
+ * So d1, d2, d1 d1, d2 d2, Y = G_y d1, Z = G_z d2 and Y + Z are computed once
+ * per run, by the same operations on the same operands: the same doubles.
+ */
+typedef struct ref_rcorner {
+    ref_corner k;
+    double d1, d2, d1s, d2s, Y, Z, YZ;
+} ref_rcorner;
+
+static ref_rcorner ref_run_corner(const ref_corner k, double v, double w)
+{
+    ref_rcorner r;
+    r.k = k;
+    r.d1 = v - k.a1 + k.sa;
+    r.d2 = w - k.a2 + k.sa;
+    r.d1s = r.d1 * r.d1;
+    r.d2s = r.d2 * r.d2;
+    r.Y = k.gy * r.d1;
+    r.Z = k.gz * r.d2;
+    r.YZ = r.Y + r.Z;
+    return r;
+}
+
+/*
  * One corner of np_ref_simplex3's corner loop at (u, v, w), in its order: d,
  * t, the gradient p + (q + r), f += 8 t^4 g, df += 8 t^4 G - 64 t^3 g d; a
  * corner with t < 0 is skipped by a select. The three orders of the gradient
  * sum are all computed and the one of the p axis is taken by weights 1, 0, 0
  * (1 g + 0 g' + 0 g'' == g when g != 0, and a zero when g is one): no
  * operation is under a condition and no select has a loop-invariant
- * condition, so GCC can if-convert and vectorise the loop.
+ * condition, so GCC can if-convert and vectorise the loop. v and w enter
+ * through the run's constants (ref_run_corner).
  */
-NP_SWEEP_INLINE void ref_corner_add(const ref_corner k, double u, double v, double w, const int deriv, double *f,
-                                    double *df0, double *df1, double *df2)
+NP_SWEEP_INLINE void ref_corner_add(const ref_rcorner r, double u, const int deriv, double *f, double *df0,
+                                    double *df1, double *df2)
 {
-    double d0 = u - k.a0 + k.sa, d1 = v - k.a1 + k.sa, d2 = w - k.a2 + k.sa;
-    double tt = .6 - d0 * d0 - d1 * d1 - d2 * d2;
-    double X = k.gx * d0, Y = k.gy * d1, Z = k.gz * d2;
-    double g1 = X + (Y + Z), g2 = Y + (Z + X), g0 = Z + (X + Y);
+    const ref_corner k = r.k;
+    double d0 = u - k.a0 + k.sa, d1 = r.d1, d2 = r.d2;
+    double tt = .6 - d0 * d0 - r.d1s - r.d2s; /* .6 - d0 d0 - d1 d1 - d2 d2, left to right */
+    double X = k.gx * d0, Y = r.Y, Z = r.Z;
+    double g1 = X + r.YZ, g2 = Y + (Z + X), g0 = Z + (X + Y);
     double g = (k.w1 * g1 + k.w2 * g2) + k.w0 * g0; /* one weight 1.0, two 0.0: the selected sum, or a zero */
     double t2 = tt * tt;
     double nf = *f + 8 * t2 * t2 * g;
@@ -126,34 +155,35 @@ NP_SWEEP_INLINE void ref_corner_add(const ref_corner k, double u, double v, doub
 }
 
 /*
- * Pass 2: the four corners of one simplex for the inputs [t0, t1) of a row.
- * Doubles only, in whole blocks of REF_LANES (one AVX-512 vector): a run is
- * 63 inputs on average and a remainder loop would run scalar. The last block
- * reads and writes up to REF_LANES - 1 inputs past t1; ref_row gives every
- * array that room, and the next run, or nothing, overwrites them.
+ * Pass 2: the four corners of one simplex for the inputs [t0, t1) of a row
+ * (v and w: the run's). Doubles only, in whole blocks of REF_LANES (one
+ * AVX-512 vector): a run is 63 inputs on average and a remainder loop would
+ * run scalar. The last block reads and writes up to REF_LANES - 1 inputs past
+ * t1; ref_row gives every array that room, and the next run, or nothing,
+ * overwrites them.
  */
 enum { REF_LANES = 8 };
 NP_SWEEP_INLINE void ref_pass2(const ref_corner *restrict cn, unsigned t0, unsigned t1, const double *restrict u,
-                               const double *restrict v, const double *restrict w, const int deriv,
-                               double *restrict rf, double *restrict rdx, double *restrict rdy,
-                               double *restrict rdz)
+                               double v, double w, const int deriv, double *restrict rf, double *restrict rdx,
+                               double *restrict rdy, double *restrict rdz)
 {
-    const ref_corner k0 = cn[0], k1 = cn[1], k2 = cn[2], k3 = cn[3];
+    const ref_rcorner k0 = ref_run_corner(cn[0], v, w), k1 = ref_run_corner(cn[1], v, w),
+                      k2 = ref_run_corner(cn[2], v, w), k3 = ref_run_corner(cn[3], v, w);
     for (unsigned b = t0; b < t1; b += REF_LANES)
         for (unsigned j = 0; j < REF_LANES; j++) {
-        unsigned t = b + j;
-        double f = 0.0, df0 = 0.0, df1 = 0.0, df2 = 0.0;
-        ref_corner_add(k0, u[t], v[t], w[t], deriv, &f, &df0, &df1, &df2);
-        ref_corner_add(k1, u[t], v[t], w[t], deriv, &f, &df0, &df1, &df2);
-        ref_corner_add(k2, u[t], v[t], w[t], deriv, &f, &df0, &df1, &df2);
-        ref_corner_add(k3, u[t], v[t], w[t], deriv, &f, &df0, &df1, &df2);
-        rf[t] = f;
-        if (deriv) {
-            rdx[t] = df0;
-            rdy[t] = df1;
-            rdz[t] = df2;
+            unsigned t = b + j;
+            double f = 0.0, df0 = 0.0, df1 = 0.0, df2 = 0.0;
+            ref_corner_add(k0, u[t], deriv, &f, &df0, &df1, &df2);
+            ref_corner_add(k1, u[t], deriv, &f, &df0, &df1, &df2);
+            ref_corner_add(k2, u[t], deriv, &f, &df0, &df1, &df2);
+            ref_corner_add(k3, u[t], deriv, &f, &df0, &df1, &df2);
+            rf[t] = f;
+            if (deriv) {
+                rdx[t] = df0;
+                rdy[t] = df1;
+                rdz[t] = df2;
+            }
         }
-    }
 }
 
 /* Appendix B's gradient coefficients of index h on x, y, z (np_ref_simplex3's grad_coef). */
@@ -232,13 +262,13 @@ NP_SWEEP_INLINE void ref_row(ref_cache *cache, const double *restrict xs, uint16
     double u[PAD], v[PAD], w[PAD], key[NP_SWEEP_ROW], of[PAD], ox[PAD], oy[PAD], oz[PAD];
     ref_pass1(xs, (double)yw / 256.0, (double)zw / 256.0, u, v, w, key);
     for (unsigned t = NP_SWEEP_ROW; t < PAD; t++)
-        u[t] = v[t] = w[t] = 0.0; /* finite values for the spilled lanes */
+        u[t] = 0.0; /* a finite value for the spilled lanes */
     unsigned t0 = 0;
     while (t0 < NP_SWEEP_ROW) {
         unsigned t1 = t0 + 1u;
         while (t1 < NP_SWEEP_ROW && key[t1] == key[t0])
             t1++;
-        ref_pass2(ref_corners_cached(cache, key[t0]), t0, t1, u, v, w, deriv, of, ox, oy, oz);
+        ref_pass2(ref_corners_cached(cache, key[t0]), t0, t1, u, v[t0], w[t0], deriv, of, ox, oy, oz);
         t0 = t1;
     }
     memcpy(rf, of, NP_SWEEP_ROW * sizeof *rf);
