@@ -101,7 +101,7 @@ endif()
 
 np_test_program(test_sweep test_sweep.c)
 np_add_cases(test_sweep sweep
-  kernel_model_cell kernel_ref_cell kernel_lattice kernel_random kernel_vs_plain_stats
+  kernel_model_cell kernel_ref_cell kernel_lattice kernel_random kernel_vs_plain_stats simplex3_pinned
   random_1e7 random_widths
   threads journal_resume journal_refuse kill_resume cheap_fails)
 set_tests_properties(sweep.kill_resume PROPERTIES ENVIRONMENT "NOISEPIPE=$<TARGET_FILE:noisepipe>")

@@ -339,6 +339,56 @@ static int t_kernel_vs_plain_stats(void)
     return 0;
 }
 
+/*
+ * simplex3's block statistics pinned, every bit: x cell 0xff of z = 0xfff1
+ * (the input words wrap), default configuration and deriv=0, through the
+ * sweep kernel. The values are the kernel's before its int32 model row and
+ * whole-block passes (issue 13; the same as the journal lines of
+ * `noisepipe sweep --unit simplex3 --z 0xfff1 --x-cells 255:256` then), so a
+ * faster kernel must leave every count, the maximum and where, the two sums
+ * and the histogram unchanged.
+ */
+static int t_simplex3_pinned(void)
+{
+    static const struct {
+        const char *config;
+        uint64_t cr;
+        double max_err;
+        uint16_t max_x, max_y;
+        double sum, sum2;
+        uint64_t hist[5];
+    } pins[] = {
+        { NULL, 16345130, 0x1.12d1b13c26p-1, 0xff04, 0xc0e9, 0x1.99d0a3400ade8p+22, 0x1.55d284df9e01ep+21,
+          { 66952, 984215, 4256669, 11037294, 432086 } },
+        { "deriv=0", 16459498, 0x1.2c1bb36ce9p-1, 0xff18, 0x7457, 0x1.007a6f7e63338p+22, 0x1.5776c5a0b602cp+20,
+          { 4197042, 4194501, 4193675, 3874280, 317718 } },
+    };
+    const np_unit *u = np_unit_find("simplex3");
+    NP_CHECK(u != NULL && u->sweep_rows != NULL, "simplex3 with a sweep kernel");
+    if (!u)
+        return 0;
+    for (unsigned k = 0; k < sizeof pins / sizeof pins[0]; k++) {
+        np_unit_cfg cfg;
+        configure(u, &cfg, pins[k].config);
+        np_sweep_stats want, got;
+        np_sweep_stats_init(&want);
+        want.n = NP_SWEEP_BLOCK_INPUTS;
+        want.cr = pins[k].cr;
+        want.over = 0;
+        want.max_err = pins[k].max_err;
+        want.max_x = pins[k].max_x;
+        want.max_y = pins[k].max_y;
+        want.sum = pins[k].sum;
+        want.sum2 = pins[k].sum2;
+        memcpy(want.hist, pins[k].hist, sizeof pins[k].hist);
+        NP_CHECK(np_sweep_block(u, &cfg, 0xfff1, 0xff, 1, &got) == 0, "block");
+        print_stats(pins[k].config ? pins[k].config : "default", &got);
+        NP_CHECK(np_sweep_stats_equal(&got, &want), "simplex3 %s: block statistics differ from the pinned ones",
+                 cfg_name(pins[k].config));
+    }
+    return 0;
+}
+
 /* Count the complete block lines of a journal. */
 static unsigned journal_blocks(const char *path)
 {
@@ -524,6 +574,7 @@ static const np_test_case cases[] = {
     { "kernel_lattice", t_kernel_lattice },
     { "kernel_random", t_kernel_random },
     { "kernel_vs_plain_stats", t_kernel_vs_plain_stats },
+    { "simplex3_pinned", t_simplex3_pinned },
     { "random_1e7", t_random_1e7 },
     { "random_widths", t_random_widths },
     { "threads", t_threads },
