@@ -338,17 +338,25 @@ static int t_simplex_kernel_block(void)
     return 0;
 }
 
-/* Random kernel calls (x cell, y, z random) in four configurations. */
+/*
+ * Random kernel calls (x cell, y, z random) in four configurations, with the
+ * reference row's selects in each form (masked `?:` and bit patterns,
+ * np_sweep_simplex3_force_bits), whichever the CPU would pick.
+ */
 static int t_simplex_kernel_random(void)
 {
     static const char *const configs[] = { NULL, "deriv=0", "out_bits=8,dout_bits=10", "t_frac=12,p_frac=10" };
     np_rng r;
     np_rng_seed(&r, 0x6661737433ull);
-    for (unsigned k = 0; k < 4; k++) {
-        uint64_t bad = simplex_kernel_check(configs[k], 0, 0, 0, 0, &r, 200);
-        printf("simplex3 sweep kernel, %s: 200 random calls (409600 inputs), %llu mismatches\n",
-               configs[k] ? configs[k] : "default", (unsigned long long)bad);
+    for (int bits = 0; bits <= 1; bits++) {
+        np_sweep_simplex3_force_bits(bits);
+        for (unsigned k = 0; k < 4; k++) {
+            uint64_t bad = simplex_kernel_check(configs[k], 0, 0, 0, 0, &r, 200);
+            printf("simplex3 sweep kernel, %s, reference selects %s: 200 random calls (409600 inputs), %llu mismatches\n",
+                   configs[k] ? configs[k] : "default", bits ? "on bits" : "as ?:", (unsigned long long)bad);
+        }
     }
+    np_sweep_simplex3_force_bits(-1);
     return 0;
 }
 

@@ -123,6 +123,12 @@ void np_sweep_rows_generic(const np_unit *u, const void *cfg, uint16_t x0, uint1
 struct np_simplex_cfg;
 void np_sweep_simplex3_rows(const struct np_simplex_cfg *cfg, uint16_t x0, uint16_t y0, uint16_t z,
                             unsigned rows, unsigned what, int32_t *code, double *ref);
+/*
+ * The reference row's selects: -1 by the CPU (AVX-512F: masked, else on bit
+ * patterns; the default), 0 or 1 forced, process-wide (for the tests, which
+ * check both forms on any CPU; not thread-safe against running sweeps).
+ */
+void np_sweep_simplex3_force_bits(int bits);
 
 /*
  * Statistics of one block (x cell xcell of slice z) in the calling thread;

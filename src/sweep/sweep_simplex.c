@@ -8,9 +8,8 @@
  *
  * The reference row. np_ref_simplex3 (src/ref/ref_simplex.c) per input, in
  * its order of operations, in two passes that GCC vectorises (-fopt-info-vec:
- * both loops in the x86-64-v4 clone; GCC 12 if-converts their selects only
- * with AVX-512 masks under -ftrapping-math, so the v3 and baseline clones run
- * them scalar):
+ * both loops in the x86-64-v4 and v3 clones; where AVX-512 is missing their
+ * selects are done on bit patterns, pick()):
  *  - pass 1 (ref_pass1), per input: the skew, floor(x + s) as a double fi (an
  *    integer < 2^9, by floor_pos: the same double as floor(), no call), the
  *    unskew, (u, v, w), and a key = (cell, the three rank comparisons) as an
@@ -57,10 +56,31 @@
  * not a call: GCC inlines floor() into a vector loop only with
  * -fno-trapping-math, which noisepipe does not use.
  */
-NP_SWEEP_INLINE double floor_pos(double a)
+/*
+ * c ? a : b (c = 0 or 1): a or b unchanged either way. bits = 0: the `?:`,
+ * which GCC 12 under -ftrapping-math if-converts only with AVX-512 masks
+ * (the v4 clone: masked operations, the fastest there); bits = 1: the same
+ * choice on the bit patterns (and, andnot, or), which the v3 and baseline
+ * clones vectorise too (they ran the reference row scalar). ref_row_bits()
+ * picks bits = 0 when the CPU has AVX-512F, else 1; both give the same
+ * doubles (a or b, bit for bit; fast.simplex_kernel_random runs both).
+ */
+NP_SWEEP_INLINE double pick(const int bits, int c, double a, double b)
+{
+    if (!bits)
+        return c ? a : b;
+    uint64_t ia, ib, m = (uint64_t)0 - (uint64_t)c;
+    memcpy(&ia, &a, sizeof ia);
+    memcpy(&ib, &b, sizeof ib);
+    ia = (ia & m) | (ib & ~m);
+    memcpy(&a, &ia, sizeof a);
+    return a;
+}
+
+NP_SWEEP_INLINE double floor_pos(const int bits, double a)
 {
     double n = (a + 0x1.8p52) - 0x1.8p52, n1 = n - 1.0;
-    return n > a ? n1 : n;
+    return pick(bits, n > a, n1, n);
 }
 
 /*
@@ -68,17 +88,17 @@ NP_SWEEP_INLINE double floor_pos(double a)
  * (u, v, w) and a key naming its simplex: the cell and the three rank
  * comparisons. Only doubles: the loop vectorises.
  */
-NP_SWEEP_INLINE void ref_pass1(const double *restrict xs, double y, double z, double *restrict u,
+NP_SWEEP_INLINE void ref_pass1(const int bits, const double *restrict xs, double y, double z, double *restrict u,
                                double *restrict v, double *restrict w, double *restrict key)
 {
     for (unsigned t = 0; t < NP_SWEEP_ROW; t++) {
         double x = xs[t];
         double s = (x + y + z) / 3;
-        double fi = floor_pos(x + s), fj = floor_pos(y + s), fk = floor_pos(z + s);
+        double fi = floor_pos(bits, x + s), fj = floor_pos(bits, y + s), fk = floor_pos(bits, z + s);
         s = (fi + fj + fk) / 6.;
         double uu = x - fi + s, vv = y - fj + s, ww = z - fk + s;
         /* the ranking reads u >= w, u >= v, v >= w (np_ref_simplex3's hi/lo rule) */
-        double rank = (uu >= ww ? 4.0 : 0.0) + (uu >= vv ? 2.0 : 0.0) + (vv >= ww ? 1.0 : 0.0);
+        double rank = (double)((uu >= ww) * 4 + (uu >= vv) * 2 + (vv >= ww)); /* 0..7, exact */
         u[t] = uu;
         v[t] = vv;
         w[t] = ww;
@@ -131,7 +151,7 @@ static ref_rcorner ref_run_corner(const ref_corner k, double v, double w)
  * condition, so GCC can if-convert and vectorise the loop. v and w enter
  * through the run's constants (ref_run_corner).
  */
-NP_SWEEP_INLINE void ref_corner_add(const ref_rcorner r, double u, const int deriv, double *f, double *df0,
+NP_SWEEP_INLINE void ref_corner_add(const int bits, const ref_rcorner r, double u, const int deriv, double *f, double *df0,
                                     double *df1, double *df2)
 {
     const ref_corner k = r.k;
@@ -142,15 +162,15 @@ NP_SWEEP_INLINE void ref_corner_add(const ref_rcorner r, double u, const int der
     double g = (k.w1 * g1 + k.w2 * g2) + k.w0 * g0; /* one weight 1.0, two 0.0: the selected sum, or a zero */
     double t2 = tt * tt;
     double nf = *f + 8 * t2 * t2 * g;
-    *f = tt < 0 ? *f : nf;
+    *f = pick(bits, tt < 0, *f, nf);
     if (deriv) {
         double t3 = t2 * tt, t4 = t2 * t2;
         double n0 = *df0 + (8 * t4 * k.gx - 64 * t3 * g * d0);
         double n1 = *df1 + (8 * t4 * k.gy - 64 * t3 * g * d1);
         double n2 = *df2 + (8 * t4 * k.gz - 64 * t3 * g * d2);
-        *df0 = tt < 0 ? *df0 : n0;
-        *df1 = tt < 0 ? *df1 : n1;
-        *df2 = tt < 0 ? *df2 : n2;
+        *df0 = pick(bits, tt < 0, *df0, n0);
+        *df1 = pick(bits, tt < 0, *df1, n1);
+        *df2 = pick(bits, tt < 0, *df2, n2);
     }
 }
 
@@ -163,7 +183,7 @@ NP_SWEEP_INLINE void ref_corner_add(const ref_rcorner r, double u, const int der
  * overwrites them.
  */
 enum { REF_LANES = 8 };
-NP_SWEEP_INLINE void ref_pass2(const ref_corner *restrict cn, unsigned t0, unsigned t1, const double *restrict u,
+NP_SWEEP_INLINE void ref_pass2(const int bits, const ref_corner *restrict cn, unsigned t0, unsigned t1, const double *restrict u,
                                double v, double w, const int deriv, double *restrict rf, double *restrict rdx,
                                double *restrict rdy, double *restrict rdz)
 {
@@ -173,10 +193,10 @@ NP_SWEEP_INLINE void ref_pass2(const ref_corner *restrict cn, unsigned t0, unsig
         for (unsigned j = 0; j < REF_LANES; j++) {
             unsigned t = b + j;
             double f = 0.0, df0 = 0.0, df1 = 0.0, df2 = 0.0;
-            ref_corner_add(k0, u[t], deriv, &f, &df0, &df1, &df2);
-            ref_corner_add(k1, u[t], deriv, &f, &df0, &df1, &df2);
-            ref_corner_add(k2, u[t], deriv, &f, &df0, &df1, &df2);
-            ref_corner_add(k3, u[t], deriv, &f, &df0, &df1, &df2);
+            ref_corner_add(bits, k0, u[t], deriv, &f, &df0, &df1, &df2);
+            ref_corner_add(bits, k1, u[t], deriv, &f, &df0, &df1, &df2);
+            ref_corner_add(bits, k2, u[t], deriv, &f, &df0, &df1, &df2);
+            ref_corner_add(bits, k3, u[t], deriv, &f, &df0, &df1, &df2);
             rf[t] = f;
             if (deriv) {
                 rdx[t] = df0;
@@ -254,13 +274,13 @@ static const ref_corner *ref_corners_cached(ref_cache *cache, double key)
 }
 
 /* One row of np_ref_simplex3 at xs[t], y / 256, z / 256: pass 1, then pass 2 over each run of one simplex. */
-NP_SWEEP_INLINE void ref_row(ref_cache *cache, const double *restrict xs, uint16_t yw, uint16_t zw,
+NP_SWEEP_INLINE void ref_row(const int bits, ref_cache *cache, const double *restrict xs, uint16_t yw, uint16_t zw,
                              const int deriv, double *restrict rf, double *restrict rdx, double *restrict rdy,
                              double *restrict rdz)
 {
     enum { PAD = NP_SWEEP_ROW + REF_LANES };
     double u[PAD], v[PAD], w[PAD], key[NP_SWEEP_ROW], of[PAD], ox[PAD], oy[PAD], oz[PAD];
-    ref_pass1(xs, (double)yw / 256.0, (double)zw / 256.0, u, v, w, key);
+    ref_pass1(bits, xs, (double)yw / 256.0, (double)zw / 256.0, u, v, w, key);
     for (unsigned t = NP_SWEEP_ROW; t < PAD; t++)
         u[t] = 0.0; /* a finite value for the spilled lanes */
     unsigned t0 = 0;
@@ -268,7 +288,7 @@ NP_SWEEP_INLINE void ref_row(ref_cache *cache, const double *restrict xs, uint16
         unsigned t1 = t0 + 1u;
         while (t1 < NP_SWEEP_ROW && key[t1] == key[t0])
             t1++;
-        ref_pass2(ref_corners_cached(cache, key[t0]), t0, t1, u, v[t0], w[t0], deriv, of, ox, oy, oz);
+        ref_pass2(bits, ref_corners_cached(cache, key[t0]), t0, t1, u, v[t0], w[t0], deriv, of, ox, oy, oz);
         t0 = t1;
     }
     memcpy(rf, of, NP_SWEEP_ROW * sizeof *rf);
@@ -280,15 +300,39 @@ NP_SWEEP_INLINE void ref_row(ref_cache *cache, const double *restrict xs, uint16
 }
 
 /* The row with and without the derivative, each compiled without a branch on it (so it vectorises). */
-NP_SWEEP_CLONES static void ref_row_d(ref_cache *cache, const double *xs, uint16_t y, uint16_t z, double *rf, double *rdx,
-                                      double *rdy, double *rdz)
+NP_SWEEP_CLONES static void ref_row_d(int bits, ref_cache *cache, const double *xs, uint16_t y, uint16_t z,
+                                      double *rf, double *rdx, double *rdy, double *rdz)
 {
-    ref_row(cache, xs, y, z, 1, rf, rdx, rdy, rdz);
+    if (bits)
+        ref_row(1, cache, xs, y, z, 1, rf, rdx, rdy, rdz);
+    else
+        ref_row(0, cache, xs, y, z, 1, rf, rdx, rdy, rdz);
 }
 
-NP_SWEEP_CLONES static void ref_row_f(ref_cache *cache, const double *xs, uint16_t y, uint16_t z, double *rf)
+NP_SWEEP_CLONES static void ref_row_f(int bits, ref_cache *cache, const double *xs, uint16_t y, uint16_t z,
+                                      double *rf)
 {
-    ref_row(cache, xs, y, z, 0, rf, NULL, NULL, NULL);
+    if (bits)
+        ref_row(1, cache, xs, y, z, 0, rf, NULL, NULL, NULL);
+    else
+        ref_row(0, cache, xs, y, z, 0, rf, NULL, NULL, NULL);
+}
+
+/* -1: by the CPU (ref_row_bits); 0 or 1: forced (np_sweep_simplex3_force_bits, for the tests). */
+static int ref_bits_forced = -1;
+
+void np_sweep_simplex3_force_bits(int bits) { ref_bits_forced = bits < 0 ? -1 : bits != 0; }
+
+/* The reference row's select form: masks (bits = 0) where AVX-512F is there, else bit patterns. */
+static int ref_row_bits(void)
+{
+    if (ref_bits_forced >= 0)
+        return ref_bits_forced;
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+    return !__builtin_cpu_supports("avx512f");
+#else
+    return 1;
+#endif
 }
 
 /* ---- The model row, in segments (the default configurations) ---- */
@@ -565,6 +609,7 @@ void np_sweep_simplex3_rows(const np_simplex_cfg *cfg, uint16_t x0, uint16_t y0,
                             unsigned what, int32_t *code, double *ref)
 {
     unsigned nf = cfg->deriv ? 4u : 1u;
+    const int bits = ref_row_bits();
     double xs_ref[NP_SWEEP_ROW]; /* the reference's x = word / 256, the same in every row */
     static _Thread_local ref_cache cache;
     static _Thread_local int cache_ready;
@@ -605,9 +650,9 @@ void np_sweep_simplex3_rows(const np_simplex_cfg *cfg, uint16_t x0, uint16_t y0,
             double *b = ref + (size_t)r * NP_SWEEP_ROW;
             size_t fs = (size_t)rows * NP_SWEEP_ROW;
             if (cfg->deriv)
-                ref_row_d(&cache, xs_ref, y, z, b, b + fs, b + 2 * fs, b + 3 * fs);
+                ref_row_d(bits, &cache, xs_ref, y, z, b, b + fs, b + 2 * fs, b + 3 * fs);
             else
-                ref_row_f(&cache, xs_ref, y, z, b);
+                ref_row_f(bits, &cache, xs_ref, y, z, b);
         }
     }
 }
