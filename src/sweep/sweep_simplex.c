@@ -273,6 +273,30 @@ static const ref_corner *ref_corners_cached(ref_cache *cache, double key)
     return cache->cn[e];
 }
 
+/*
+ * The runs of one key in a row from brk[t] = (key[t] != key[t - 1]) for
+ * 1 <= t < NP_SWEEP_ROW (a vector loop of the caller's; brk[0] unused):
+ * start[k] the first input of run k, k < n, and start[n] = NP_SWEEP_ROW;
+ * returns n. The flags are read eight at a time (a row has about four runs),
+ * instead of a scalar compare loop over every input.
+ */
+static unsigned row_runs(unsigned char *brk, unsigned short *start)
+{
+    unsigned n = 0;
+    brk[0] = 1;
+    for (unsigned w = 0; w < NP_SWEEP_ROW; w += 8) {
+        uint64_t word;
+        memcpy(&word, brk + w, sizeof word);
+        if (word == 0)
+            continue;
+        for (unsigned t = w; t < w + 8u; t++)
+            if (brk[t])
+                start[n++] = (unsigned short)t;
+    }
+    start[n] = NP_SWEEP_ROW;
+    return n;
+}
+
 /* One row of np_ref_simplex3 at xs[t], y / 256, z / 256: pass 1, then pass 2 over each run of one simplex. */
 NP_SWEEP_INLINE void ref_row(const int bits, ref_cache *cache, const double *restrict xs, uint16_t yw, uint16_t zw,
                              const int deriv, double *restrict rf, double *restrict rdx, double *restrict rdy,
@@ -283,13 +307,14 @@ NP_SWEEP_INLINE void ref_row(const int bits, ref_cache *cache, const double *res
     ref_pass1(bits, xs, (double)yw / 256.0, (double)zw / 256.0, u, v, w, key);
     for (unsigned t = NP_SWEEP_ROW; t < PAD; t++)
         u[t] = 0.0; /* a finite value for the spilled lanes */
-    unsigned t0 = 0;
-    while (t0 < NP_SWEEP_ROW) {
-        unsigned t1 = t0 + 1u;
-        while (t1 < NP_SWEEP_ROW && key[t1] == key[t0])
-            t1++;
+    unsigned char brk[NP_SWEEP_ROW];
+    unsigned short start[NP_SWEEP_ROW + 1];
+    for (unsigned t = 1; t < NP_SWEEP_ROW; t++)
+        brk[t] = key[t] != key[t - 1];
+    unsigned runs = row_runs(brk, start);
+    for (unsigned k = 0; k < runs; k++) {
+        unsigned t0 = start[k], t1 = start[k + 1];
         ref_pass2(bits, ref_corners_cached(cache, key[t0]), t0, t1, u, v[t0], w[t0], deriv, of, ox, oy, oz);
-        t0 = t1;
     }
     memcpy(rf, of, NP_SWEEP_ROW * sizeof *rf);
     if (deriv) {
@@ -574,13 +599,14 @@ NP_SWEEP_INLINE void m32_row(uint16_t x0, uint16_t y, uint16_t z, int32_t *f, in
     mdl_pass1(x0, y, z, o0, o1, o2, key);
     for (unsigned t = NP_SWEEP_ROW; t < PAD; t++)
         o0[t] = 0; /* an offset: no overflow in the spilled lanes (m32_pass2) */
-    unsigned t0 = 0;
-    while (t0 < NP_SWEEP_ROW) {
-        unsigned t1 = t0 + 1u;
-        while (t1 < NP_SWEEP_ROW && key[t1] == key[t0])
-            t1++;
+    unsigned char brk[NP_SWEEP_ROW];
+    unsigned short start[NP_SWEEP_ROW + 1];
+    for (unsigned t = 1; t < NP_SWEEP_ROW; t++)
+        brk[t] = key[t] != key[t - 1];
+    unsigned runs = row_runs(brk, start);
+    for (unsigned k = 0; k < runs; k++) {
+        unsigned t0 = start[k], t1 = start[k + 1];
         m32_pass2(mdl_corners_cached(key[t0]), t0, t1, o0, o1[t0], o2[t0], of, ox, oy, oz);
-        t0 = t1;
     }
     memcpy(f, of, NP_SWEEP_ROW * sizeof *f);
     memcpy(dx, ox, NP_SWEEP_ROW * sizeof *dx);
