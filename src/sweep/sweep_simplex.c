@@ -297,6 +297,23 @@ static unsigned row_runs(unsigned char *brk, unsigned short *start)
     return n;
 }
 
+/* row_runs of a row of keys: reference (double) and model (uint32) keys; the flag loops vectorise. */
+NP_SWEEP_INLINE unsigned runs_f64(const double *key, unsigned short *start)
+{
+    unsigned char brk[NP_SWEEP_ROW];
+    for (unsigned t = 1; t < NP_SWEEP_ROW; t++)
+        brk[t] = key[t] != key[t - 1];
+    return row_runs(brk, start);
+}
+
+NP_SWEEP_INLINE unsigned runs_u32(const uint32_t *key, unsigned short *start)
+{
+    unsigned char brk[NP_SWEEP_ROW];
+    for (unsigned t = 1; t < NP_SWEEP_ROW; t++)
+        brk[t] = key[t] != key[t - 1];
+    return row_runs(brk, start);
+}
+
 /* One row of np_ref_simplex3 at xs[t], y / 256, z / 256: pass 1, then pass 2 over each run of one simplex. */
 NP_SWEEP_INLINE void ref_row(const int bits, ref_cache *cache, const double *restrict xs, uint16_t yw, uint16_t zw,
                              const int deriv, double *restrict rf, double *restrict rdx, double *restrict rdy,
@@ -307,11 +324,8 @@ NP_SWEEP_INLINE void ref_row(const int bits, ref_cache *cache, const double *res
     ref_pass1(bits, xs, (double)yw / 256.0, (double)zw / 256.0, u, v, w, key);
     for (unsigned t = NP_SWEEP_ROW; t < PAD; t++)
         u[t] = 0.0; /* a finite value for the spilled lanes */
-    unsigned char brk[NP_SWEEP_ROW];
     unsigned short start[NP_SWEEP_ROW + 1];
-    for (unsigned t = 1; t < NP_SWEEP_ROW; t++)
-        brk[t] = key[t] != key[t - 1];
-    unsigned runs = row_runs(brk, start);
+    unsigned runs = runs_f64(key, start);
     for (unsigned k = 0; k < runs; k++) {
         unsigned t0 = start[k], t1 = start[k + 1];
         ref_pass2(bits, ref_corners_cached(cache, key[t0]), t0, t1, u, v[t0], w[t0], deriv, of, ox, oy, oz);
@@ -576,14 +590,10 @@ NP_SWEEP_INLINE void mdl_row(const np_simplex_cfg *cfg, uint16_t x0, uint16_t y,
     int32_t o0[NP_SWEEP_ROW], o1[NP_SWEEP_ROW], o2[NP_SWEEP_ROW];
     uint32_t key[NP_SWEEP_ROW];
     mdl_pass1(x0, y, z, o0, o1, o2, key);
-    unsigned t0 = 0;
-    while (t0 < NP_SWEEP_ROW) {
-        unsigned t1 = t0 + 1u;
-        while (t1 < NP_SWEEP_ROW && key[t1] == key[t0])
-            t1++;
-        mdl_pass2(cfg, mdl_corners_cached(key[t0]), t0, t1, o0, o1, o2, f, dx, dy, dz);
-        t0 = t1;
-    }
+    unsigned short start[NP_SWEEP_ROW + 1];
+    unsigned runs = runs_u32(key, start);
+    for (unsigned k = 0; k < runs; k++)
+        mdl_pass2(cfg, mdl_corners_cached(key[start[k]]), start[k], start[k + 1], o0, o1, o2, f, dx, dy, dz);
 }
 
 /*
@@ -599,11 +609,8 @@ NP_SWEEP_INLINE void m32_row(uint16_t x0, uint16_t y, uint16_t z, int32_t *f, in
     mdl_pass1(x0, y, z, o0, o1, o2, key);
     for (unsigned t = NP_SWEEP_ROW; t < PAD; t++)
         o0[t] = 0; /* an offset: no overflow in the spilled lanes (m32_pass2) */
-    unsigned char brk[NP_SWEEP_ROW];
     unsigned short start[NP_SWEEP_ROW + 1];
-    for (unsigned t = 1; t < NP_SWEEP_ROW; t++)
-        brk[t] = key[t] != key[t - 1];
-    unsigned runs = row_runs(brk, start);
+    unsigned runs = runs_u32(key, start);
     for (unsigned k = 0; k < runs; k++) {
         unsigned t0 = start[k], t1 = start[k + 1];
         m32_pass2(mdl_corners_cached(key[t0]), t0, t1, o0, o1[t0], o2[t0], of, ox, oy, oz);
