@@ -164,7 +164,9 @@ static int bu_points_vectors(bu_unit *b, char *err, size_t errlen)
     np_vec_header h;
     np_vecgen g;
     np_vec_rec rec;
-    if (np_vec_header_init(&h, b->u, "", err, errlen) != 0 || np_vecgen_init(&g, &h, 1, 1, BU_N, err, errlen) != 0)
+    char spec[512];
+    np_unit_cfg_format_opt(b->u, &b->cfg, NP_UNIT_FMT_COMMAS, spec, sizeof spec);
+    if (np_vec_header_init(&h, b->u, spec, err, errlen) != 0 || np_vecgen_init(&g, &h, 1, 1, BU_N, err, errlen) != 0)
         return -1;
     size_t p = 0;
     while (p < BU_N && np_vecgen_next(&g, &rec)) {
@@ -375,8 +377,8 @@ static void bu_free(bu_unit *b)
 }
 
 /* One unit's row; 0, or -1 with err. */
-static int bu_row(const np_unit *u, float *fx, float *fy, float *fz, double secs, double stb, char *err,
-                  size_t errlen)
+static int bu_row(const np_unit *u, const char *spec, float *fx, float *fy, float *fz, double secs, double stb,
+                  char *err, size_t errlen)
 {
     bu_unit b;
     memset(&b, 0, sizeof b);
@@ -384,7 +386,7 @@ static int bu_row(const np_unit *u, float *fx, float *fy, float *fz, double secs
     b.fx = fx;
     b.fy = fy;
     b.fz = fz;
-    if (np_unit_configure(u, &b.cfg, NULL, err, errlen) != 0)
+    if (np_unit_configure(u, &b.cfg, spec, err, errlen) != 0)
         return -1;
     u->fields(&b.cfg, &b.f);
     b.in = malloc((size_t)BU_N * b.f.n_in * sizeof *b.in);
@@ -422,13 +424,23 @@ static int bu_row(const np_unit *u, float *fx, float *fy, float *fz, double secs
     return 0;
 }
 
-int np_bench_units(double secs, const char *only)
+int np_bench_units(double secs, const char *only, const char *spec)
 {
     if (only && !np_unit_find(only)) {
         char names[1024];
         np_vec_unit_names(names, sizeof names);
         np_err("bench", "--unit %s: unknown unit (units: %s)", only, names);
         return NP_EXIT_USAGE;
+    }
+    if (spec && !*spec)
+        spec = NULL;
+    if (only && spec) { /* a bad configuration is refused before anything is measured */
+        np_unit_cfg c;
+        char err[512];
+        if (np_unit_configure(np_unit_find(only), &c, spec, err, sizeof err) != 0) {
+            np_err("bench", "--config %s: %s", spec, err);
+            return NP_EXIT_USAGE;
+        }
     }
     size_t n_units = 0;
     while (np_unit_at(n_units))
@@ -447,10 +459,10 @@ int np_bench_units(double secs, const char *only)
     }
     double load[1] = { 0 };
     int have_load = getloadavg(load, 1) == 1;
-    printf("\nevery unit, default configuration, %u evaluations, one thread, about %.2f s per figure;\n"
+    printf("\nevery unit, %s configuration, %u evaluations, one thread, about %.2f s per figure;\n"
            "M evaluations per CPU second (cycle model: M cycles) and x stb, the ratio to stb_perlin_noise3\n"
            "on the noise units' points in this run; load average %.2f at the start\n",
-           (unsigned)BU_N, secs, have_load ? load[0] : -1.0);
+           spec ? spec : "default", (unsigned)BU_N, secs, have_load ? load[0] : -1.0);
     printf("%-9s %-16s %17s %17s %17s %17s %17s  %s\n", "unit", "evaluation", "per input", "batch",
            "kernel", "reference", "cycle model", "batch path");
     bu_unit s;
@@ -476,7 +488,7 @@ int np_bench_units(double secs, const char *only)
         if (only && strcmp(u->name, only) != 0)
             continue;
         char err[512];
-        if (bu_row(u, fx, fy, fz, secs, stb, err, sizeof err) != 0) {
+        if (bu_row(u, spec, fx, fy, fz, secs, stb, err, sizeof err) != 0) {
             np_err("bench", "%s", err);
             rc = NP_EXIT_USAGE;
         }

@@ -22,7 +22,7 @@
 #include "bench_units.h"
 
 static const char usage_text[] =
-    "usage: noisepipe bench [--seconds S] [--unit U|all]\n"
+    "usage: noisepipe bench [--seconds S] [--unit U|all [--config K=V,...]]\n"
     "\n"
     "Measures, for the classic3 unit in its default configuration: the bit-exact model\n"
     "per input and through the sweep kernel, the float reference likewise, the\n"
@@ -36,7 +36,7 @@ static const char usage_text[] =
     "evaluations, S/4 per figure): per input, batch (np_unit_eval_n), sweep kernel,\n"
     "float reference per input and cycle model, each in M per CPU second and as a\n"
     "ratio to stb_perlin_noise3 measured in the same run. --unit U: only that table,\n"
-    "only unit U, S per figure (all: every unit).\n";
+    "only unit U, S per figure (all: every unit); --config: unit U's configuration.\n";
 
 /* Sink for results, so that no evaluation is optimised away. */
 static volatile uint64_t sink;
@@ -437,7 +437,7 @@ static void bench_verilated(double secs)
 int np_cmd_bench(int argc, char **argv)
 {
     double secs = 1.0;
-    const char *only = NULL; /* --unit: only the table of every unit */
+    const char *only = NULL, *spec = NULL; /* --unit: only the table of every unit; --config: U's configuration */
     for (int k = 1; k < argc; k++) {
         if (strcmp(argv[k], "--help") == 0 || strcmp(argv[k], "-h") == 0) {
             fputs(usage_text, stdout);
@@ -451,13 +451,19 @@ int np_cmd_bench(int argc, char **argv)
             }
         } else if (strcmp(argv[k], "--unit") == 0 && k + 1 < argc) {
             only = argv[++k];
+        } else if (strcmp(argv[k], "--config") == 0 && k + 1 < argc) {
+            spec = argv[++k];
         } else {
             np_err("bench", "unknown option '%s' (see --help)", argv[k]);
             return NP_EXIT_USAGE;
         }
     }
+    if (spec && (!only || strcmp(only, "all") == 0)) {
+        np_err("bench", "--config needs --unit U (one unit)");
+        return NP_EXIT_USAGE;
+    }
     if (only)
-        return np_bench_units(secs, strcmp(only, "all") == 0 ? NULL : only);
+        return np_bench_units(secs, strcmp(only, "all") == 0 ? NULL : only, spec);
     const np_unit *u = np_unit_find("classic3");
     np_unit_cfg cfg;
     char err[512], cfgtext[256];
@@ -523,6 +529,6 @@ int np_cmd_bench(int argc, char **argv)
            per_cpu_s(sw) > 0 ? 4294967296.0 / per_cpu_s(sw) / r.threads : 0.0, r.threads);
     int rc = bench_units(secs, u);
     bench_verilated(secs);
-    int rc_all = np_bench_units(secs / 4.0, NULL);
+    int rc_all = np_bench_units(secs / 4.0, NULL, NULL);
     return rc != NP_EXIT_OK ? rc : rc_all;
 }
