@@ -306,6 +306,13 @@ void np_unit_eval_n(const np_unit *u, const void *cfg, const uint64_t *in, uint6
 /* The fallback: u->eval per point (gathering each point's words), whatever u->eval_n is. */
 void np_unit_eval_n_generic(const np_unit *u, const void *cfg, const uint64_t *in, uint64_t *out, size_t n);
 
+/* For an eval_n that works in chunks: field f of points i0 .. i0+m-1 of an n-point batch, as u16 words. */
+static inline void np_unit_chunk_u16(const uint64_t *in, size_t n, unsigned f, size_t i0, size_t m, uint16_t *dst)
+{
+    for (size_t i = 0; i < m; i++)
+        dst[i] = (uint16_t)in[f * n + i0 + i];
+}
+
 /* One register of a unit's register block (np_unit.regs). */
 typedef struct np_unit_reg {
     char name[16];   /* "tr0.kx" */

@@ -70,11 +70,9 @@ static void eval_n(const void *cfg, const uint64_t *in, uint64_t *out, size_t n)
     int32_t f[CHUNK];
     for (size_t i0 = 0; i0 < n; i0 += CHUNK) {
         size_t m = n - i0 < CHUNK ? n - i0 : CHUNK;
-        for (size_t i = 0; i < m; i++) {
-            x[i] = (uint16_t)in[i0 + i];
-            y[i] = (uint16_t)in[n + i0 + i];
-            z[i] = (uint16_t)in[2 * n + i0 + i];
-        }
+        np_unit_chunk_u16(in, n, 0, i0, m, x);
+        np_unit_chunk_u16(in, n, 1, i0, m, y);
+        np_unit_chunk_u16(in, n, 2, i0, m, z);
         np_classic_eval_n(&k->c, x, y, z, f, m);
         for (size_t i = 0; i < m; i++)
             out[i0 + i] = np_trunc_u((uint64_t)(int64_t)f[i], k->c.out_bits);
