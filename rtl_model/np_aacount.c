@@ -316,12 +316,18 @@ static void bus_put(uint64_t *words, unsigned *pos, uint64_t v, unsigned bits)
             words[*pos / 64u] |= (uint64_t)1 << (*pos % 64u);
 }
 
+/*
+ * The field of bits (1..64) at bit *pos of the bus, LSB first, from the one
+ * or two words it lies in (never a word past the field's last bit).
+ */
 static uint64_t bus_get(const uint64_t *words, unsigned *pos, unsigned bits)
 {
-    uint64_t v = 0;
-    for (unsigned b = 0; b < bits; b++, (*pos)++)
-        v |= (words[*pos / 64u] >> (*pos % 64u) & 1u) << b;
-    return v;
+    const unsigned w = *pos / 64u, s = *pos % 64u;
+    uint64_t v = words[w] >> s;
+    if (s + bits > 64u)
+        v |= words[w + 1u] << (64u - s);
+    *pos += bits;
+    return bits >= 64u ? v : v & ((UINT64_C(1) << bits) - 1u);
 }
 
 void np_aacount_bus_pack(const np_aacount_cfg *cfg, const np_aacount_win *w, uint64_t *words)

@@ -72,11 +72,29 @@ enum {
 /* Lookups of the n-D hash: ceil(8n / 3) (8 for n = 3). */
 static inline unsigned np_hashn_lookups(unsigned n) { return (8u * n + 2u) / 3u; }
 
-/* 6-bit index (u6) of the lattice point c[0..n) (each u8), n = 2..5. n = 3: np_hash6. */
+/*
+ * 6-bit index (u6) of the lattice point c[0..n) (each u8), n = 2..5: n = 3
+ * np_hash6, the others np_hashn_table (the same bits as np_hashn_stream).
+ */
 uint8_t np_hashn(unsigned n, const uint8_t *c);
 
-/* The same by the generic bit stream for n = 3 as well (the test compares it with np_hash6). */
+/*
+ * The specification: the same by the generic bit stream above, for n = 3 as
+ * well (the tests compare it with np_hash6 over all 2^24 points, and with
+ * np_hashn_table).
+ */
 uint8_t np_hashn_stream(unsigned n, const uint8_t *c);
+
+/*
+ * Tables: the fast path, np_hashn_stream's bits (ndim.hash_tables checks
+ * every entry of every table, and random points). Every lookup reads bits of
+ * one group of three bit planes (3n stream bits are exactly n lookups, and
+ * every plane is n stream bits), so h is the sum mod 64 of three partial
+ * sums, each a function of planes 0..2, 3..5 and 6..7 of the n coordinates:
+ * three tables of 2^(3n) u6 entries per n (n = 5: 3 x 32 KB), built at the
+ * first call (thread-safe). n = 3: np_hash6_fast.
+ */
+uint8_t np_hashn_table(unsigned n, const uint8_t *c);
 
 /*
  * Gradient coefficients of index h in n dimensions: coef[0..n) in {-1, 0, 1}.

@@ -9,6 +9,7 @@
 
 #include "np_kat.h"
 #include "np_rng.h"
+#include "np_stream.h"
 #include "np_test.h"
 #include "np_vec.h"
 #include "np_widths.h"
@@ -421,6 +422,151 @@ static int golden_vectors(const np_unit *u, const np_conf_env *e)
     return 0;
 }
 
+/* --- batch --- */
+
+enum { BATCH_MAX = 1u << 16, BATCH_RANDOM = 4096, BATCH_RUN = 256 };
+
+typedef struct batch_cases {
+    np_unit_fields f;
+    size_t n;
+    uint64_t (*in)[NP_UNIT_MAX_FIELDS]; /* point i's input words */
+} batch_cases;
+
+static void batch_add(batch_cases *c, const uint64_t *in)
+{
+    if (c->n < BATCH_MAX)
+        memcpy(c->in[c->n++], in, sizeof c->in[0]);
+}
+
+/*
+ * The points of the check: the unit's boundary table; then a stream unit's
+ * runs of consecutive beats (what a batch of a span unit is) of its
+ * annotated descriptors and of random ones, else the generator's level-1
+ * walks and BATCH_RANDOM weighted random cases.
+ */
+static void batch_collect(const np_unit *u, const np_vec_header *h, batch_cases *c)
+{
+    static uint64_t bnd[4096][NP_UNIT_MAX_FIELDS];
+    size_t nb = u->boundary(&h->cfg, bnd, 4096);
+    for (size_t i = 0; i < nb && i < 4096; i++)
+        batch_add(c, bnd[i]);
+    if (u->stream) {
+        const np_unit_stream *st = u->stream;
+        size_t nd = st->descriptors ? st->descriptors(&h->cfg, bnd, 4096) : 0;
+        np_rng g;
+        np_rng_seed(&g, 11);
+        for (size_t d = 0; d < (nd < 4096 ? nd : 4096) + 16; d++) {
+            uint64_t desc[NP_UNIT_MAX_FIELDS] = { 0 };
+            if (d < nd && d < 4096)
+                memcpy(desc, bnd[d], sizeof desc);
+            else
+                st->random_desc(&h->cfg, &g, desc);
+            uint64_t b = st->beats(&h->cfg, desc), m = b < BATCH_RUN ? b : BATCH_RUN;
+            for (uint64_t k = 0; k < m; k++) {
+                desc[st->n_desc] = k;
+                batch_add(c, desc);
+            }
+        }
+        return;
+    }
+    np_vecgen g;
+    np_vec_rec rec;
+    char err[NP_VEC_ERRLEN];
+    if (np_vecgen_init(&g, h, 1, 5, BATCH_RANDOM, err, sizeof err) != 0) {
+        NP_CHECK(0, "%s: %s", u->name, err);
+        return;
+    }
+    while (np_vecgen_next(&g, &rec))
+        batch_add(c, rec.w[NP_VEC_IN]);
+    np_vecgen_free(&g);
+}
+
+/*
+ * np_unit_eval_n over the points at order[0..n) in calls of `chunk` points
+ * (the last one shorter); 0, or 1 after recording the first point whose
+ * words differ from eval's (want).
+ */
+static int batch_compare(const np_unit *u, const np_vec_header *h, const batch_cases *c, const size_t *order,
+                         size_t chunk, const uint64_t (*want)[NP_UNIT_MAX_FIELDS], uint64_t *in, uint64_t *out,
+                         const char *how)
+{
+    for (size_t i0 = 0; i0 < c->n; i0 += chunk) {
+        size_t m = c->n - i0 < chunk ? c->n - i0 : chunk;
+        for (size_t i = 0; i < m; i++)
+            for (unsigned k = 0; k < c->f.n_in; k++)
+                in[k * m + i] = c->in[order[i0 + i]][k];
+        np_unit_eval_n(u, &h->cfg, in, out, m);
+        for (size_t i = 0; i < m; i++)
+            for (unsigned k = 0; k < c->f.n_out; k++) {
+                const size_t p = order[i0 + i];
+                if (out[k * m + i] == want[p][k])
+                    continue;
+                char ins[256] = "";
+                for (unsigned a = 0; a < c->f.n_in; a++)
+                    snprintf(ins + strlen(ins), sizeof ins - strlen(ins), "%s%s=%" PRIx64, a ? " " : "",
+                             c->f.in[a].name, c->in[p][a]);
+                NP_CHECK(0, "%s [%s] %s, chunk %zu: %s => %s %" PRIx64 " expected (eval): %" PRIx64, u->name,
+                         h->cfg_text, how, chunk, ins, c->f.out[k].name, out[k * m + i], want[p][k]);
+                return 1;
+            }
+    }
+    return 0;
+}
+
+static int batch(const np_unit *u, const np_conf_env *e)
+{
+    (void)e;
+    const char *cfgs[MAX_CONFIGS];
+    unsigned nc = configs_of(u, cfgs);
+    batch_cases c;
+    c.in = malloc(BATCH_MAX * sizeof c.in[0]);
+    uint64_t(*want)[NP_UNIT_MAX_FIELDS] = malloc(BATCH_MAX * sizeof want[0]);
+    size_t *order = malloc(BATCH_MAX * sizeof *order), *shuffled = malloc(BATCH_MAX * sizeof *shuffled);
+    uint64_t *in = malloc((size_t)BATCH_MAX * NP_UNIT_MAX_FIELDS * sizeof *in);
+    uint64_t *out = malloc((size_t)BATCH_MAX * NP_UNIT_MAX_FIELDS * sizeof *out);
+    NP_CHECK(c.in && want && order && shuffled && in && out, "out of memory");
+    for (unsigned q = 0; q < nc && c.in && want && order && shuffled && in && out; q++) {
+        np_vec_header h;
+        if (header(&h, u, cfgs[q]) != 0)
+            continue;
+        u->fields(&h.cfg, &c.f);
+        c.n = 0;
+        batch_collect(u, &h, &c);
+        np_rng g;
+        np_rng_seed(&g, 17 + q);
+        for (size_t i = 0; i < c.n; i++) {
+            order[i] = shuffled[i] = i;
+            u->eval(&h.cfg, c.in[i], want[i]);
+        }
+        for (size_t i = c.n; i > 1; i--) { /* Fisher-Yates */
+            size_t j = (size_t)(np_rng_next(&g) % i), t = shuffled[i - 1];
+            shuffled[i - 1] = shuffled[j];
+            shuffled[j] = t;
+        }
+        /* One call; runs of a span's length and odd sizes (a chunk's edge inside a run); one point a call. */
+        static const size_t chunks[] = { BATCH_MAX, BATCH_RUN, 7, 1 };
+        int bad = 0;
+        for (unsigned k = 0; k < sizeof chunks / sizeof chunks[0] && !bad; k++)
+            bad = batch_compare(u, &h, &c, order, chunks[k], (const uint64_t(*)[NP_UNIT_MAX_FIELDS])want, in, out,
+                                "in order");
+        for (unsigned k = 0; k < 2 && !bad; k++)
+            bad = batch_compare(u, &h, &c, shuffled, chunks[k], (const uint64_t(*)[NP_UNIT_MAX_FIELDS])want, in,
+                                out, "shuffled");
+        printf("%s [%s]: %zu points (boundary table, %s): %s, in order in calls of %u, 256, 7 and 1 points "
+               "and shuffled: %s\n",
+               u->name, h.cfg_text, c.n, u->stream ? "runs of consecutive beats" : "level-1 walks and random",
+               u->eval_n ? "the unit's eval_n" : "the generic np_unit_eval_n", (unsigned)BATCH_MAX,
+               bad ? "DIFFERS" : "every word equals eval's");
+    }
+    free(c.in);
+    free(want);
+    free(order);
+    free(shuffled);
+    free(in);
+    free(out);
+    return 0;
+}
+
 /* --- kat --- */
 
 static int kat(const np_unit *u, const np_conf_env *e)
@@ -441,6 +587,7 @@ const np_conf_check np_conf_checks[] = {
     { "cfg_roundtrip", cfg_roundtrip },
     { "golden_vectors", golden_vectors },
     { "kat", kat },
+    { "batch", batch },
     { NULL, NULL },
 };
 

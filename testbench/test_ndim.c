@@ -40,6 +40,46 @@ static int hash3_is_seed(void)
     return 0;
 }
 
+/*
+ * np_hashn_table against the bit stream: n = 2 at all 2^16 points; for
+ * n = 2..5 every entry of every table (chunk q's planes set to each index,
+ * the other planes random) and 10^6 random points; n = 3 the same (there the
+ * table is np_hash6_fast: hash3_is_seed and fast.hash_exhaustive cover it).
+ */
+static int hash_tables(void)
+{
+    np_rng r;
+    np_rng_seed(&r, 0x6861736874ULL);
+    uint64_t diff = 0, pts = 0;
+    for (uint32_t v = 0; v < (1u << 16); v++, pts++) {
+        uint8_t c[2] = { (uint8_t)v, (uint8_t)(v >> 8) };
+        diff += np_hashn_table(2, c) != np_hashn_stream(2, c);
+    }
+    for (unsigned n = 2; n <= 5; n++) {
+        uint64_t d0 = diff;
+        for (unsigned q = 0; q < 3; q++)
+            for (uint32_t idx = 0; idx < (1u << (3u * n)); idx++, pts++) {
+                uint8_t c[5];
+                uint64_t w = np_rng_next(&r);
+                for (unsigned a = 0; a < n; a++) {
+                    unsigned mine = (idx >> (3u * a) & 7u) << (3u * q), keep = (7u << (3u * q)) & 255u;
+                    c[a] = (uint8_t)(((unsigned)(w >> (8u * a)) & ~keep) | (mine & 255u));
+                }
+                diff += np_hashn_table(n, c) != np_hashn_stream(n, c);
+            }
+        for (unsigned k = 0; k < 1000000; k++, pts++) {
+            uint64_t w = np_rng_next(&r);
+            uint8_t c[5] = { (uint8_t)w, (uint8_t)(w >> 8), (uint8_t)(w >> 16), (uint8_t)(w >> 24), (uint8_t)(w >> 32) };
+            diff += np_hashn_table(n, c) != np_hashn_stream(n, c);
+        }
+        printf("n = %u: table hash against the bit stream: %llu differences (every table entry, 10^6 random)\n", n,
+               (unsigned long long)(diff - d0));
+    }
+    printf("%llu points, %llu differences\n", (unsigned long long)pts, (unsigned long long)diff);
+    NP_CHECK(diff == 0, "%llu points where np_hashn_table differs from np_hashn_stream", (unsigned long long)diff);
+    return 0;
+}
+
 static int hash_distribution(void)
 {
     /* Enumerate n = 2 (2^16 points) and n = 3 (2^24) and compare with the convolution. */
@@ -609,6 +649,7 @@ static int registry(void)
 
 static const np_test_case cases[] = {
     { "hash3_is_seed", hash3_is_seed },
+    { "hash_tables", hash_tables },
     { "hash_distribution", hash_distribution },
     { "grad_sets", grad_sets },
     { "sorting_networks", sorting_networks },

@@ -19,8 +19,10 @@
 #include "np_sweep.h"
 #include "np_unit.h"
 
+#include "bench_units.h"
+
 static const char usage_text[] =
-    "usage: noisepipe bench [--seconds S]\n"
+    "usage: noisepipe bench [--seconds S] [--unit U|all [--config K=V,...]]\n"
     "\n"
     "Measures, for the classic3 unit in its default configuration: the bit-exact model\n"
     "per input and through the sweep kernel, the float reference likewise, the\n"
@@ -28,7 +30,13 @@ static const char usage_text[] =
     "time of a full z slice (2^32 inputs); every unit's per-input, batch and kernel\n"
     "speeds beside stb_perlin_noise3; and the C cycle models beside the Verilated RTL\n"
     "on the same stimulus (when CTest has built the co-simulation; skipped with a line\n"
-    "saying why otherwise). S: seconds per figure (default 1, 0.05..60).\n";
+    "saying why otherwise). S: seconds per figure (default 1, 0.01..60).\n"
+    "\n"
+    "Then the table of every registered unit (default configuration, 65,536\n"
+    "evaluations, S/4 per figure): per input, batch (np_unit_eval_n), sweep kernel,\n"
+    "float reference per input and cycle model, each in M per CPU second and as a\n"
+    "ratio to stb_perlin_noise3 measured in the same run. --unit U: only that table,\n"
+    "only unit U, S per figure (all: every unit); --config: unit U's configuration.\n";
 
 /* Sink for results, so that no evaluation is optimised away. */
 static volatile uint64_t sink;
@@ -429,6 +437,7 @@ static void bench_verilated(double secs)
 int np_cmd_bench(int argc, char **argv)
 {
     double secs = 1.0;
+    const char *only = NULL, *spec = NULL; /* --unit: only the table of every unit; --config: U's configuration */
     for (int k = 1; k < argc; k++) {
         if (strcmp(argv[k], "--help") == 0 || strcmp(argv[k], "-h") == 0) {
             fputs(usage_text, stdout);
@@ -436,15 +445,25 @@ int np_cmd_bench(int argc, char **argv)
         } else if (strcmp(argv[k], "--seconds") == 0 && k + 1 < argc) {
             char *end;
             secs = strtod(argv[++k], &end);
-            if (*end != '\0' || !(secs >= 0.05 && secs <= 60.0)) {
-                np_err("bench", "--seconds %s: expected 0.05..60", argv[k]);
+            if (*end != '\0' || !(secs >= 0.01 && secs <= 60.0)) {
+                np_err("bench", "--seconds %s: expected 0.01..60", argv[k]);
                 return NP_EXIT_USAGE;
             }
+        } else if (strcmp(argv[k], "--unit") == 0 && k + 1 < argc) {
+            only = argv[++k];
+        } else if (strcmp(argv[k], "--config") == 0 && k + 1 < argc) {
+            spec = argv[++k];
         } else {
             np_err("bench", "unknown option '%s' (see --help)", argv[k]);
             return NP_EXIT_USAGE;
         }
     }
+    if (spec && (!only || strcmp(only, "all") == 0)) {
+        np_err("bench", "--config needs --unit U (one unit)");
+        return NP_EXIT_USAGE;
+    }
+    if (only)
+        return np_bench_units(secs, strcmp(only, "all") == 0 ? NULL : only, spec);
     const np_unit *u = np_unit_find("classic3");
     np_unit_cfg cfg;
     char err[512], cfgtext[256];
@@ -510,5 +529,6 @@ int np_cmd_bench(int argc, char **argv)
            per_cpu_s(sw) > 0 ? 4294967296.0 / per_cpu_s(sw) / r.threads : 0.0, r.threads);
     int rc = bench_units(secs, u);
     bench_verilated(secs);
-    return rc;
+    int rc_all = np_bench_units(secs / 4.0, NULL, NULL);
+    return rc != NP_EXIT_OK ? rc : rc_all;
 }

@@ -285,7 +285,33 @@ typedef struct np_unit {
      * an RTL testbench can load the registers from the file.
      */
     size_t (*regs)(const void *cfg, struct np_unit_reg *r, size_t max);
+    /*
+     * Optional (NULL: np_unit_eval_n calls eval once per point): the
+     * bit-exact model over n points at once, its configuration decoded once
+     * per call. Field f of point i is in[f * n + i] and out[f * n + i] (one
+     * array per field, as np_classic_eval_n takes them), words as eval's.
+     * It must give exactly eval's words for every point, in any order and
+     * for any n (the conformance check `batch` compares them on the level-1
+     * cases, in runs and shuffled). Call it through np_unit_eval_n.
+     */
+    void (*eval_n)(const void *cfg, const uint64_t *in, uint64_t *out, size_t n);
 } np_unit;
+
+/*
+ * The bit-exact model of u over n points (np_unit.eval_n's layout: field f
+ * of point i at in[f * n + i], out[f * n + i]): the unit's batch path when it
+ * has one, else np_unit_eval_n_generic. in and out do not overlap.
+ */
+void np_unit_eval_n(const np_unit *u, const void *cfg, const uint64_t *in, uint64_t *out, size_t n);
+/* The fallback: u->eval per point (gathering each point's words), whatever u->eval_n is. */
+void np_unit_eval_n_generic(const np_unit *u, const void *cfg, const uint64_t *in, uint64_t *out, size_t n);
+
+/* For an eval_n that works in chunks: field f of points i0 .. i0+m-1 of an n-point batch, as u16 words. */
+static inline void np_unit_chunk_u16(const uint64_t *in, size_t n, unsigned f, size_t i0, size_t m, uint16_t *dst)
+{
+    for (size_t i = 0; i < m; i++)
+        dst[i] = (uint16_t)in[f * n + i0 + i];
+}
 
 /* One register of a unit's register block (np_unit.regs). */
 typedef struct np_unit_reg {

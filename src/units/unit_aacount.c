@@ -96,6 +96,28 @@ static void eval(const void *cfg, const uint64_t *in, uint64_t *out)
     put_out(c, o.s, o.mask, o.sd, o.sn, o.ss, out, NULL);
 }
 
+/* np_unit.eval_n: the threshold registers computed once per call (eval computes them per pixel). */
+static void eval_n(const void *cfg, const uint64_t *in, uint64_t *out, size_t n)
+{
+    const np_aacount_cfg *c = &((const aac_cfg *)cfg)->c;
+    np_aacount_regs r;
+    np_unit_fields f;
+    np_aacount_regs_compute(c, &r);
+    fields(cfg, &f);
+    for (size_t i = 0; i < n; i++) {
+        uint64_t a[NP_UNIT_MAX_FIELDS] = { 0 }, b[NP_UNIT_MAX_FIELDS] = { 0 };
+        np_aacount_win w;
+        np_aacount_out o;
+        for (unsigned k = 0; k < f.n_in; k++)
+            a[k] = in[k * n + i];
+        np_aacount_bus_unpack(c, a, &w);
+        np_aacount_eval_regs(c, &r, &w, &o);
+        put_out(c, o.s, o.mask, o.sd, o.sn, o.ss, b, NULL);
+        for (unsigned k = 0; k < f.n_out; k++)
+            out[k * n + i] = b[k];
+    }
+}
+
 static void ref(const void *cfg, const uint64_t *in, double *out)
 {
     const np_aacount_cfg *c = &((const aac_cfg *)cfg)->c;
@@ -330,4 +352,5 @@ const np_unit np_unit_aacount = {
     .cfg_scene = cfg_scene,
     .trace = trace,
     .conformance_configs = conformance_configs,
+    .eval_n = eval_n,
 };

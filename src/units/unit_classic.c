@@ -61,6 +61,24 @@ static void eval(const void *cfg, const uint64_t *in, uint64_t *out)
     out[0] = np_trunc_u((uint64_t)(int64_t)v, k->c.out_bits);
 }
 
+/* np_unit.eval_n: np_classic_eval_n (its int32 default path) over chunks of the words. */
+static void eval_n(const void *cfg, const uint64_t *in, uint64_t *out, size_t n)
+{
+    enum { CHUNK = 256 };
+    const classic_cfg *k = cfg;
+    uint16_t x[CHUNK], y[CHUNK], z[CHUNK];
+    int32_t f[CHUNK];
+    for (size_t i0 = 0; i0 < n; i0 += CHUNK) {
+        size_t m = n - i0 < CHUNK ? n - i0 : CHUNK;
+        np_unit_chunk_u16(in, n, 0, i0, m, x);
+        np_unit_chunk_u16(in, n, 1, i0, m, y);
+        np_unit_chunk_u16(in, n, 2, i0, m, z);
+        np_classic_eval_n(&k->c, x, y, z, f, m);
+        for (size_t i = 0; i < m; i++)
+            out[i0 + i] = np_trunc_u((uint64_t)(int64_t)f[i], k->c.out_bits);
+    }
+}
+
 static void ref(const void *cfg, const uint64_t *in, double *out)
 {
     (void)cfg;
@@ -440,4 +458,5 @@ const np_unit np_unit_classic3 = {
     .conformance_configs = conformance_configs,
     .adversarial = adversarial,
     .fine_cfg = fine_cfg,
+    .eval_n = eval_n,
 };

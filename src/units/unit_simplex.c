@@ -80,6 +80,30 @@ static void eval(const void *cfg, const uint64_t *in, uint64_t *out)
     put_out(&k->c, &o, out);
 }
 
+/* np_unit.eval_n: np_simplex_eval_n (its default-width paths) over chunks of the words. */
+static void eval_n(const void *cfg, const uint64_t *in, uint64_t *out, size_t n)
+{
+    enum { CHUNK = 256 };
+    const simplex_cfg *k = cfg;
+    uint16_t x[CHUNK], y[CHUNK], z[CHUNK];
+    np_simplex_out o[CHUNK];
+    for (size_t i0 = 0; i0 < n; i0 += CHUNK) {
+        size_t m = n - i0 < CHUNK ? n - i0 : CHUNK;
+        np_unit_chunk_u16(in, n, 0, i0, m, x);
+        np_unit_chunk_u16(in, n, 1, i0, m, y);
+        np_unit_chunk_u16(in, n, 2, i0, m, z);
+        np_simplex_eval_n(&k->c, x, y, z, o, m);
+        for (size_t i = 0; i < m; i++) {
+            uint64_t w[4];
+            put_out(&k->c, &o[i], w);
+            out[i0 + i] = w[0];
+            if (k->c.deriv)
+                for (unsigned a = 0; a < 3; a++)
+                    out[(1 + a) * n + i0 + i] = w[1 + a];
+        }
+    }
+}
+
 static void ref(const void *cfg, const uint64_t *in, double *out)
 {
     const simplex_cfg *k = cfg;
@@ -362,4 +386,5 @@ const np_unit np_unit_simplex3 = {
     .conformance_configs = conformance_configs,
     .adversarial = adversarial,
     .fine_cfg = fine_cfg,
+    .eval_n = eval_n,
 };

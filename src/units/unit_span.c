@@ -483,6 +483,54 @@ void np_su_eval(const np_su *su, const void *cfg, const uint64_t *in, uint64_t *
     np_su_sig_get_out(cfg, buf, out);
 }
 
+void np_su_eval_n(const np_su *su, const void *cfg, const uint64_t *in, uint64_t *out, size_t n)
+{
+    const np_span_engine *e = su->span.engine;
+    const void *ecfg = np_su_engine_cfg(&su->span, cfg);
+    const np_tex_regs *regs = np_ut_regs(np_su_texture(&su->span, cfg));
+    su_align core[NP_SU_CORE_MAX / sizeof(su_align)], t[NP_SU_SIG_MAX / sizeof(su_align)];
+    np_span cur; /* the span the engine holds (begin and seek may keep its address) */
+    np_span_counts cnt;
+    uint32_t kc = 0;
+    int placed = 0;
+    if (e->core_size > sizeof core || e->sig_size > sizeof t)
+        return;
+    for (size_t i = 0; i < n; i++) {
+        uint64_t w[UT_NIN];
+        np_span sp;
+        for (unsigned f = 0; f < UT_NIN; f++)
+            w[f] = in[f * n + i];
+        np_ut_span(w, &sp);
+        sp.n = NP_TEX_SPAN_MAX; /* as np_su_front: the value of pixel k does not depend on n */
+        const uint32_t k = (uint32_t)np_trunc_u(w[UT_K], 16);
+        int same = placed && memcmp(cur.s, sp.s, sizeof sp.s) == 0 && memcmp(cur.ds, sp.ds, sizeof sp.ds) == 0;
+        if (!same || k < kc || (e->seek && k > kc + 1u)) {
+            cur = sp;
+            memset(&cnt, 0, sizeof cnt);
+            e->init(core, ecfg, regs);
+            if (e->seek) {
+                e->seek(core, &cur, k);
+                kc = k;
+            } else {
+                e->begin(core, &cur, &cnt);
+                kc = 0;
+            }
+            placed = 1;
+        }
+        for (; kc < k; kc++)
+            e->advance(core, &cnt);
+        np_span_ctx ctx = *np_span_ctx_of(core);
+        ctx.cfg = ecfg;
+        memset(t, 0, e->sig_size);
+        e->issue(core, t);
+        for (unsigned st = 0; st < e->n_stages; st++)
+            e->stages[st].fn(&ctx, t);
+        const np_span_sig *h = (const np_span_sig *)(const void *)t;
+        for (unsigned ch = 0; ch < 3; ch++)
+            out[ch * n + i] = h->pix.rgb[ch];
+    }
+}
+
 /* --- The stream model: np_span_sim behind the generic stream port --- */
 
 int np_su_stream_init(const np_su *su, void *state, const void *cfg)

@@ -117,6 +117,14 @@ typedef struct np_su {
 /* The registry's callbacks, for su (the ones NP_SU_DEFINE binds to a unit). */
 void np_su_front(const np_su *su, const void *cfg, void *sig);
 void np_su_eval(const np_su *su, const void *cfg, const uint64_t *in, uint64_t *out);
+/*
+ * eval_n: the points in order, the engine kept from one to the next: a point
+ * that continues the previous one's span (same s, ds; k one more) is one
+ * advance, as the stream model steps; any other is placed as eval places it
+ * (seek, or begin and k advances; a sequential engine continues a span
+ * forwards). A span's pixels in order are the natural batch.
+ */
+void np_su_eval_n(const np_su *su, const void *cfg, const uint64_t *in, uint64_t *out, size_t n);
 void np_su_ref(const np_su *su, const void *cfg, const uint64_t *in, double *out);
 int np_su_pipe_init(np_su *su, np_stage_fn front, np_pipe *p, const void *cfg);
 int np_su_stream_init(const np_su *su, void *state, const void *cfg);
@@ -182,6 +190,10 @@ void np_su_add_setup(np_unit_timing *t, const char *what, unsigned products, uns
     static void su_front(const void *cfg, void *sig) { np_su_front(&SU, cfg, sig); }                                  \
     static void su_eval(const void *cfg, const uint64_t *in, uint64_t *out) { np_su_eval(&SU, cfg, in, out); }        \
     static void su_ref(const void *cfg, const uint64_t *in, double *out) { np_su_ref(&SU, cfg, in, out); }            \
+    static void su_eval_n(const void *cfg, const uint64_t *in, uint64_t *out, size_t n)                               \
+    {                                                                                                                  \
+        np_su_eval_n(&SU, cfg, in, out, n);                                                                            \
+    }                                                                                                                  \
     static int su_pipe_init(np_pipe *p, const void *cfg) { return np_su_pipe_init(&SU, su_front, p, cfg); }           \
     static int su_stream_init(void *state, const void *cfg) { return np_su_stream_init(&SU, state, cfg); }            \
     static size_t su_datapath(const void *cfg, np_op *ops, size_t max) { return np_su_datapath(&SU, cfg, ops, max); } \
@@ -209,6 +221,6 @@ void np_su_add_setup(np_unit_timing *t, const char *what, unsigned products, uns
 #define NP_SU_MEMBERS(SU)                                                                                              \
     .fields = np_su_fields, .eval = su_eval, .ref = su_ref, .tolerance_lsb = 1.0, .pipe_init = su_pipe_init,        \
     .sig_set_in = np_su_sig_set_in, .sig_get_out = np_su_sig_get_out, .boundary = np_su_boundary,                    \
-    .stream = &su_stream, .cfg_scene = su_cfg_scene, .datapath = su_datapath, .span = &SU.span
+    .stream = &su_stream, .cfg_scene = su_cfg_scene, .datapath = su_datapath, .span = &SU.span, .eval_n = su_eval_n
 
 #endif /* UNIT_SPAN_H */

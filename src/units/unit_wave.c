@@ -156,6 +156,42 @@ static void eval(const void *cfg, const uint64_t *in, uint64_t *out)
 }
 
 /*
+ * np_unit.eval_n: without normals or fold, np_wave_eval_n over chunks (its
+ * loops with the lanes and effects as constants for irr=0 cap=0 and 1 or 2
+ * ROM trains, eval per point otherwise); with them, the generic fallback.
+ */
+extern const np_unit np_unit_wave;
+static void eval_n(const void *cfg, const uint64_t *in, uint64_t *out, size_t n)
+{
+    enum { CHUNK = 256 };
+    const np_wave_unit *u = &((const wave_block *)cfg)->u;
+    if (np_wave_has_jac(&u->c)) {
+        np_unit_eval_n_generic(&np_unit_wave, cfg, in, out, n);
+        return;
+    }
+    np_wave_in x[CHUNK];
+    np_wave_out o[CHUNK];
+    np_wave_jac j;
+    memset(&j, 0, sizeof j);
+    for (size_t i0 = 0; i0 < n; i0 += CHUNK) {
+        size_t m = n - i0 < CHUNK ? n - i0 : CHUNK;
+        for (size_t i = 0; i < m; i++) {
+            uint64_t w[NP_UNIT_MAX_FIELDS];
+            for (unsigned f = 0; f < 8; f++)
+                w[f] = in[f * n + i0 + i];
+            in_of(w, &x[i]);
+        }
+        np_wave_eval_n(u, x, o, m);
+        for (size_t i = 0; i < m; i++) {
+            uint64_t w[NP_UNIT_MAX_FIELDS];
+            put_out(&u->c, &o[i], &j, w);
+            for (unsigned f = 0; f < 3; f++)
+                out[f * n + i0 + i] = w[f];
+        }
+    }
+}
+
+/*
  * The reference: y, dx, dz; the normal from the double terms; the fold flag
  * as the reference's ny <= 0 (the model's flag may differ only where the
  * reference's |ny| is within the normal's error bound: wave.jac_vs_ref).
@@ -673,4 +709,5 @@ const np_unit np_unit_wave = {
     .trace = trace,
     .conformance_configs = conformance_configs,
     .regs = regs,
+    .eval_n = eval_n,
 };

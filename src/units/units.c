@@ -62,6 +62,28 @@ int np_unit_register(const np_unit *u)
     return 0;
 }
 
+void np_unit_eval_n_generic(const np_unit *u, const void *cfg, const uint64_t *in, uint64_t *out, size_t n)
+{
+    np_unit_fields f;
+    u->fields(cfg, &f);
+    for (size_t i = 0; i < n; i++) {
+        uint64_t a[NP_UNIT_MAX_FIELDS], b[NP_UNIT_MAX_FIELDS];
+        for (unsigned k = 0; k < f.n_in; k++)
+            a[k] = in[k * n + i];
+        u->eval(cfg, a, b);
+        for (unsigned k = 0; k < f.n_out; k++)
+            out[k * n + i] = b[k];
+    }
+}
+
+void np_unit_eval_n(const np_unit *u, const void *cfg, const uint64_t *in, uint64_t *out, size_t n)
+{
+    if (u->eval_n)
+        u->eval_n(cfg, in, out, n);
+    else
+        np_unit_eval_n_generic(u, cfg, in, out, n);
+}
+
 double np_unit_field_value(const np_field *f, uint64_t word)
 {
     double scale = 1.0;
