@@ -172,12 +172,27 @@ int32_t np_classic_eval(const np_classic_cfg *cfg, uint16_t x, uint16_t y, uint1
  * z[n]) for n < count, the same bits (fast.classic_batch_* prove it on random
  * inputs and a whole x cell). The configuration is checked once; the default
  * widths (np_classic_cfg_default(8): N = 8, WS = 12, WL = 11) run a
- * specialised int32 loop (np_classic.c gives its range argument) that the
- * compiler vectorises across inputs; other configurations run the generic
- * per-input path. The arrays may not overlap out.
+ * specialised int32 loop (np_classic.c gives its range argument), by hand in
+ * AVX2 where the CPU has it; other configurations run the generic per-input
+ * path. The arrays may not overlap out.
  */
 void np_classic_eval_n(const np_classic_cfg *cfg, const uint16_t *x, const uint16_t *y,
                        const uint16_t *z, int32_t *out, size_t count);
+
+/*
+ * The batch model's implementations, each the same bits as np_classic_eval:
+ *   GENERIC  np_classic_eval per input, any configuration;
+ *   INT32    the default widths in an int32 loop (portable C);
+ *   AVX2     the default widths, eight inputs a step with AVX2 gathers (x86-64
+ *            with GCC or Clang, on a CPU with AVX2).
+ * np_classic_eval_n runs the first of AVX2, INT32, GENERIC that applies.
+ * np_classic_eval_n_path runs the one named, for the tests that prove each
+ * path against np_classic_eval and for the bench; it returns -1 (writing
+ * nothing) when that path does not apply to cfg or this CPU, else 0.
+ */
+enum { NP_CLASSIC_BATCH_GENERIC, NP_CLASSIC_BATCH_INT32, NP_CLASSIC_BATCH_AVX2, NP_CLASSIC_BATCH_PATHS };
+int np_classic_eval_n_path(unsigned path, const np_classic_cfg *cfg, const uint16_t *x,
+                           const uint16_t *y, const uint16_t *z, int32_t *out, size_t count);
 
 /* --- Cycle-accurate model --- */
 

@@ -38,8 +38,15 @@ typedef struct inputs {
     uint16_t x[CHUNK], y[CHUNK], z[CHUNK];
 } inputs;
 
-/* Classic: batch == per input over `chunks` chunks of random inputs; returns mismatches. */
-static uint64_t classic_random(const np_classic_cfg *cfg, np_rng *r, unsigned chunks)
+static const char *const classic_path_name[NP_CLASSIC_BATCH_PATHS] = { "generic", "int32", "avx2" };
+
+/*
+ * Classic: batch == per input over `chunks` chunks of random inputs, for the
+ * batch path `path` (np_classic_eval_n itself when path is
+ * NP_CLASSIC_BATCH_PATHS); returns mismatches, or UINT64_MAX when the path
+ * does not apply here.
+ */
+static uint64_t classic_random(unsigned path, const np_classic_cfg *cfg, np_rng *r, unsigned chunks)
 {
     static inputs in;
     static int32_t out[CHUNK];
@@ -50,18 +57,29 @@ static uint64_t classic_random(const np_classic_cfg *cfg, np_rng *r, unsigned ch
             in.y[n] = rand_word(r);
             in.z[n] = rand_word(r);
         }
-        np_classic_eval_n(cfg, in.x, in.y, in.z, out, CHUNK);
-        for (unsigned n = 0; n < CHUNK; n++) {
+        /* An odd count leaves a tail after the vector steps. */
+        size_t count = CHUNK - (c & 7u);
+        if (path == NP_CLASSIC_BATCH_PATHS)
+            np_classic_eval_n(cfg, in.x, in.y, in.z, out, count);
+        else if (np_classic_eval_n_path(path, cfg, in.x, in.y, in.z, out, count) != 0)
+            return UINT64_MAX;
+        for (unsigned n = 0; n < count; n++) {
             int32_t want = np_classic_eval(cfg, in.x[n], in.y[n], in.z[n]);
             if (out[n] != want && ++bad <= 5)
-                NP_CHECK(out[n] == want, "N=%u WS=%u WL=%u (0x%04x, 0x%04x, 0x%04x): batch %d, eval %d",
-                         cfg->out_bits, cfg->s_frac, cfg->lerp_frac, in.x[n], in.y[n], in.z[n], out[n], want);
+                NP_CHECK(out[n] == want, "path %u N=%u WS=%u WL=%u (0x%04x, 0x%04x, 0x%04x): batch %d, eval %d",
+                         path, cfg->out_bits, cfg->s_frac, cfg->lerp_frac, in.x[n], in.y[n], in.z[n], out[n],
+                         want);
         }
     }
     return bad;
 }
 
-/* 2^20 random inputs at the default (the int32 path) and three others (the generic path). */
+/*
+ * 2^20 random inputs at the default (the int32 and AVX2 paths) and three
+ * others (the generic path), through np_classic_eval_n and through each path
+ * that applies; the default's specialised paths must apply (AVX2 where the
+ * CPU has it).
+ */
 static int t_classic_batch_random(void)
 {
     np_rng r;
@@ -70,23 +88,35 @@ static int t_classic_batch_random(void)
                                { 8, 6, 6 }, { 12, 24, 10 } };
     for (unsigned k = 0; k < 4; k++) {
         NP_CHECK(np_classic_cfg_check(&cfgs[k]) == NULL, "config %u", k);
-        uint64_t bad = classic_random(&cfgs[k], &r, k == 0 ? 256u : 32u);
-        printf("classic3 N=%u WS=%u WL=%u: %u random inputs, %llu mismatches\n", cfgs[k].out_bits,
-               cfgs[k].s_frac, cfgs[k].lerp_frac, (k == 0 ? 256u : 32u) * CHUNK, (unsigned long long)bad);
+        unsigned chunks = k == 0 ? 256u : 32u;
+        for (unsigned path = 0; path <= NP_CLASSIC_BATCH_PATHS; path++) {
+            uint64_t bad = classic_random(path, &cfgs[k], &r, chunks);
+            const char *name = path == NP_CLASSIC_BATCH_PATHS ? "np_classic_eval_n" : classic_path_name[path];
+            if (bad == UINT64_MAX) {
+                NP_CHECK(k != 0 || path != NP_CLASSIC_BATCH_INT32, "the int32 path must apply to the default");
+                printf("classic3 N=%u WS=%u WL=%u %s: does not apply here\n", cfgs[k].out_bits, cfgs[k].s_frac,
+                       cfgs[k].lerp_frac, name);
+                continue;
+            }
+            printf("classic3 N=%u WS=%u WL=%u %s: about %u random inputs, %llu mismatches\n", cfgs[k].out_bits,
+                   cfgs[k].s_frac, cfgs[k].lerp_frac, name, chunks * CHUNK, (unsigned long long)bad);
+        }
     }
     return 0;
 }
 
 /*
  * A whole x cell, 2^24 inputs (x cell 0xff, every y, z = 0xff80: every axis
- * wraps), default widths: batch == per input; and the outputs take many values.
+ * wraps), default widths: each specialised path that applies == per input;
+ * and the outputs take many values.
  */
 static int t_classic_batch_block(void)
 {
     static inputs in;
-    static int32_t out[CHUNK];
+    static int32_t out[NP_CLASSIC_BATCH_PATHS][CHUNK];
     np_classic_cfg cfg = np_classic_cfg_default(8);
-    uint64_t bad = 0, seen[4] = { 0 };
+    uint64_t bad[NP_CLASSIC_BATCH_PATHS] = { 0 }, seen[4] = { 0 };
+    int ran[NP_CLASSIC_BATCH_PATHS] = { 0 };
     for (uint32_t base = 0; base < (1u << 24); base += CHUNK) {
         for (unsigned n = 0; n < CHUNK; n++) {
             uint32_t k = base + n;
@@ -94,20 +124,26 @@ static int t_classic_batch_block(void)
             in.y[n] = (uint16_t)(k >> 8);
             in.z[n] = 0xff80;
         }
-        np_classic_eval_n(&cfg, in.x, in.y, in.z, out, CHUNK);
+        for (unsigned p = NP_CLASSIC_BATCH_INT32; p < NP_CLASSIC_BATCH_PATHS; p++)
+            ran[p] = np_classic_eval_n_path(p, &cfg, in.x, in.y, in.z, out[p], CHUNK) == 0;
         for (unsigned n = 0; n < CHUNK; n++) {
             int32_t want = np_classic_eval(&cfg, in.x[n], in.y[n], in.z[n]);
             seen[(uint32_t)(want + 128) >> 6 & 3u] |= 1ull << ((uint32_t)(want + 128) & 63u);
-            if (out[n] != want && ++bad <= 5)
-                NP_CHECK(out[n] == want, "(0x%04x, 0x%04x, 0x%04x): batch %d, eval %d", in.x[n], in.y[n],
-                         in.z[n], out[n], want);
+            for (unsigned p = NP_CLASSIC_BATCH_INT32; p < NP_CLASSIC_BATCH_PATHS; p++)
+                if (ran[p] && out[p][n] != want && ++bad[p] <= 5)
+                    NP_CHECK(out[p][n] == want, "%s (0x%04x, 0x%04x, 0x%04x): batch %d, eval %d",
+                             classic_path_name[p], in.x[n], in.y[n], in.z[n], out[p][n], want);
         }
     }
     unsigned values = 0;
     for (unsigned k = 0; k < 4; k++)
         values += (unsigned)__builtin_popcountll(seen[k]);
-    printf("x cell 0xff, z = 0xff80: 2^24 inputs, %llu mismatches, %u distinct outputs\n",
-           (unsigned long long)bad, values);
+    NP_CHECK(ran[NP_CLASSIC_BATCH_INT32], "the int32 path must apply to the default");
+    for (unsigned p = NP_CLASSIC_BATCH_INT32; p < NP_CLASSIC_BATCH_PATHS; p++)
+        printf("x cell 0xff, z = 0xff80, %s: %s\n", classic_path_name[p],
+               ran[p] ? "2^24 inputs compared" : "does not apply here");
+    printf("x cell 0xff, z = 0xff80: %llu + %llu mismatches (int32 + avx2), %u distinct outputs\n",
+           (unsigned long long)bad[NP_CLASSIC_BATCH_INT32], (unsigned long long)bad[NP_CLASSIC_BATCH_AVX2], values);
     NP_CHECK(values > 100, "the block should exercise most output codes");
     return 0;
 }
