@@ -6,6 +6,8 @@
 #   rtl.<unit>.<sim>.golden.default        the checked-in golden set
 #   rtl.<unit>.<sim>.<level>.<cfg>         a set generated at <cfg> (l1: ~4k, l2: ~10^6 vectors)
 #   rtl.<unit>.<sim>.<fault>               the bench on a fault-injected RTL copy must fail
+#   rtl.classic3.<sim>.<variant>[.<what>]  the circuit variants S_TABLE, HASH_SERIAL (s_table,
+#                                          hash_serial, both): golden, cheap, l2, fault
 # Verilator tests are labelled "nosan" (the C sanitizers do not reach them,
 # and the sanitizer pass need not pay for their builds); so is the slow Icarus
 # level-2 run. Without iverilog or verilator the tests report themselves skipped.
@@ -28,14 +30,14 @@ function(np_rtl_test name tool expect pattern labels)
     SKIP_REGULAR_EXPRESSION "rtl: SKIPPED: ")
 endfunction()
 
-# Bench builds of <unit>: variant ok, fault_flip or fault_stall (the RTL with
-# `define NP_FAULT_FLIP / NP_FAULT_STALL). Fixtures rtl_<unit>_<sim>_<variant>.
+# Bench builds of <unit>: variant ok, fault_flip, fault_stall (the RTL with
+# `define NP_FAULT_FLIP / NP_FAULT_STALL), or for classic3's circuit variants
+# fault_stable, fault_serial (NP_FAULT_STABLE / NP_FAULT_SERIAL). Fixtures rtl_<unit>_<sim>_<variant>.
 function(np_rtl_builds unit variant top)
   set(defs)
-  if(variant STREQUAL "fault_flip")
-    set(defs -DNP_FAULT_FLIP)
-  elseif(variant STREQUAL "fault_stall")
-    set(defs -DNP_FAULT_STALL)
+  if(variant MATCHES "^fault_(flip|stall|stable|serial)$")
+    string(TOUPPER "${variant}" def)
+    set(defs -DNP_${def})
   endif()
   set(dir ${NP_RTL_WORK}/${unit}/${variant})
   file(MAKE_DIRECTORY ${dir})
@@ -90,7 +92,7 @@ endfunction()
 
 # ------------------------------------------------------------------ classic3
 set(NP_RTL_C3_SRC ${NP_RTL_TB}/rtl_classic3_tb.v ${NP_RTL_SRC}/np_classic3.v ${NP_RTL_PIPE_SRC})
-foreach(v ok fault_flip fault_stall)
+foreach(v ok fault_flip fault_stall fault_stable fault_serial)
   np_rtl_builds(classic3 ${v} rtl_classic3_tb ${NP_RTL_C3_SRC})
 endforeach()
 # The configurations of rtl_classic3_tb.v's table (name and config string).
@@ -101,6 +103,11 @@ set(NP_RTL_C3_cheap "out_bits=8,s_frac=4,lerp_frac=6")
 set(NP_RTL_C3_exact_s "out_bits=12,s_frac=24,lerp_frac=30")
 set(NP_RTL_C3_wide_l "out_bits=15,s_frac=3,lerp_frac=20")
 set(NP_RTL_C3_opts "") # the default configuration with the input register and the skid buffer
+# The circuit variants (np_classic3.v's S_TABLE, HASH_SERIAL; docs/rtl.md): test name, then the
+# bench's +cfg names at the default and at cheap (out_bits=8 s_frac=4 lerp_frac=6), and the fault
+# builds that must be caught. HASH_SERIAL delivers one result per 8 clocks; the bench takes it.
+set(NP_RTL_C3_VARIANTS "s_table|s_table|st_cheap|fault_stable" "hash_serial|h_serial|hs_cheap|fault_serial"
+  "both|both|bo_cheap|fault_stable,fault_serial")
 set(c3_vec ${NP_RTL_WORK}/classic3/vec)
 set(c3_golden ${PROJECT_SOURCE_DIR}/vectors/classic3/classic3-l1-seed1.memh)
 set(pass_re "In [1-9][0-9]* tests, no errors found\\.")
@@ -128,6 +135,32 @@ foreach(sim icarus verilator)
     ${c3_golden} fail "In 4224 tests, [1-9][0-9]* errors found" "${lab}")
   np_rtl_check(rtl.classic3.${sim}.fault_stall classic3 ${sim} fault_stall rtl_classic3_tb default
     ${c3_golden} fail "no output for 1000 cycles|errors found" "${lab}")
+  # The variants: the golden set (default configuration), the checked-in cheap set, and each
+  # variant's fault copy must fail on the golden set.
+  foreach(vr ${NP_RTL_C3_VARIANTS})
+    string(REPLACE "|" ";" vl "${vr}")
+    list(GET vl 0 vname)
+    list(GET vl 1 vcfg)
+    list(GET vl 2 vcheap)
+    list(GET vl 3 vfaults)
+    np_rtl_check(rtl.classic3.${sim}.${vname} classic3 ${sim} ok rtl_classic3_tb ${vcfg}
+      ${c3_golden} pass "${pass_re}" "${lab}")
+    np_rtl_check(rtl.classic3.${sim}.${vname}.cheap classic3 ${sim} ok rtl_classic3_tb ${vcheap}
+      ${PROJECT_SOURCE_DIR}/vectors/classic3/classic3-l1-seed1-cheap.memh pass "${pass_re}" "${lab}")
+    string(REPLACE "," ";" vfaults "${vfaults}")
+    foreach(flt ${vfaults})
+      set(tname rtl.classic3.${sim}.${vname}.fault)
+      if(vname STREQUAL "both")
+        set(tname ${tname}_${flt})
+        string(REPLACE "fault_fault_" "fault_" tname "${tname}")
+      endif()
+      np_rtl_check(${tname} classic3 ${sim} ${flt} rtl_classic3_tb ${vcfg}
+        ${c3_golden} fail "In 4224 tests, [1-9][0-9]* errors found" "${lab}")
+    endforeach()
+  endforeach()
+  # S_TABLE at the widest table: s_frac=24 (25-bit entries), the level-1 set of exact_s.
+  np_rtl_check(rtl.classic3.${sim}.s_table.exact_s classic3 ${sim} ok rtl_classic3_tb st_exact
+    ${c3_vec}/classic3-l1-exact_s.memh pass "${pass_re}" "${lab}" rtl_classic3_l1_exact_s)
 endforeach()
 foreach(cfg ${NP_RTL_C3_CFGS})
   if(NOT cfg STREQUAL "default" AND NOT cfg STREQUAL "opts")
@@ -142,6 +175,18 @@ foreach(cfg ${NP_RTL_C3_CFGS})
 endforeach()
 np_rtl_check(rtl.classic3.verilator.l2.opts classic3 verilator ok rtl_classic3_tb opts
   ${c3_vec}/classic3-l2-default.memh pass "In 1031952 tests, no errors found\\." "rtl;nosan" rtl_classic3_l2_default)
+# The variants on the level-2 set of the default configuration (Icarus: with the slow tests below).
+foreach(vr "s_table;s_table" "hash_serial;h_serial" "both;both")
+  list(GET vr 0 vname)
+  list(GET vr 1 vcfg)
+  np_rtl_check(rtl.classic3.verilator.${vname}.l2 classic3 verilator ok rtl_classic3_tb ${vcfg}
+    ${c3_vec}/classic3-l2-default.memh pass "In 1031952 tests, no errors found\\." "rtl;nosan" rtl_classic3_l2_default)
+  if(NOISEPIPE_SLOW_TESTS)
+    np_rtl_check(rtl.classic3.icarus.${vname}.l2 classic3 icarus ok rtl_classic3_tb ${vcfg}
+      ${c3_vec}/classic3-l2-default.memh pass "In 1031952 tests, no errors found\\." "rtl;nosan;slow"
+      rtl_classic3_l2_default)
+  endif()
+endforeach()
 # Icarus runs about 5,000 vectors/s here: level 2 only at the default, 4-8 minutes on one core,
 # so only with -DNOISEPIPE_SLOW_TESTS=ON (Verilator runs the level-2 sets in every build).
 if(NOISEPIPE_SLOW_TESTS)
@@ -186,6 +231,8 @@ set(NP_RTL_C3_RTL ${NP_RTL_SRC}/np_classic3.v ${NP_RTL_PIPE_SRC})
 np_rtl_cosim_build(classic3 default np_classic3 "" "" ${NP_RTL_C3_RTL})
 np_rtl_cosim_build(classic3 opts np_classic3 "" "-GIN_REG=1;-GOUT_SKID=1" ${NP_RTL_C3_RTL})
 np_rtl_cosim_build(classic3 cheap np_classic3 "" "-GS_FRAC=4;-GLERP_FRAC=6" ${NP_RTL_C3_RTL})
+# S_TABLE keeps the timing, so the cycle model applies to it; HASH_SERIAL's does not (docs/rtl.md).
+np_rtl_cosim_build(classic3 s_table np_classic3 "" "-GS_TABLE=1" ${NP_RTL_C3_RTL})
 np_rtl_cosim_build(classic3 fault_flip np_classic3 "-DNP_FAULT_FLIP" "" ${NP_RTL_C3_RTL})
 np_rtl_cosim_build(classic3 fault_stall np_classic3 "-DNP_FAULT_STALL" "" ${NP_RTL_C3_RTL})
 set(cosim_ok "cycles, .* 0 mismatches")
@@ -196,6 +243,7 @@ np_rtl_cosim(rtl.classic3.cosim.stream classic3 default pass "${cosim_ok}"
 np_rtl_cosim(rtl.classic3.cosim.opts classic3 opts pass "1000000 cycles, .* 0 mismatches"
   --cfg 8,12,11 --in-reg --out-skid --cycles 1000000)
 np_rtl_cosim(rtl.classic3.cosim.cheap classic3 cheap pass "${cosim_ok}" --cfg 8,4,6 --cycles 300000)
+np_rtl_cosim(rtl.classic3.cosim.s_table classic3 s_table pass "${cosim_ok}" --cfg 8,12,11 --cycles 300000)
 # A cycle-level trace of a run (format: docs/rtl.md), 2000 cycles.
 np_rtl_cosim(rtl.classic3.cosim.trace classic3 default pass "trace: 2000 cycles written to"
   --cfg 8,12,11 --cycles 2000 --trace ${NP_RTL_WORK}/classic3/cosim-trace.txt)
@@ -308,6 +356,8 @@ set_tests_properties(rtl.dpi.classic3.fault_flip PROPERTIES FIXTURES_REQUIRED rt
 # and opt, and `check -assert` (no undriven or multiply driven signals, no logic loops).
 find_program(NP_YOSYS yosys)
 foreach(u "classic3;np_classic3;;default" "classic3;np_classic3;-set IN_REG 1 -set OUT_SKID 1;opts"
+          "classic3;np_classic3;-set S_TABLE 1;s_table" "classic3;np_classic3;-set HASH_SERIAL 1;hash_serial"
+          "classic3;np_classic3;-set S_TABLE 1 -set HASH_SERIAL 1;both"
           "simplex3;np_simplex3;;default" "simplex3;np_simplex3;-set DERIV 0 -set T_FRAC 23 -set P_FRAC 20;f_only")
   list(GET u 0 unit)
   list(GET u 1 top)

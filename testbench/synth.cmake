@@ -20,3 +20,22 @@ add_test(NAME synth.classic3_cheap
           $<TARGET_FILE:noisepipe>)
 set_tests_properties(synth.classic3_cheap PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 900 LABELS "synth"
   PASS_REGULAR_EXPRESSION "\\| O \\|.*\\| \\*\\*total\\*\\* \\|.*largest stage deviation [0-9]\\.[0-9] %")
+# --rtl-param (RTL parameters that are not configuration keys): bad uses exit 2 before any
+# synthesis (an unknown name, naming the allowed ones; a value other than 0/1; without --unit;
+# with --tolerance, since the cost model declares no variant).
+add_test(NAME synth.rtl_param_usage
+  COMMAND sh -c "for a in '--unit classic3 --rtl-param FOO=1' '--unit classic3 --rtl-param S_TABLE=2' \\
+                          '--unit classic3 --rtl-param S_TABLE' '--rtl-param S_TABLE=1' \\
+                          '--unit simplex3 --rtl-param HASH_SERIAL=1' '--unit classic3 --rtl-param S_TABLE=1 --tolerance 10'; do
+                   \"$0\" report gates --synth $a > /dev/null 2> \"$1\"; s=$?; cat \"$1\";
+                   test $s -eq 2 || { echo \"$a: exit $s, want 2\"; exit 1; }; done
+                 \"$0\" report gates --synth --unit classic3 --rtl-param FOO=1 2>&1 | grep -q 'IN_REG, OUT_SKID, S_TABLE, HASH_SERIAL'"
+          $<TARGET_FILE:noisepipe> ${CMAKE_CURRENT_BINARY_DIR}/synth_rtl_param.err)
+# A variant synthesised (classic3 with the table s-curve and the serial hash, at the small
+# configuration): Yosys per stage beside the as-built model, labelled as such.
+add_test(NAME synth.classic3_variant
+  COMMAND sh -c "command -v yosys > /dev/null || { echo 'yosys not installed: skipped'; exit 77; }
+                 \"$0\" report gates --synth --unit classic3 --config out_bits=8,s_frac=4,lerp_frac=6 --rtl-param S_TABLE=1,HASH_SERIAL=1"
+          $<TARGET_FILE:noisepipe>)
+set_tests_properties(synth.classic3_variant PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 900 LABELS "synth;nosan"
+  PASS_REGULAR_EXPRESSION "RTL `S_TABLE=1 HASH_SERIAL=1`.*cost model of the as-built circuit \\(not this variant\\).*\\| L \\| [0-9]+ \\| [0-9]+ \\|.*\\| \\*\\*total\\*\\* \\|.*a variant the cost model does not declare")

@@ -14,16 +14,30 @@
 //           beyond L's ready (see docs/rtl.md for the exact expression).
 //   OUT_SKID 1: a two-entry skid buffer after O: latency + 1; out_ready is
 //           registered: no combinational path from out_ready to in_ready.
+// and two circuit variants for the gate count (docs/rtl.md, docs/classic3.md
+// "Perlin's under 10K gates"; both 0 = today's circuit, gate for gate):
+//   S_TABLE 1: the s-curve of each axis from a 256-entry constant table
+//           (u(WS+1) per entry, the same bits: each entry is the formula's
+//           value) in H; bank R0 no longer holds u^2, v^2, w^2 and L has no
+//           squarers. Timing unchanged (latency 9, 1 result / clock).
+//   HASH_SERIAL 1: one hash circuit serves the eight corners in turn. A point
+//           entering L has corner 0 hashed from the input at once and
+//           corners 1..7 from held i, j, k on the next seven clocks (r0_c
+//           counts them); in_ready is low during those seven clocks and
+//           bank R0 becomes valid with the 8th hash. Latency 16 clocks
+//           (9 + 7), throughput 1 result / 8 clocks. No C cycle model
+//           matches this timing (the co-simulation does not apply).
 //
 // Pipeline: nine banks R0..R8 after stages L, H, I1m, I1a, I2m, I2a, I3m,
 // I3a, O; latency 9 clocks. Handshake (as np_pipe_eval/np_pipe_clock):
 //   out_valid = v[8]; en[8] = !v[8] | out_ready;
 //   en[k] = !v[k] | (en[k+1] & ... ) i.e. a bank loads when it is empty or its
-//   content moves on this cycle; in_ready = en[0].
+//   content moves on this cycle; in_ready = en[0] (HASH_SERIAL: and not busy).
 // A bank that loads takes its predecessor's valid bit (a bubble when it is 0).
 //
 // Register contents per bank (widths for the parameters; docs/rtl.md has the
-// table): R0 u,v,w u8, h[8] u6, u^2,v^2,w^2 u16; R1 g[8] s11, sx,sy,sz
+// table): R0 u,v,w u8, h[8] u6, u^2,v^2,w^2 u16 (not with S_TABLE; with
+// HASH_SERIAL also i,j,k u8, the corner counter u3 and a busy bit); R1 g[8] s11, sx,sy,sz
 // u(WS+1); R2 a[4] s11, prod[4] s(13+WS), sy, sz; R3 l1[4] s(WL+3), sy, sz;
 // R4 a[2] s(WL+3), prod[2] s(WL+5+WS), sz; R5 l2[2] s(WL+3), sz; R6 a s(WL+3),
 // prod s(WL+5+WS); R7 l3 s(WL+2); R8 f sN.
@@ -31,13 +45,19 @@
 // Fault injection for the tests that must fail: `define NP_FAULT_FLIP flips
 // bit 0 of f when l3[3:0] == 4'h5 (a datapath fault, about 1 input in 16);
 // `define NP_FAULT_STALL makes bank I2a load while its successor stalls (a
-// handshake fault: a transaction is overwritten and lost).
+// handshake fault: a transaction is overwritten and lost). For the variants:
+// `define NP_FAULT_STABLE puts a wrong bit (weight 1/4) in every 16th entry of
+// the S_TABLE table; `define NP_FAULT_SERIAL raises HASH_SERIAL's in_ready one
+// clock early, during the 8th hash (an off-by-one: the next point overwrites
+// u, v, w and the hash slots of one still in bank L). Each acts only in its variant.
 module np_classic3 #(
     parameter integer OUT_BITS = 8,
     parameter integer S_FRAC = 12,
     parameter integer LERP_FRAC = 11,
     parameter integer IN_REG = 0,
-    parameter integer OUT_SKID = 0
+    parameter integer OUT_SKID = 0,
+    parameter integer S_TABLE = 0,
+    parameter integer HASH_SERIAL = 0
 ) (
     input wire clk,
     input wire rst,  // synchronous, active high: empties every bank
@@ -73,6 +93,8 @@ module np_classic3 #(
     wire [N-1:0] core_f;
     reg [8:0] v;   // bank valid bits R0..R8
     reg [8:0] en;  // bank k loads this cycle
+    wire l_busy;   // HASH_SERIAL: bank L is collecting a point's corner hashes (else 0)
+    wire l_done;   // HASH_SERIAL: the 8th corner hash is written at this edge (else 0)
     // np_pipe: moves[k] = v[k] & (!v[k+1] | moves[k+1]) and a bank loads when
     // !v[k] | moves[k]; since !v[k+1] implies en[k+1], that is !v[k] | en[k+1].
     integer e;
@@ -83,12 +105,19 @@ module np_classic3 #(
         en[5] = 1'b1;  // fault: bank I2a overwrites its content when its successor stalls
 `endif
     end
-    assign core_in_ready = en[0];
+`ifdef NP_FAULT_SERIAL
+    // fault: in_ready rises one clock early, while L writes the 8th hash of the last point
+    assign core_in_ready = en[0] && (!l_busy || l_done);
+`else
+    assign core_in_ready = en[0] && !l_busy;
+`endif
     assign core_out_valid = v[8];
+    // Bank L's valid bit: the accepted point's, or (HASH_SERIAL) set by the 8th hash.
+    wire v0_in = HASH_SERIAL != 0 ? l_done : core_in_valid;
 
     always @(posedge clk) begin
         if (rst) v <= 9'd0;
-        else v <= (v & ~en) | ({v[7:0], core_in_valid} & en);
+        else v <= (v & ~en) | ({v[7:0], v0_in} & en);
     end
 
     // ---------------------------------------------------------------- L
@@ -96,20 +125,54 @@ module np_classic3 #(
 `include "np_hash.vh"
 
     wire [7:0] ci = cx[15:8], cj = cy[15:8], ck = cz[15:8];
-    wire [7:0] ci1 = ci + 8'd1, cj1 = cj + 8'd1, ck1 = ck + 8'd1;  // the tile wraps at 256
+    wire l_acc = core_in_valid && core_in_ready;  // a point enters L at this edge
     reg [7:0] r0_u, r0_v, r0_w;
     reg [6*8-1:0] r0_h;
-    reg [15:0] r0_su, r0_sv, r0_sw;  // u^2 etc., u16 Q0.16
-    always @(posedge clk) if (en[0] && core_in_valid) begin
+    always @(posedge clk) if (l_acc) begin
         r0_u <= cx[7:0];
         r0_v <= cy[7:0];
         r0_w <= cz[7:0];
-        r0_h <= {hash6(ci1, cj1, ck1), hash6(ci, cj1, ck1), hash6(ci1, cj, ck1), hash6(ci, cj, ck1),
-                 hash6(ci1, cj1, ck), hash6(ci, cj1, ck), hash6(ci1, cj, ck), hash6(ci, cj, ck)};
-        r0_su <= cx[7:0] * cx[7:0];
-        r0_sv <= cy[7:0] * cy[7:0];
-        r0_sw <= cz[7:0] * cz[7:0];
     end
+    generate
+        if (HASH_SERIAL == 0) begin : g_hash8
+            // eight hash circuits, one per corner, in one clock
+            wire [7:0] ci1 = ci + 8'd1, cj1 = cj + 8'd1, ck1 = ck + 8'd1;  // the tile wraps at 256
+            assign l_busy = 1'b0;
+            assign l_done = 1'b0;
+            always @(posedge clk) if (l_acc)
+                r0_h <= {hash6(ci1, cj1, ck1), hash6(ci, cj1, ck1), hash6(ci1, cj, ck1), hash6(ci, cj, ck1),
+                         hash6(ci1, cj1, ck), hash6(ci, cj1, ck), hash6(ci1, cj, ck), hash6(ci, cj, ck)};
+        end else begin : g_hash1
+            // one hash circuit: corner 0 = (i, j, k) from the input at the accepting
+            // edge, corner c (bit 0: i + 1, bit 1: j + 1, bit 2: k + 1) from the held
+            // i, j, k on the c-th clock after it; hash c goes to slot c of r0_h.
+            reg [7:0] r0_i, r0_j, r0_k;  // the point's integer parts, u8
+            reg [2:0] r0_c;              // the corner hashed this clock while busy, 1..7
+            reg r0_busy;
+            wire [7:0] hi = r0_busy ? (r0_c[0] ? r0_i + 8'd1 : r0_i) : ci;
+            wire [7:0] hj = r0_busy ? (r0_c[1] ? r0_j + 8'd1 : r0_j) : cj;
+            wire [7:0] hk = r0_busy ? (r0_c[2] ? r0_k + 8'd1 : r0_k) : ck;
+            wire [5:0] h1 = hash6(hi, hj, hk);
+            wire [2:0] slot = r0_busy ? r0_c : 3'd0;
+            integer s8;
+            assign l_busy = r0_busy;
+            assign l_done = r0_busy && r0_c == 3'd7;
+            always @(posedge clk) begin
+                if (rst) r0_busy <= 1'b0;
+                else if (l_acc) r0_busy <= 1'b1;
+                else if (l_done) r0_busy <= 1'b0;
+                if (l_acc) begin
+                    r0_c <= 3'd1;
+                    r0_i <= ci;
+                    r0_j <= cj;
+                    r0_k <= ck;
+                end else if (r0_busy) r0_c <= r0_c + 3'd1;
+                if (l_acc || r0_busy)
+                    for (s8 = 0; s8 < 8; s8 = s8 + 1)
+                        if (slot == s8[2:0]) r0_h[6*s8+:6] <= h1;
+            end
+        end
+    endgenerate
 
     // ---------------------------------------------------------------- H
     // Gradient (np_grad_decode / np_grad_apply_q8): p, q, r are the corner
@@ -157,15 +220,48 @@ module np_classic3 #(
 
     wire signed [8:0] du0 = {1'b0, r0_u}, dv0 = {1'b0, r0_v}, dw0 = {1'b0, r0_w};
     wire signed [8:0] du1 = {1'b1, r0_u}, dv1 = {1'b1, r0_v}, dw1 = {1'b1, r0_w};  // t - 256
+    wire [SW-1:0] h_sx, h_sy, h_sz;  // s(u), s(v), s(w): u(WS+1) Q1.WS
+    generate
+        if (S_TABLE == 0) begin : g_sarith
+            // u^2 etc. in L (u16 Q0.16, held in bank R0), the rest of the formula in H
+            reg [15:0] r0_su, r0_sv, r0_sw;
+            always @(posedge clk) if (l_acc) begin
+                r0_su <= cx[7:0] * cx[7:0];
+                r0_sv <= cy[7:0] * cy[7:0];
+                r0_sw <= cz[7:0] * cz[7:0];
+            end
+            assign h_sx = scurve(r0_su, r0_u);
+            assign h_sy = scurve(r0_sv, r0_v);
+            assign h_sz = scurve(r0_sw, r0_w);
+        end else begin : g_stable
+            // the table: entry t is scurve(t*t, t), the formula's value, computed at
+            // elaboration (a constant); one copy per axis, indexed by the fraction.
+            wire [256*SW-1:0] s_rom;
+            genvar t;
+            for (t = 0; t < 256; t = t + 1) begin : g_entry
+                localparam [31:0] T32 = t;        // u8: the fraction
+                localparam [31:0] SQ32 = t * t;   // u16: its square
+`ifdef NP_FAULT_STABLE
+                // fault: a wrong bit (weight 2^-2 of 1.0) in every 16th entry
+                assign s_rom[SW*t+:SW] = scurve(SQ32[15:0], T32[7:0]) ^ (T32[3:0] == 4'h5 ? 1 << (SW - 3) : 0);
+`else
+                assign s_rom[SW*t+:SW] = scurve(SQ32[15:0], T32[7:0]);
+`endif
+            end
+            assign h_sx = s_rom[SW*r0_u+:SW];
+            assign h_sy = s_rom[SW*r0_v+:SW];
+            assign h_sz = s_rom[SW*r0_w+:SW];
+        end
+    endgenerate
     reg signed [GW-1:0] r1_g[0:7];
     reg [SW-1:0] r1_sx, r1_sy, r1_sz;
     integer c;
     always @(posedge clk) if (en[1] && v[0]) begin
         for (c = 0; c < 8; c = c + 1)
             r1_g[c] <= grad(r0_h[6*c+:6], c[0] ? du1 : du0, c[1] ? dv1 : dv0, c[2] ? dw1 : dw0);
-        r1_sx <= scurve(r0_su, r0_u);
-        r1_sy <= scurve(r0_sv, r0_v);
-        r1_sz <= scurve(r0_sw, r0_w);
+        r1_sx <= h_sx;
+        r1_sy <= h_sy;
+        r1_sz <= h_sz;
     end
 
     // ---------------------------------------------------------------- I1m, I1a

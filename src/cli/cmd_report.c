@@ -34,6 +34,7 @@ static const char usage_text[] =
     "usage: noisepipe report gates  [--unit U] [--config K=V,...] [--levels N] [-o DIR]\n"
     "       noisepipe report gates  --scene SCENE.json [--sized] [--levels N] [-o DIR]\n"
     "       noisepipe report gates  --synth [--unit U] [--config K=V,...] [--rtl DIR] [--per-stage] [--tolerance PCT]\n"
+    "                                [--rtl-param NAME=V,...]\n"
     "       noisepipe report pareto [--unit U] [--samples N] [--seed S] [-o DIR]\n"
     "       noisepipe report runtime [--scene SCENE.json] [--repeat N] -o DIR\n"
     "       noisepipe report all    -o DIR        (what docs/ holds: gates + every pareto sweep + runtime in DIR/plots)\n"
@@ -62,6 +63,9 @@ static const char usage_text[] =
     "  docs/cost-model.md). Needs yosys (exit 2 without it); --tolerance PCT: exit 1 when a\n"
     "  stage is more than PCT % from synthesis; --per-stage: ABC on each stage's cone alone\n"
     "  (much faster on simplex3; within a few % of the whole-design flow on classic3).\n"
+    "  --rtl-param NAME=V,...: RTL parameters that are not configuration keys (with --unit;\n"
+    "  classic3: IN_REG, OUT_SKID, S_TABLE, HASH_SERIAL; simplex3: IN_REG, OUT_SKID; docs/rtl.md):\n"
+    "  Yosys per stage beside the cost model of the as-built circuit, labelled so (no --tolerance).\n"
     "pareto: the design-space sweep of a unit's internal widths: each configuration's verdict\n"
     "  (faithful (proved), no counterexample in N adversarial inputs, not faithful with the\n"
     "  counterexample) and the adversarial search's max error against gates and latency;\n"
@@ -771,7 +775,7 @@ int np_cmd_report(int argc, char **argv)
         fputs(usage_text, argc < 2 ? stderr : stdout);
         return argc < 2 ? NP_EXIT_USAGE : NP_EXIT_OK;
     }
-    const char *what = argv[1], *dir = NULL, *spec = NULL, *scene = NULL, *rtl = NULL;
+    const char *what = argv[1], *dir = NULL, *spec = NULL, *scene = NULL, *rtl = NULL, *rtl_param = NULL;
     const np_unit *unit = NULL;
     int synth = 0, per_stage = 0;
     double tolerance = -1.0;
@@ -813,6 +817,8 @@ int np_cmd_report(int argc, char **argv)
         }
         else if (strcmp(a, "--rtl") == 0)
             rtl = v;
+        else if (strcmp(a, "--rtl-param") == 0)
+            rtl_param = v;
         else if (strcmp(a, "--tolerance") == 0) {
             char *end;
             tolerance = strtod(v, &end);
@@ -910,6 +916,17 @@ int np_cmd_report(int argc, char **argv)
     if ((synth || rtl || per_stage || tolerance >= 0.0) && (strcmp(what, "gates") != 0 || scene || dir || !synth)) {
         np_err("report", "--synth (with --rtl, --per-stage, --tolerance) goes with gates, without --scene or -o (Markdown on stdout)");
         return NP_EXIT_USAGE;
+    }
+    if (rtl_param) { /* --rtl-param: a variant of the RTL, which the cost model does not declare */
+        char err[512];
+        if (!synth || tolerance >= 0.0) {
+            np_err("report", "--rtl-param goes with --synth and without --tolerance (no model of the variant)");
+            return NP_EXIT_USAGE;
+        }
+        if (np_synth_set_rtl_params(unit, rtl_param, err, sizeof err) != 0) {
+            np_err("report", "%s", err);
+            return NP_EXIT_USAGE;
+        }
     }
     if (synth)
         return np_report_gates_synth(unit, spec, rtl, per_stage, tolerance);

@@ -58,6 +58,15 @@ double np_synth_print(FILE *f, const np_unit_cost *c, const np_synth_result *r);
 int np_report_gates_synth(const np_unit *only, const char *spec, const char *rtl_dir, int per_stage,
                           double tolerance_pct);
 
+/*
+ * --rtl-param NAME=V,...: RTL parameters of u that are not configuration keys
+ * (IN_REG, OUT_SKID; classic3's S_TABLE, HASH_SERIAL: docs/rtl.md), set for
+ * the following np_synth_run calls (NULL clears them). With any set, the
+ * report prints Yosys per stage beside the as-built circuit's model, labelled
+ * (the cost model declares no variant). 0; -1 with a message in err.
+ */
+int np_synth_set_rtl_params(const np_unit *u, const char *spec, char *err, size_t errlen);
+
 /* The RTL folder compiled in (the source tree's rtl_model/verilog). */
 const char *np_synth_default_rtl_dir(void);
 

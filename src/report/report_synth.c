@@ -77,6 +77,72 @@ static const char *prefix_of(const rtl_desc *d, const char *stage)
     return NULL;
 }
 
+/*
+ * --rtl-param: RTL parameters that are not configuration keys (the pipe options
+ * and classic3's circuit variants, docs/rtl.md), as " -set NAME V" for chparam.
+ * The cost model declares only the as-built circuit, so with any of them the
+ * report prints Yosys's figures beside the as-built model, labelled as such.
+ */
+static const struct {
+    const char *unit;
+    const char *names[6];
+} rtl_extra_params[] = {
+    { "classic3", { "IN_REG", "OUT_SKID", "S_TABLE", "HASH_SERIAL", NULL } },
+    { "simplex3", { "IN_REG", "OUT_SKID", NULL } },
+};
+static char g_rtl_params[256];      /* " -set S_TABLE 1 -set HASH_SERIAL 1" */
+static char g_rtl_params_spec[256]; /* "S_TABLE=1 HASH_SERIAL=1", for the heading */
+
+int np_synth_set_rtl_params(const np_unit *u, const char *spec, char *err, size_t errlen)
+{
+    g_rtl_params[0] = g_rtl_params_spec[0] = '\0';
+    if (!spec)
+        return 0;
+    const char *const *names = NULL;
+    for (size_t i = 0; i < sizeof rtl_extra_params / sizeof rtl_extra_params[0]; i++)
+        if (u && strcmp(rtl_extra_params[i].unit, u->name) == 0)
+            names = rtl_extra_params[i].names;
+    if (!names) {
+        snprintf(err, errlen, "--rtl-param needs --unit classic3 or simplex3");
+        return -1;
+    }
+    size_t n = 0, m = 0;
+    for (const char *p = spec; *p;) {
+        char name[32];
+        size_t k = 0;
+        while (*p && *p != '=' && *p != ',' && k + 1 < sizeof name)
+            name[k++] = (char)toupper((unsigned char)*p++);
+        name[k] = '\0';
+        int known = 0;
+        for (unsigned j = 0; names[j]; j++)
+            known |= strcmp(names[j], name) == 0;
+        if (!known) {
+            snprintf(err, errlen, "--rtl-param %s: '%s' is not an RTL parameter of %s outside its configuration keys (",
+                     spec, name, u->name);
+            for (unsigned j = 0; names[j]; j++)
+                snprintf(err + strlen(err), errlen - strlen(err), "%s%s", j ? ", " : "", names[j]);
+            snprintf(err + strlen(err), errlen - strlen(err), "; keys go in --config)");
+            return -1;
+        }
+        char *end;
+        unsigned long v = *p == '=' ? strtoul(p + 1, &end, 10) : 2;
+        if (*p != '=' || end == p + 1 || v > 1 || (*end && *end != ',')) {
+            snprintf(err, errlen, "--rtl-param %s: %s needs =0 or =1 (NAME=V,NAME=V)", spec, name);
+            return -1;
+        }
+        int w1 = snprintf(g_rtl_params + n, sizeof g_rtl_params - n, " -set %s %lu", name, v);
+        int w2 = snprintf(g_rtl_params_spec + m, sizeof g_rtl_params_spec - m, "%s%s=%lu", m ? " " : "", name, v);
+        if (w1 < 0 || w2 < 0 || (n += (size_t)w1) >= sizeof g_rtl_params ||
+            (m += (size_t)w2) >= sizeof g_rtl_params_spec) {
+            snprintf(err, errlen, "--rtl-param %s: too long", spec);
+            g_rtl_params[0] = g_rtl_params_spec[0] = '\0';
+            return -1;
+        }
+        p = *end ? end + 1 : end;
+    }
+    return 0;
+}
+
 /* The script's head: the RTL at the configuration (every key, upper case, is a parameter). */
 static void write_read(FILE *f, const rtl_desc *d, const np_unit *u, const void *cfg, const char *dir)
 {
@@ -92,6 +158,7 @@ static void write_read(FILE *f, const rtl_desc *d, const np_unit *u, const void 
             fputc(toupper((unsigned char)*p), f);
         fprintf(f, " %u", np_unit_key_get(key, cfg));
     }
+    fputs(g_rtl_params, f); /* --rtl-param (np_synth_set_rtl_params) */
     fprintf(f, " %s\n", d->top);
 }
 
@@ -326,6 +393,26 @@ double np_synth_print(FILE *f, const np_unit_cost *c, const np_synth_result *r)
     return worst;
 }
 
+/*
+ * Yosys per stage with the as-built model beside it (--rtl-param: no model
+ * of the variant): no ratio column, since the two describe different circuits.
+ */
+static void print_variant(FILE *f, const np_unit_cost *c, const np_synth_result *r)
+{
+    double ff = np_cost_default.ff_bit;
+    unsigned sd = 0;
+    fprintf(f, "| stage | Yosys flip-flops | Yosys | cost model of the as-built circuit (not this variant) |\n");
+    fprintf(f, "| --- | ---: | ---: | ---: |\n");
+    for (unsigned k = 0; k < c->n_stages && k < r->n_stages; k++) {
+        sd += r->st[k].dff;
+        fprintf(f, "| %s | %u | %.0f | %.0f |\n", c->st[k].name, r->st[k].dff, r->st[k].gates,
+                model_stage(&c->st[k], ff));
+    }
+    fprintf(f, "| shared: valid bits, handshake, options | %u | %.0f | %.0f |\n", r->dff - sd, r->shared,
+            ff * c->n_stages);
+    fprintf(f, "| **total** | **%u** | **%.0f** | **%.0f** |\n", r->dff, r->total, c->total);
+}
+
 int np_report_gates_synth(const np_unit *only, const char *spec, const char *rtl_dir, int per_stage,
                           double tolerance_pct)
 {
@@ -359,11 +446,22 @@ int np_report_gates_synth(const np_unit *only, const char *spec, const char *rtl
             free(c);
             return NP_EXIT_USAGE;
         }
-        printf("## %s (`%s`): cost model against Yosys\n\n", u->name, c->cfg);
-        double worst = np_synth_print(stdout, c, &r);
+        double worst = 0.0;
+        if (g_rtl_params_spec[0]) {
+            printf("## %s (`%s`, RTL `%s`): Yosys per stage\n\n", u->name, c->cfg, g_rtl_params_spec);
+            print_variant(stdout, c, &r);
+        } else {
+            printf("## %s (`%s`): cost model against Yosys\n\n", u->name, c->cfg);
+            worst = np_synth_print(stdout, c, &r);
+        }
         printf("\nNAND2 equivalents: Yosys 0.23 + ABC (`abc -g NAND`, `stat -tech cmos` transistors / 4; "
-               "enables and the valid bits' logic included; %s); largest stage deviation %.1f %%; yosys took %.0f s.\n\n",
-               per_stage ? "ABC per stage, --per-stage" : "the whole design", 100.0 * worst, np_now() - t0);
+               "enables and the valid bits' logic included; %s); ",
+               per_stage ? "ABC per stage, --per-stage" : "the whole design");
+        if (g_rtl_params_spec[0]) /* --rtl-param */
+            printf("a variant the cost model does not declare (its column: the as-built circuit); ");
+        else
+            printf("largest stage deviation %.1f %%; ", 100.0 * worst);
+        printf("yosys took %.0f s.\n\n", np_now() - t0);
         if (tolerance_pct >= 0.0 && 100.0 * worst > tolerance_pct) {
             np_err("report", "%s: a stage is %.1f %% from synthesis (tolerance %.1f %%)", u->name, 100.0 * worst,
                    tolerance_pct);
