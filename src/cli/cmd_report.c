@@ -33,7 +33,7 @@ static int g_sized;
 static const char usage_text[] =
     "usage: noisepipe report gates  [--unit U] [--config K=V,...] [--levels N] [-o DIR]\n"
     "       noisepipe report gates  --scene SCENE.json [--sized] [--levels N] [-o DIR]\n"
-    "       noisepipe report gates  --synth [--unit U] [--config K=V,...] [--rtl DIR] [--per-stage] [--tolerance PCT]\n"
+    "       noisepipe report gates  --synth [--unit U] [--config K=V,...] [--rtl DIR] [--per-stage] [--abc-full] [--tolerance PCT]\n"
     "                                [--rtl-param NAME=V,...]\n"
     "       noisepipe report pareto [--unit U] [--samples N] [--seed S] [-o DIR]\n"
     "       noisepipe report runtime [--scene SCENE.json] [--repeat N] -o DIR\n"
@@ -62,7 +62,8 @@ static const char usage_text[] =
     "  and print its NAND2 equivalents per stage beside the cost model's (classic3, simplex3;\n"
     "  docs/cost-model.md). Needs yosys (exit 2 without it); --tolerance PCT: exit 1 when a\n"
     "  stage is more than PCT % from synthesis; --per-stage: ABC on each stage's cone alone\n"
-    "  (much faster on simplex3; within a few % of the whole-design flow on classic3).\n"
+    "  (much faster on simplex3; within a few % of the whole-design flow on classic3); ABC\n"
+    "  runs its default script with the SAT sweep bounded (&fraig -x -C 1000), --abc-full: unbounded.\n"
     "  --rtl-param NAME=V,...: RTL parameters that are not configuration keys (with --unit;\n"
     "  classic3: IN_REG, OUT_SKID, S_TABLE, HASH_SERIAL; simplex3: IN_REG, OUT_SKID; docs/rtl.md):\n"
     "  Yosys per stage beside the cost model of the as-built circuit, labelled so (no --tolerance).\n"
@@ -796,7 +797,11 @@ int np_cmd_report(int argc, char **argv)
             continue;
         }
         if (strcmp(a, "--per-stage") == 0) {
-            per_stage = 1;
+            per_stage |= NP_SYNTH_PER_STAGE;
+            continue;
+        }
+        if (strcmp(a, "--abc-full") == 0) {
+            per_stage |= NP_SYNTH_ABC_FULL;
             continue;
         }
         if (!v) {
@@ -914,7 +919,7 @@ int np_cmd_report(int argc, char **argv)
         return np_report_dims(dir);
     }
     if ((synth || rtl || per_stage || tolerance >= 0.0) && (strcmp(what, "gates") != 0 || scene || dir || !synth)) {
-        np_err("report", "--synth (with --rtl, --per-stage, --tolerance) goes with gates, without --scene or -o (Markdown on stdout)");
+        np_err("report", "--synth (with --rtl, --per-stage, --abc-full, --tolerance) goes with gates, without --scene or -o (Markdown on stdout)");
         return NP_EXIT_USAGE;
     }
     if (rtl_param) { /* --rtl-param: a variant of the RTL, which the cost model does not declare */

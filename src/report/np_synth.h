@@ -31,16 +31,23 @@ typedef struct np_synth_result {
     unsigned dff;    /* all flip-flops */
 } np_synth_result;
 
+/* np_synth_run's flags. */
+enum {
+    NP_SYNTH_PER_STAGE = 1, /* ABC on each bank's input cone alone (--per-stage) */
+    NP_SYNTH_ABC_FULL = 2   /* ABC's unbounded default script (--abc-full); else the SAT sweep is bounded */
+};
+
 /* 1 when unit u has reference RTL that --synth can synthesise. */
 int np_synth_has_rtl(const np_unit *u);
 
 /*
  * Synthesise u's RTL (files in rtl_dir) at configuration cfg with the
- * stages of model c (np_unit_cost_compute); per_stage: ABC on each bank's
- * input cone alone (docs/cost-model.md, "--per-stage"). 0; -1 with a message in err;
+ * stages of model c (np_unit_cost_compute); flags: NP_SYNTH_PER_STAGE (ABC on
+ * each bank's input cone alone, docs/cost-model.md, "--per-stage"),
+ * NP_SYNTH_ABC_FULL (ABC's unbounded default script). 0; -1 with a message in err;
  * -2 when yosys cannot be run (message in err).
  */
-int np_synth_run(const np_unit *u, const void *cfg, const np_unit_cost *c, const char *rtl_dir, int per_stage,
+int np_synth_run(const np_unit *u, const void *cfg, const np_unit_cost *c, const char *rtl_dir, int flags,
                  np_synth_result *r, char *err, size_t errlen);
 
 /*
@@ -51,11 +58,11 @@ double np_synth_print(FILE *f, const np_unit_cost *c, const np_synth_result *r);
 
 /*
  * The command: `noisepipe report gates --synth [--unit U] [--config K=V,...]
- * [--rtl DIR] [--per-stage] [--tolerance PCT]`. Every unit with RTL (or U), each at its
+ * [--rtl DIR] [--per-stage] [--abc-full] [--tolerance PCT]` (flags: NP_SYNTH_*). Every unit with RTL (or U), each at its
  * default or at --config. NP_EXIT_USAGE when yosys is absent or the input is
  * bad; NP_EXIT_FAIL when a stage is more than PCT % from synthesis.
  */
-int np_report_gates_synth(const np_unit *only, const char *spec, const char *rtl_dir, int per_stage,
+int np_report_gates_synth(const np_unit *only, const char *spec, const char *rtl_dir, int flags,
                           double tolerance_pct);
 
 /*

@@ -7,8 +7,13 @@
  * columns count the same cells; docs/cost-model.md):
  *   read_verilog; chparam (every configuration key, upper case, is a parameter);
  *   synth -top T -flatten; dfflegalize -cell $_DFF_P_ 01 (enables and resets
- *   become logic in front of a plain flip-flop); abc -g NAND; opt_clean;
- *   stat -tech cmos.
+ *   become logic in front of a plain flip-flop); abc -g NAND -script F;
+ *   opt_clean; stat -tech cmos, where F is ABC's default script for a gate
+ *   library (Yosys 0.23's abc pass) with the SAT sweep bounded:
+ *   `&fraig -x -C 1000` instead of `&fraig -x` (1,000,000 conflicts a node),
+ *   which ran for over 10 CPU minutes on simplex3's KT (three squarers of
+ *   conditionally negated words) without finishing. NP_SYNTH_ABC_FULL keeps
+ *   the unbounded default script (docs/cost-model.md, "Flow").
  * Weights: Yosys 0.23's CMOS transistor counts (`stat -tech cmos`, kernel/cost.h:
  * $_NAND_ 4, $_NOT_ 2, $_DFF_P_ 16), divided by 4 (one NAND2 = 4 transistors):
  * NAND2 1, NOT 0.5, D flip-flop 4.
@@ -67,6 +72,22 @@ static const rtl_desc *rtl_of(const np_unit *u)
 int np_synth_has_rtl(const np_unit *u)
 {
     return rtl_of(u) != NULL;
+}
+
+/*
+ * ABC's script: Yosys 0.23's default for -g/-liberty without -constr (`yosys
+ * -h abc`), its SAT sweep limited to 1,000 conflicts a node unless full.
+ */
+static const char abc_script_bounded[] = "strash; &get -n; &fraig -x -C 1000; &put; scorr; dc2; dretime; strash; "
+                                         "&get -n; &dch -f; &nf; &put\n";
+
+/* The abc command: with the bounded script (written to path) or Yosys's default. */
+static void write_abc(FILE *f, int flags, const char *abc_path)
+{
+    if (flags & NP_SYNTH_ABC_FULL)
+        fprintf(f, "abc -g NAND\n");
+    else
+        fprintf(f, "abc -g NAND -script %s\n", abc_path);
 }
 
 static const char *prefix_of(const rtl_desc *d, const char *stage)
@@ -183,10 +204,12 @@ static int write_cones(FILE *f, const rtl_desc *d, const np_unit *u, const np_un
  * of what only it holds.
  */
 static int write_script(FILE *f, const rtl_desc *d, const np_unit *u, const void *cfg, const np_unit_cost *c,
-                        const char *dir, const char *out, char *err, size_t errlen)
+                        const char *dir, const char *out, int flags, const char *abc_path, char *err, size_t errlen)
 {
     write_read(f, d, u, cfg, dir);
-    fprintf(f, "synth -top %s -flatten\ndfflegalize -cell $_DFF_P_ 01\nabc -g NAND\nopt_clean\n", d->top);
+    fprintf(f, "synth -top %s -flatten\ndfflegalize -cell $_DFF_P_ 01\n", d->top);
+    write_abc(f, flags, abc_path);
+    fprintf(f, "opt_clean\n");
     fprintf(f, "tee -q -o %s log NP_TOTAL\ntee -q -a %s stat -tech cmos\n", out, out);
     if (write_cones(f, d, u, c, "$_DFF_P_", "", err, errlen) != 0)
         return -1;
@@ -210,7 +233,8 @@ static int write_script(FILE *f, const rtl_desc *d, const np_unit *u, const void
  * cones share is counted in both (the whole-design flow puts it in shared).
  */
 static int write_script_stages(FILE *f, const rtl_desc *d, const np_unit *u, const void *cfg, const np_unit_cost *c,
-                               const char *dir, const char *out, char *err, size_t errlen)
+                               const char *dir, const char *out, int flags, const char *abc_path, char *err,
+                               size_t errlen)
 {
     write_read(f, d, u, cfg, dir);
     fprintf(f, "synth -top %s -flatten -noabc\ndfflegalize -cell $_DFF_P_ 01\nopt_clean\n", d->top);
@@ -227,7 +251,9 @@ static int write_script_stages(FILE *f, const rtl_desc *d, const np_unit *u, con
                 fprintf(f, " @c%u", j);
             fprintf(f, "\ndelete @call t:* %%i\n");
         }
-        fprintf(f, "setundef -undriven -expose\nexpose t:$_DFF_P_ %%co1:+$_DFF_P_[Q]\nabc -g NAND\nopt_clean\n");
+        fprintf(f, "setundef -undriven -expose\nexpose t:$_DFF_P_ %%co1:+$_DFF_P_[Q]\n");
+        write_abc(f, flags, abc_path);
+        fprintf(f, "opt_clean\n");
         if (k < c->n_stages)
             fprintf(f, "tee -q -a %s log NP_STAGE %u\n", out, k);
         else
@@ -282,9 +308,10 @@ static int parse_stats(FILE *f, np_synth_result *r, unsigned n_stages)
     return seen_total && r->total > 0 ? 0 : -1;
 }
 
-int np_synth_run(const np_unit *u, const void *cfg, const np_unit_cost *c, const char *rtl_dir, int per_stage,
+int np_synth_run(const np_unit *u, const void *cfg, const np_unit_cost *c, const char *rtl_dir, int flags,
                  np_synth_result *r, char *err, size_t errlen)
 {
+    int per_stage = flags & NP_SYNTH_PER_STAGE;
     memset(r, 0, sizeof *r);
     const rtl_desc *d = rtl_of(u);
     if (!d) {
@@ -304,7 +331,7 @@ int np_synth_run(const np_unit *u, const void *cfg, const np_unit_cost *c, const
         }
     }
     const char *tmpdir = getenv("TMPDIR");
-    char dir[4096], script[4200], out[4200], log[4200];
+    char dir[4096], script[4200], out[4200], log[4200], abc[4200];
     snprintf(dir, sizeof dir, "%s/noisepipe-synth-XXXXXX", tmpdir && *tmpdir ? tmpdir : "/tmp");
     if (!mkdtemp(dir)) {
         snprintf(err, errlen, "cannot create a temporary folder in %s", tmpdir && *tmpdir ? tmpdir : "/tmp");
@@ -313,13 +340,18 @@ int np_synth_run(const np_unit *u, const void *cfg, const np_unit_cost *c, const
     snprintf(script, sizeof script, "%s/synth.ys", dir);
     snprintf(out, sizeof out, "%s/stat.txt", dir);
     snprintf(log, sizeof log, "%s/yosys.log", dir);
+    snprintf(abc, sizeof abc, "%s/abc.script", dir);
     int rc = -1;
-    FILE *f = fopen(script, "w");
-    if (!f) {
+    FILE *f = fopen(script, "w"), *fa = fopen(abc, "w");
+    if (fa && (fputs(abc_script_bounded, fa) == EOF) + (fclose(fa) != 0) != 0)
+        fa = NULL;
+    if (!f || !fa) {
+        if (f)
+            fclose(f);
         snprintf(err, errlen, "cannot write %s", script);
     } else {
-        int w = per_stage ? write_script_stages(f, d, u, cfg, c, rtl_dir, out, err, errlen)
-                          : write_script(f, d, u, cfg, c, rtl_dir, out, err, errlen);
+        int w = per_stage ? write_script_stages(f, d, u, cfg, c, rtl_dir, out, flags, abc, err, errlen)
+                          : write_script(f, d, u, cfg, c, rtl_dir, out, flags, abc, err, errlen);
         if (fclose(f) != 0 && w == 0) {
             snprintf(err, errlen, "cannot write %s", script);
             w = -1;
@@ -354,6 +386,7 @@ int np_synth_run(const np_unit *u, const void *cfg, const np_unit_cost *c, const
         remove(script);
         remove(out);
         remove(log);
+        remove(abc);
         rmdir(dir);
     }
     return rc;
@@ -413,9 +446,10 @@ static void print_variant(FILE *f, const np_unit_cost *c, const np_synth_result 
     fprintf(f, "| **total** | **%u** | **%.0f** | **%.0f** |\n", r->dff, r->total, c->total);
 }
 
-int np_report_gates_synth(const np_unit *only, const char *spec, const char *rtl_dir, int per_stage,
+int np_report_gates_synth(const np_unit *only, const char *spec, const char *rtl_dir, int flags,
                           double tolerance_pct)
 {
+    int per_stage = flags & NP_SYNTH_PER_STAGE;
     if (!rtl_dir)
         rtl_dir = np_synth_default_rtl_dir();
     int rc = NP_EXIT_OK, any = 0;
@@ -440,7 +474,7 @@ int np_report_gates_synth(const np_unit *only, const char *spec, const char *rtl
                     u->name, c->cfg);
         double t0 = np_now();
         np_synth_result r;
-        int s = np_synth_run(u, &cfg, c, rtl_dir, per_stage, &r, err, sizeof err);
+        int s = np_synth_run(u, &cfg, c, rtl_dir, flags, &r, err, sizeof err);
         if (s != 0) {
             np_err("report", "%s: %s", u->name, err);
             free(c);
@@ -454,8 +488,9 @@ int np_report_gates_synth(const np_unit *only, const char *spec, const char *rtl
             printf("## %s (`%s`): cost model against Yosys\n\n", u->name, c->cfg);
             worst = np_synth_print(stdout, c, &r);
         }
-        printf("\nNAND2 equivalents: Yosys 0.23 + ABC (`abc -g NAND`, `stat -tech cmos` transistors / 4; "
+        printf("\nNAND2 equivalents: Yosys 0.23 + ABC (`abc -g NAND`, %s; `stat -tech cmos` transistors / 4; "
                "enables and the valid bits' logic included; %s); ",
+               flags & NP_SYNTH_ABC_FULL ? "ABC's default script, --abc-full" : "SAT sweep bounded, &fraig -x -C 1000",
                per_stage ? "ABC per stage, --per-stage" : "the whole design");
         if (g_rtl_params_spec[0]) /* --rtl-param */
             printf("a variant the cost model does not declare (its column: the as-built circuit); ");
