@@ -236,21 +236,30 @@ module np_classic3 #(
         end else begin : g_stable
             // the table: entry t is scurve(t*t, t), the formula's value, computed at
             // elaboration (a constant); one copy per axis, indexed by the fraction.
-            wire [256*SW-1:0] s_rom;
+            // Entries sit at a power-of-two pitch TP >= SW (the bits above SW are 0),
+            // so the index is {t, TB zeros}: a plain 256-way ROM select. With pitch SW
+            // (index SW * t) Yosys builds a barrel shifter over the whole table that ABC
+            // does not fold back: 2,829.5 NAND2 against 474 for one s_frac=9 table.
+            localparam integer TB = SW <= 8 ? 3 : SW <= 16 ? 4 : 5;  // SW <= 25
+            localparam integer TP = 1 << TB;
+            wire [256*TP-1:0] s_rom;
             genvar t;
             for (t = 0; t < 256; t = t + 1) begin : g_entry
                 localparam [31:0] T32 = t;        // u8: the fraction
                 localparam [31:0] SQ32 = t * t;   // u16: its square
 `ifdef NP_FAULT_STABLE
                 // fault: a wrong bit (weight 2^-2 of 1.0) in every 16th entry
-                assign s_rom[SW*t+:SW] = scurve(SQ32[15:0], T32[7:0]) ^ (T32[3:0] == 4'h5 ? 1 << (SW - 3) : 0);
+                assign s_rom[TP*t+:SW] = scurve(SQ32[15:0], T32[7:0]) ^ (T32[3:0] == 4'h5 ? 1 << (SW - 3) : 0);
 `else
-                assign s_rom[SW*t+:SW] = scurve(SQ32[15:0], T32[7:0]);
+                assign s_rom[TP*t+:SW] = scurve(SQ32[15:0], T32[7:0]);
 `endif
+                if (TP > SW) begin : g_pad
+                    assign s_rom[TP*t+SW+:TP-SW] = 0;
+                end
             end
-            assign h_sx = s_rom[SW*r0_u+:SW];
-            assign h_sy = s_rom[SW*r0_v+:SW];
-            assign h_sz = s_rom[SW*r0_w+:SW];
+            assign h_sx = s_rom[{r0_u, {TB{1'b0}}}+:SW];
+            assign h_sy = s_rom[{r0_v, {TB{1'b0}}}+:SW];
+            assign h_sz = s_rom[{r0_w, {TB{1'b0}}}+:SW];
         end
     endgenerate
     reg signed [GW-1:0] r1_g[0:7];
