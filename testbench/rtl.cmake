@@ -6,8 +6,9 @@
 #   rtl.<unit>.<sim>.golden.default        the checked-in golden set
 #   rtl.<unit>.<sim>.<level>.<cfg>         a set generated at <cfg> (l1: ~4k, l2: ~10^6 vectors)
 #   rtl.<unit>.<sim>.<fault>               the bench on a fault-injected RTL copy must fail
-#   rtl.classic3.<sim>.<variant>[.<what>]  the circuit variants S_TABLE, HASH_SERIAL (s_table,
-#                                          hash_serial, both): golden, cheap, l2, fault
+#   rtl.classic3.<sim>.<variant>[.<what>]  the circuit variants S_TABLE, HASH_SERIAL, LERP_SERIAL
+#                                          (s_table, hash_serial, both, l_serial): golden, cheap,
+#                                          l2, fault; l_serial also .table (with S_TABLE), .wide_l
 # Verilator tests are labelled "nosan" (the C sanitizers do not reach them,
 # and the sanitizer pass need not pay for their builds); so is the slow Icarus
 # level-2 run. Without iverilog or verilator the tests report themselves skipped.
@@ -32,10 +33,11 @@ endfunction()
 
 # Bench builds of <unit>: variant ok, fault_flip, fault_stall (the RTL with
 # `define NP_FAULT_FLIP / NP_FAULT_STALL), or for classic3's circuit variants
-# fault_stable, fault_serial (NP_FAULT_STABLE / NP_FAULT_SERIAL). Fixtures rtl_<unit>_<sim>_<variant>.
+# fault_stable, fault_serial, fault_lserial (NP_FAULT_STABLE / NP_FAULT_SERIAL / NP_FAULT_LSERIAL).
+# Fixtures rtl_<unit>_<sim>_<variant>.
 function(np_rtl_builds unit variant top)
   set(defs)
-  if(variant MATCHES "^fault_(flip|stall|stable|serial)$")
+  if(variant MATCHES "^fault_(flip|stall|stable|serial|lserial)$")
     string(TOUPPER "${variant}" def)
     set(defs -DNP_${def})
   endif()
@@ -92,7 +94,7 @@ endfunction()
 
 # ------------------------------------------------------------------ classic3
 set(NP_RTL_C3_SRC ${NP_RTL_TB}/rtl_classic3_tb.v ${NP_RTL_SRC}/np_classic3.v ${NP_RTL_PIPE_SRC})
-foreach(v ok fault_flip fault_stall fault_stable fault_serial)
+foreach(v ok fault_flip fault_stall fault_stable fault_serial fault_lserial)
   np_rtl_builds(classic3 ${v} rtl_classic3_tb ${NP_RTL_C3_SRC})
 endforeach()
 # The configurations of rtl_classic3_tb.v's table (name and config string).
@@ -103,11 +105,12 @@ set(NP_RTL_C3_cheap "out_bits=8,s_frac=4,lerp_frac=6")
 set(NP_RTL_C3_exact_s "out_bits=12,s_frac=24,lerp_frac=30")
 set(NP_RTL_C3_wide_l "out_bits=15,s_frac=3,lerp_frac=20")
 set(NP_RTL_C3_opts "") # the default configuration with the input register and the skid buffer
-# The circuit variants (np_classic3.v's S_TABLE, HASH_SERIAL; docs/rtl.md): test name, then the
-# bench's +cfg names at the default and at cheap (out_bits=8 s_frac=4 lerp_frac=6), and the fault
-# builds that must be caught. HASH_SERIAL delivers one result per 8 clocks; the bench takes it.
+# The circuit variants (np_classic3.v's S_TABLE, HASH_SERIAL, LERP_SERIAL; docs/rtl.md): test name,
+# then the bench's +cfg names at the default and at cheap (out_bits=8 s_frac=4 lerp_frac=6), and the
+# fault builds that must be caught. HASH_SERIAL and LERP_SERIAL deliver one result per 8 clocks; the
+# bench takes it.
 set(NP_RTL_C3_VARIANTS "s_table|s_table|st_cheap|fault_stable" "hash_serial|h_serial|hs_cheap|fault_serial"
-  "both|both|bo_cheap|fault_stable,fault_serial")
+  "both|both|bo_cheap|fault_stable,fault_serial" "l_serial|l_serial|ls_cheap|fault_lserial")
 set(c3_vec ${NP_RTL_WORK}/classic3/vec)
 set(c3_golden ${PROJECT_SOURCE_DIR}/vectors/classic3/classic3-l1-seed1.memh)
 set(pass_re "In [1-9][0-9]* tests, no errors found\\.")
@@ -158,6 +161,15 @@ foreach(sim icarus verilator)
         ${c3_golden} fail "In 4224 tests, [1-9][0-9]* errors found" "${lab}")
     endforeach()
   endforeach()
+  # LERP_SERIAL with the table s-curve (default configuration), and at wide_l (lerp_frac=20 >
+  # s_frac + 8: level-1 lerps shift left, not round): the checked-in sets, under Verilator only
+  # (Icarus takes about 8 s a set at 8 clocks a result; the lerp engine is the same code).
+  if(sim STREQUAL "verilator")
+    np_rtl_check(rtl.classic3.${sim}.l_serial.table classic3 ${sim} ok rtl_classic3_tb ls_table
+      ${c3_golden} pass "${pass_re}" "${lab}")
+    np_rtl_check(rtl.classic3.${sim}.l_serial.wide_l classic3 ${sim} ok rtl_classic3_tb ls_wide
+      ${PROJECT_SOURCE_DIR}/vectors/classic3/classic3-l1-seed1-wide_l.memh pass "${pass_re}" "${lab}")
+  endif()
   # S_TABLE at the widest table: s_frac=24 (25-bit entries), the level-1 set of exact_s.
   np_rtl_check(rtl.classic3.${sim}.s_table.exact_s classic3 ${sim} ok rtl_classic3_tb st_exact
     ${c3_vec}/classic3-l1-exact_s.memh pass "${pass_re}" "${lab}" rtl_classic3_l1_exact_s)
@@ -176,7 +188,7 @@ endforeach()
 np_rtl_check(rtl.classic3.verilator.l2.opts classic3 verilator ok rtl_classic3_tb opts
   ${c3_vec}/classic3-l2-default.memh pass "In 1031952 tests, no errors found\\." "rtl;nosan" rtl_classic3_l2_default)
 # The variants on the level-2 set of the default configuration (Icarus: with the slow tests below).
-foreach(vr "s_table;s_table" "hash_serial;h_serial" "both;both")
+foreach(vr "s_table;s_table" "hash_serial;h_serial" "both;both" "l_serial;l_serial")
   list(GET vr 0 vname)
   list(GET vr 1 vcfg)
   np_rtl_check(rtl.classic3.verilator.${vname}.l2 classic3 verilator ok rtl_classic3_tb ${vcfg}
@@ -358,6 +370,7 @@ find_program(NP_YOSYS yosys)
 foreach(u "classic3;np_classic3;;default" "classic3;np_classic3;-set IN_REG 1 -set OUT_SKID 1;opts"
           "classic3;np_classic3;-set S_TABLE 1;s_table" "classic3;np_classic3;-set HASH_SERIAL 1;hash_serial"
           "classic3;np_classic3;-set S_TABLE 1 -set HASH_SERIAL 1;both"
+          "classic3;np_classic3;-set LERP_SERIAL 1;l_serial" "classic3;np_classic3;-set S_TABLE 1 -set LERP_SERIAL 1;ls_table"
           "simplex3;np_simplex3;;default" "simplex3;np_simplex3;-set DERIV 0 -set T_FRAC 23 -set P_FRAC 20;f_only")
   list(GET u 0 unit)
   list(GET u 1 top)

@@ -29,7 +29,7 @@ add_test(NAME synth.rtl_param_usage
                           '--unit simplex3 --rtl-param HASH_SERIAL=1' '--unit classic3 --rtl-param S_TABLE=1 --tolerance 10'; do
                    \"$0\" report gates --synth $a > /dev/null 2> \"$1\"; s=$?; cat \"$1\";
                    test $s -eq 2 || { echo \"$a: exit $s, want 2\"; exit 1; }; done
-                 \"$0\" report gates --synth --unit classic3 --rtl-param FOO=1 2>&1 | grep -q 'IN_REG, OUT_SKID, S_TABLE, HASH_SERIAL'"
+                 \"$0\" report gates --synth --unit classic3 --rtl-param FOO=1 2>&1 | grep -q 'IN_REG, OUT_SKID, S_TABLE, HASH_SERIAL, LERP_SERIAL'"
           $<TARGET_FILE:noisepipe> ${CMAKE_CURRENT_BINARY_DIR}/synth_rtl_param.err)
 # A variant synthesised (classic3 with the table s-curve and the serial hash, at the small
 # configuration): Yosys per stage beside the as-built model, labelled as such.

@@ -67,7 +67,7 @@ int np_report_gates_synth(const np_unit *only, const char *spec, const char *rtl
 
 /*
  * --rtl-param NAME=V,...: RTL parameters of u that are not configuration keys
- * (IN_REG, OUT_SKID; classic3's S_TABLE, HASH_SERIAL: docs/rtl.md), set for
+ * (IN_REG, OUT_SKID; classic3's S_TABLE, HASH_SERIAL, LERP_SERIAL: docs/rtl.md), set for
  * the following np_synth_run calls (NULL clears them). With any set, the
  * report prints Yosys per stage beside the as-built circuit's model, labelled
  * (the cost model declares no variant). 0; -1 with a message in err.

@@ -108,7 +108,7 @@ static const struct {
     const char *unit;
     const char *names[6];
 } rtl_extra_params[] = {
-    { "classic3", { "IN_REG", "OUT_SKID", "S_TABLE", "HASH_SERIAL", NULL } },
+    { "classic3", { "IN_REG", "OUT_SKID", "S_TABLE", "HASH_SERIAL", "LERP_SERIAL", NULL } },
     { "simplex3", { "IN_REG", "OUT_SKID", NULL } },
 };
 static char g_rtl_params[256];      /* " -set S_TABLE 1 -set HASH_SERIAL 1" */

@@ -9,10 +9,12 @@
 //
 //   +vectors=FILE   the $readmemh vector file (required)
 //   +cfg=NAME       default | s_frac10 | cheap | exact_s | wide_l | opts, and
-//                   the circuit variants (np_classic3.v's S_TABLE, HASH_SERIAL):
-//                   s_table | h_serial | both (default configuration),
-//                   st_cheap | hs_cheap | bo_cheap (out_bits=8 s_frac=4 lerp_frac=6),
-//                   st_exact (out_bits=12 s_frac=24 lerp_frac=30, S_TABLE)
+//                   the circuit variants (np_classic3.v's S_TABLE, HASH_SERIAL,
+//                   LERP_SERIAL): s_table | h_serial | both | l_serial | ls_table
+//                   (LERP_SERIAL with S_TABLE) at the default configuration,
+//                   st_cheap | hs_cheap | bo_cheap | ls_cheap (out_bits=8 s_frac=4 lerp_frac=6),
+//                   st_exact (out_bits=12 s_frac=24 lerp_frac=30, S_TABLE),
+//                   ls_wide (out_bits=15 s_frac=3 lerp_frac=20, LERP_SERIAL)
 //   +bubble=B +stall=S   input bubbles and output stalls, in 1/8 (default 2, 2)
 //   +seed=N         the bubble/stall generator's seed (xorshift32, default 1)
 //
@@ -27,9 +29,9 @@
 // reads files and keeps counts, so blocking assignments are intended there.
 /* verilator lint_off BLKSEQ */
 module rtl_classic3_tb;
-    localparam integer NCFG = 13;
+    localparam integer NCFG = 17;
     localparam integer MAX_ERRORS = 20;
-    // name, out_bits, s_frac, lerp_frac, in_reg, out_skid, s_table, hash_serial
+    // name, out_bits, s_frac, lerp_frac, in_reg, out_skid, s_table, hash_serial, lerp_serial
     function [8*8-1:0] cfg_name;
         input integer k;
         case (k)
@@ -45,7 +47,11 @@ module rtl_classic3_tb;
             9: cfg_name = "st_cheap";
             10: cfg_name = "hs_cheap";
             11: cfg_name = "bo_cheap";
-            default: cfg_name = "st_exact";
+            12: cfg_name = "st_exact";
+            13: cfg_name = "l_serial";
+            14: cfg_name = "ls_cheap";
+            15: cfg_name = "ls_table";
+            default: cfg_name = "ls_wide";
         endcase
     endfunction
 
@@ -59,29 +65,33 @@ module rtl_classic3_tb;
     reg [NCFG*8-1:0] outbits_k;  // each DUT's out_bits (for the checker)
     reg [NCFG*8-1:0] sfrac_k, lfrac_k;
 
-`define NP_DUT(K, N, WS, WL, IR, OS, ST, HS) \
+`define NP_DUT(K, N, WS, WL, IR, OS, ST, HS, LS) \
     wire clk_``K = clk & (sel == K); \
     wire [N-1:0] f_``K; \
     np_classic3 #(.OUT_BITS(N), .S_FRAC(WS), .LERP_FRAC(WL), .IN_REG(IR), .OUT_SKID(OS), \
-                  .S_TABLE(ST), .HASH_SERIAL(HS)) dut_``K ( \
+                  .S_TABLE(ST), .HASH_SERIAL(HS), .LERP_SERIAL(LS)) dut_``K ( \
         .clk(clk_``K), .rst(rst), .in_valid(in_valid && sel == K), .in_ready(in_ready_k[K]), \
         .x(x), .y(y), .z(z), .out_valid(out_valid_k[K]), .out_ready(out_ready), .f(f_``K)); \
     assign f_k[16*K+:16] = {{(16-N){f_``K[N-1]}}, f_``K}; \
     initial begin outbits_k[8*K+:8] = N; sfrac_k[8*K+:8] = WS; lfrac_k[8*K+:8] = WL; end
 
-    `NP_DUT(0, 8, 12, 11, 0, 0, 0, 0)
-    `NP_DUT(1, 8, 10, 11, 0, 0, 0, 0)
-    `NP_DUT(2, 8, 4, 6, 0, 0, 0, 0)
-    `NP_DUT(3, 12, 24, 30, 0, 0, 0, 0)
-    `NP_DUT(4, 15, 3, 20, 0, 0, 0, 0)
-    `NP_DUT(5, 8, 12, 11, 1, 1, 0, 0)
-    `NP_DUT(6, 8, 12, 11, 0, 0, 1, 0)
-    `NP_DUT(7, 8, 12, 11, 0, 0, 0, 1)
-    `NP_DUT(8, 8, 12, 11, 0, 0, 1, 1)
-    `NP_DUT(9, 8, 4, 6, 0, 0, 1, 0)
-    `NP_DUT(10, 8, 4, 6, 0, 0, 0, 1)
-    `NP_DUT(11, 8, 4, 6, 0, 0, 1, 1)
-    `NP_DUT(12, 12, 24, 30, 0, 0, 1, 0)
+    `NP_DUT(0, 8, 12, 11, 0, 0, 0, 0, 0)
+    `NP_DUT(1, 8, 10, 11, 0, 0, 0, 0, 0)
+    `NP_DUT(2, 8, 4, 6, 0, 0, 0, 0, 0)
+    `NP_DUT(3, 12, 24, 30, 0, 0, 0, 0, 0)
+    `NP_DUT(4, 15, 3, 20, 0, 0, 0, 0, 0)
+    `NP_DUT(5, 8, 12, 11, 1, 1, 0, 0, 0)
+    `NP_DUT(6, 8, 12, 11, 0, 0, 1, 0, 0)
+    `NP_DUT(7, 8, 12, 11, 0, 0, 0, 1, 0)
+    `NP_DUT(8, 8, 12, 11, 0, 0, 1, 1, 0)
+    `NP_DUT(9, 8, 4, 6, 0, 0, 1, 0, 0)
+    `NP_DUT(10, 8, 4, 6, 0, 0, 0, 1, 0)
+    `NP_DUT(11, 8, 4, 6, 0, 0, 1, 1, 0)
+    `NP_DUT(12, 12, 24, 30, 0, 0, 1, 0, 0)
+    `NP_DUT(13, 8, 12, 11, 0, 0, 0, 0, 1)
+    `NP_DUT(14, 8, 4, 6, 0, 0, 0, 0, 1)
+    `NP_DUT(15, 8, 12, 11, 0, 0, 1, 0, 1)
+    `NP_DUT(16, 15, 3, 20, 0, 0, 0, 0, 1)
 
     wire in_ready = in_ready_k[sel];
     wire out_valid = out_valid_k[sel];
