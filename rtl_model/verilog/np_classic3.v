@@ -361,15 +361,15 @@ module np_classic3 #(
         input signed [EOW-1:0] a, b;
         reg signed [EDW-1:0] d;
         reg signed [EPW-1:0] sp, dp;
-        reg signed [EEW-1:0] t, one;
+        reg signed [EEW-1:0] t, pe, one;
         begin
             d = {b[EOW-1], b} - {a[EOW-1], a};
             sp = {{(EPW-SW){1'b0}}, s};
             dp = {{(EPW-EDW){d[EDW-1]}}, d};
             sp = sp * dp;
             t = {{(EEW-EOW){a[EOW-1]}}, a};
-            one = {{(EEW-EPW){sp[EPW-1]}}, sp};
-            t = (t <<< WS) + one;
+            pe = {{(EEW-EPW){sp[EPW-1]}}, sp};
+            t = (t <<< WS) + pe;
             one = 1;
             t = (t + (one <<< (SHE - 1))) >>> SHE;
             elerp = t[LW-1:0];
@@ -387,64 +387,64 @@ module np_classic3 #(
             assign e_free = 1'b0;
             assign e_fin = 1'b0;
             wire unused_e_s = ^e_s;
-        reg signed [GW-1:0] r1_g[0:7];
-        reg [SW-1:0] r1_sx, r1_sy, r1_sz;
-        always @(posedge clk) if (en[1] && v[0]) begin
-            for (c = 0; c < 8; c = c + 1)
-                r1_g[c] <= grad(r0_h[6*c+:6], c[0] ? du1 : du0, c[1] ? dv1 : dv0, c[2] ? dw1 : dw0);
-            r1_sx <= h_sx;
-            r1_sy <= h_sy;
-            r1_sz <= h_sz;
-        end
-
-        reg signed [GW-1:0] r2_a[0:3];
-        reg signed [P1W-1:0] r2_p[0:3];
-        reg [SW-1:0] r2_sy, r2_sz;
-        always @(posedge clk) if (en[2] && v[1]) begin
-            for (p = 0; p < 4; p = p + 1) begin
-                r2_a[p] <= r1_g[2*p];
-                r2_p[p] <= mul1(r1_sx, r1_g[2*p], r1_g[2*p+1]);
+            reg signed [GW-1:0] r1_g[0:7];
+            reg [SW-1:0] r1_sx, r1_sy, r1_sz;
+            always @(posedge clk) if (en[1] && v[0]) begin
+                for (c = 0; c < 8; c = c + 1)
+                    r1_g[c] <= grad(r0_h[6*c+:6], c[0] ? du1 : du0, c[1] ? dv1 : dv0, c[2] ? dw1 : dw0);
+                r1_sx <= h_sx;
+                r1_sy <= h_sy;
+                r1_sz <= h_sz;
             end
-            r2_sy <= r1_sy;
-            r2_sz <= r1_sz;
-        end
 
-        // Level-1 sum with FI + WS fraction bits, rounded (or widened) to WL.
-        reg signed [LW-1:0] r3_l[0:3];
-        reg [SW-1:0] r3_sy, r3_sz;
-        always @(posedge clk) if (en[3] && v[2]) begin
-            for (p = 0; p < 4; p = p + 1) r3_l[p] <= lerp1(r2_a[p], r2_p[p]);
-            r3_sy <= r2_sy;
-            r3_sz <= r2_sz;
-        end
-
-        // ---------------------------------------------------------------- I2m, I2a, I3m, I3a
-        reg signed [LW-1:0] r4_a[0:1];
-        reg signed [P2W-1:0] r4_p[0:1];
-        reg [SW-1:0] r4_sz;
-        always @(posedge clk) if (en[4] && v[3]) begin
-            for (p = 0; p < 2; p = p + 1) begin
-                r4_a[p] <= r3_l[2*p];
-                r4_p[p] <= mul2(r3_sy, r3_l[2*p], r3_l[2*p+1]);
+            reg signed [GW-1:0] r2_a[0:3];
+            reg signed [P1W-1:0] r2_p[0:3];
+            reg [SW-1:0] r2_sy, r2_sz;
+            always @(posedge clk) if (en[2] && v[1]) begin
+                for (p = 0; p < 4; p = p + 1) begin
+                    r2_a[p] <= r1_g[2*p];
+                    r2_p[p] <= mul1(r1_sx, r1_g[2*p], r1_g[2*p+1]);
+                end
+                r2_sy <= r1_sy;
+                r2_sz <= r1_sz;
             end
-            r4_sz <= r3_sz;
-        end
-        reg signed [LW-1:0] r5_l[0:1];
-        reg [SW-1:0] r5_sz;
-        always @(posedge clk) if (en[5] && v[4]) begin
-            for (p = 0; p < 2; p = p + 1) r5_l[p] <= lerp2(r4_a[p], r4_p[p]);
-            r5_sz <= r4_sz;
-        end
-        reg signed [LW-1:0] r6_a;
-        reg signed [P2W-1:0] r6_p;
-        always @(posedge clk) if (en[6] && v[5]) begin
-            r6_a <= r5_l[0];
-            r6_p <= mul2(r5_sz, r5_l[0], r5_l[1]);
-        end
-        // |l3| <= 1.5 (np_classic.h): l3 fits s(WL+2); lerp2's top bit is a copy of its sign.
-        wire signed [LW-1:0] l3_full = lerp2(r6_a, r6_p);
-        always @(posedge clk) if (en[7] && v[6]) r7_l3 <= l3_full[L3W-1:0];
-        wire unused_l3_sign = l3_full[LW-1];
+
+            // Level-1 sum with FI + WS fraction bits, rounded (or widened) to WL.
+            reg signed [LW-1:0] r3_l[0:3];
+            reg [SW-1:0] r3_sy, r3_sz;
+            always @(posedge clk) if (en[3] && v[2]) begin
+                for (p = 0; p < 4; p = p + 1) r3_l[p] <= lerp1(r2_a[p], r2_p[p]);
+                r3_sy <= r2_sy;
+                r3_sz <= r2_sz;
+            end
+
+            // ---------------------------------------------------------------- I2m, I2a, I3m, I3a
+            reg signed [LW-1:0] r4_a[0:1];
+            reg signed [P2W-1:0] r4_p[0:1];
+            reg [SW-1:0] r4_sz;
+            always @(posedge clk) if (en[4] && v[3]) begin
+                for (p = 0; p < 2; p = p + 1) begin
+                    r4_a[p] <= r3_l[2*p];
+                    r4_p[p] <= mul2(r3_sy, r3_l[2*p], r3_l[2*p+1]);
+                end
+                r4_sz <= r3_sz;
+            end
+            reg signed [LW-1:0] r5_l[0:1];
+            reg [SW-1:0] r5_sz;
+            always @(posedge clk) if (en[5] && v[4]) begin
+                for (p = 0; p < 2; p = p + 1) r5_l[p] <= lerp2(r4_a[p], r4_p[p]);
+                r5_sz <= r4_sz;
+            end
+            reg signed [LW-1:0] r6_a;
+            reg signed [P2W-1:0] r6_p;
+            always @(posedge clk) if (en[6] && v[5]) begin
+                r6_a <= r5_l[0];
+                r6_p <= mul2(r5_sz, r5_l[0], r5_l[1]);
+            end
+            // |l3| <= 1.5 (np_classic.h): l3 fits s(WL+2); lerp2's top bit is a copy of its sign.
+            wire signed [LW-1:0] l3_full = lerp2(r6_a, r6_p);
+            always @(posedge clk) if (en[7] && v[6]) r7_l3 <= l3_full[L3W-1:0];
+            wire unused_l3_sign = l3_full[LW-1];
         end else begin : g_engine
             // LERP_SERIAL: one engine does stages H to I3a for one point at a time, with
             // two gradient decoders and one lerp unit (elerp), step k = r1_k on the
