@@ -184,11 +184,13 @@ NP_BATCH_CLONES static void eval_n_default_f(const uint16_t *x, const uint16_t *
 }
 
 /*
- * --- INT32: the default with the derivative in int32 arithmetic. ---
- * eval_one's operations at WT = 24, WP = 22, WK = 22 with every signal in an
- * int32 (np_simplex32.h gives the ranges: all below 2^31) and the rounded
- * products that exceed 32 bits formed from 32-bit partial products
- * (m32_tau2, ...: exact identities). Only Kf' S and Kd' Q_a are 64-bit:
+ * --- INT32: the two defaults in int32 arithmetic. ---
+ * eval_one's operations at WT = 24, WP = 22, WK = 22 (and, value only, at
+ * WT = 23, WP = 20, WK = 22: |S| < 2^25.2, Kf' S below 2^48, rounded by 26
+ * bits) with every signal in an int32 (np_simplex32.h gives the ranges: all
+ * below 2^31) and the rounded products that exceed 32 bits formed from
+ * 32-bit partial products (m32_tau2, ...: exact identities). Only Kf' S and
+ * Kd' Q_a are 64-bit:
  * Kf' = 2860110 < 2^22, Kd' = 8580330 < 2^24 (np_simplex_kf, np_simplex_kd
  * at WK = 22), |S| < 2^27.2, |Q_a| < 2^29.7, so each product is below 2^54
  * and its rounded word below 2^23: the out words are those of
@@ -198,6 +200,7 @@ NP_BATCH_CLONES static void eval_n_default_f(const uint16_t *x, const uint16_t *
 enum {
     D32_F_DROP = 22 + 22 - 16, /* Kf' S: Q.44 to Q.16 */
     D32_D_DROP = 22 + 22 - 14, /* Kd' Q_a: Q.44 to Q.14 */
+    D32_FV_DROP = 22 + 20 - 16, /* value only (WP = 20): Kf' S from Q.42 to Q.16 */
     D32_OUT_MAX = 32767,
     D32_OUT_MIN = -32768
 };
@@ -208,10 +211,15 @@ static int32_t out32(int32_t v, int64_t k, unsigned drop)
     return (int32_t)(r > D32_OUT_MAX ? D32_OUT_MAX : r < D32_OUT_MIN ? D32_OUT_MIN : r);
 }
 
-static void eval_n_int32(const uint16_t *restrict xs, const uint16_t *restrict ys, const uint16_t *restrict zs,
-                         np_simplex_out *restrict out, size_t count)
+/*
+ * Both defaults (deriv: WT = 24, WP = 22; value only: WT = 23, WP = 20,
+ * the _23 and rq12 products), WK = 22.
+ */
+ALWAYS_INLINE void eval_int32(const int deriv, const uint16_t *restrict xs, const uint16_t *restrict ys,
+                              const uint16_t *restrict zs, np_simplex_out *restrict out, size_t count)
 {
-    const int64_t kf = np_simplex_kf(&default_d), kd = np_simplex_kd(&default_d);
+    const np_simplex_cfg *cfg = deriv ? &default_d : &default_f;
+    const int64_t kf = np_simplex_kf(cfg), kd = np_simplex_kd(cfg);
     for (size_t n = 0; n < count; n++) {
         const uint16_t in[3] = { xs[n], ys[n], zs[n] };
         uint32_t cell[3];
@@ -237,6 +245,10 @@ static void eval_n_int32(const uint16_t *restrict xs, const uint16_t *restrict y
             int32_t gd = g[0] * d[0] + g[1] * d[1] + g[2] * d[2];            /* np_simplex_gdot */
             int32_t td = NP_SIMPLEX_T_VERTEX - NP_SIMPLEX_R2_SCALE * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
             int32_t t = td > 0 ? td : 0;                                     /* np_simplex_kernel_t */
+            if (!deriv) {
+                s += m32_mul_rq12(m32_tau4_23(m32_tau2_23(t)), gd);          /* np_simplex_fterm */
+                continue;
+            }
             int32_t tau2 = m32_tau2(t), tau4 = m32_tau4(tau2), tau3 = m32_tau3(tau2, t);
             s += m32_mul_rq11(tau4, gd);                                     /* np_simplex_fterm */
             int32_t q = m32_mul_rq11(tau3, gd);                              /* np_simplex_qterm */
@@ -244,10 +256,22 @@ static void eval_n_int32(const uint16_t *restrict xs, const uint16_t *restrict y
             for (unsigned a = 0; a < 3; a++)
                 qs[a] += m32_eterm(g[a], tau4) - m32_mul_rq11(q5, d[a]);     /* e_a - m_a */
         }
-        out[n].f = out32(s, kf, D32_F_DROP);
+        out[n].f = out32(s, kf, deriv ? D32_F_DROP : D32_FV_DROP);
         for (unsigned a = 0; a < 3; a++)
-            out[n].df[a] = out32(qs[a], kd, D32_D_DROP);
+            out[n].df[a] = deriv ? out32(qs[a], kd, D32_D_DROP) : 0;
     }
+}
+
+static void eval_n_int32(const uint16_t *xs, const uint16_t *ys, const uint16_t *zs, np_simplex_out *out,
+                         size_t count)
+{
+    eval_int32(1, xs, ys, zs, out, count);
+}
+
+static void eval_n_int32_f(const uint16_t *xs, const uint16_t *ys, const uint16_t *zs, np_simplex_out *out,
+                           size_t count)
+{
+    eval_int32(0, xs, ys, zs, out, count);
 }
 
 #if NP_SIMPLEX_HAVE_AVX2
@@ -338,6 +362,28 @@ AVX2_FN static void eval_n_avx2(const uint16_t *restrict xs, const uint16_t *res
     eval_n_int32(xs + n, ys + n, zs + n, out + n, count - n);
 }
 
+AVX2_FN static void eval_n_avx2_f(const uint16_t *restrict xs, const uint16_t *restrict ys,
+                                  const uint16_t *restrict zs, np_simplex_out *restrict out, size_t count)
+{
+    const int32_t kf = (int32_t)np_simplex_kf(&default_f);
+    const __m256i zero = _mm256_setzero_si256();
+    size_t n = 0;
+    for (; n + 8u <= count; n += 8u) {
+        const v8i in[3] = { load8(xs + n), load8(ys + n), load8(zs + n) };
+        __m256i f = out8(v8_core_f(in), kf, D32_FV_DROP);
+        /* {f, 0, 0, 0} per input */
+        __m256i a0 = _mm256_unpacklo_epi32(f, zero), a2 = _mm256_unpackhi_epi32(f, zero);
+        __m256i r0 = _mm256_unpacklo_epi64(a0, zero), r1 = _mm256_unpackhi_epi64(a0, zero);
+        __m256i r2 = _mm256_unpacklo_epi64(a2, zero), r3 = _mm256_unpackhi_epi64(a2, zero);
+        __m256i *o = (__m256i *)(void *)(out + n);
+        _mm256_storeu_si256(o, _mm256_permute2x128_si256(r0, r1, 0x20));
+        _mm256_storeu_si256(o + 1, _mm256_permute2x128_si256(r2, r3, 0x20));
+        _mm256_storeu_si256(o + 2, _mm256_permute2x128_si256(r0, r1, 0x31));
+        _mm256_storeu_si256(o + 3, _mm256_permute2x128_si256(r2, r3, 0x31));
+    }
+    eval_n_int32_f(xs + n, ys + n, zs + n, out + n, count - n);
+}
+
 #define AVX512_FN __attribute__((target("avx512f")))
 AVX512_FN static inline v16i v16_mulc(v16i d, v16i c) { return c * d; }
 NP_SIMPLEX32_PRODUCTS(v16_, v16i, V_ASR, v16_mulc, AVX512_FN)
@@ -413,6 +459,30 @@ AVX512_FN static void eval_n_avx512(const uint16_t *restrict xs, const uint16_t 
     }
     eval_n_avx2(xs + n, ys + n, zs + n, out + n, count - n);
 }
+
+AVX512_FN static void eval_n_avx512_f(const uint16_t *restrict xs, const uint16_t *restrict ys,
+                                      const uint16_t *restrict zs, np_simplex_out *restrict out, size_t count)
+{
+    const int32_t kf = (int32_t)np_simplex_kf(&default_f);
+    const __m512i zero = _mm512_setzero_si512();
+    size_t n = 0;
+    for (; n + 16u <= count; n += 16u) {
+        const v16i in[3] = { load16(xs + n), load16(ys + n), load16(zs + n) };
+        __m512i f = out16(v16_core_f(in), kf, D32_FV_DROP);
+        /* {f, 0, 0, 0} per input, as eval_n_avx512's transpose */
+        __m512i a0 = _mm512_unpacklo_epi32(f, zero), a2 = _mm512_unpackhi_epi32(f, zero);
+        __m512i r0 = _mm512_unpacklo_epi64(a0, zero), r1 = _mm512_unpackhi_epi64(a0, zero);
+        __m512i r2 = _mm512_unpacklo_epi64(a2, zero), r3 = _mm512_unpackhi_epi64(a2, zero);
+        __m512i t0 = _mm512_shuffle_i32x4(r0, r1, 0x44), t1 = _mm512_shuffle_i32x4(r2, r3, 0x44);
+        __m512i t2 = _mm512_shuffle_i32x4(r0, r1, 0xee), t3 = _mm512_shuffle_i32x4(r2, r3, 0xee);
+        void *o = out + n;
+        _mm512_storeu_si512(o, _mm512_shuffle_i32x4(t0, t1, 0x88));
+        _mm512_storeu_si512((char *)o + 64, _mm512_shuffle_i32x4(t0, t1, 0xdd));
+        _mm512_storeu_si512((char *)o + 128, _mm512_shuffle_i32x4(t2, t3, 0x88));
+        _mm512_storeu_si512((char *)o + 192, _mm512_shuffle_i32x4(t2, t3, 0xdd));
+    }
+    eval_n_avx2_f(xs + n, ys + n, zs + n, out + n, count - n);
+}
 #endif /* NP_SIMPLEX_HAVE_AVX2 */
 
 static int have_avx512(void)
@@ -453,22 +523,31 @@ int np_simplex_eval_n_path(unsigned path, const np_simplex_cfg *cfg, const uint1
             return -1;
         return 0;
     case NP_SIMPLEX_BATCH_INT32:
-        if (!same_cfg(cfg, &default_d))
+        if (same_cfg(cfg, &default_d))
+            eval_n_int32(x, y, z, out, count);
+        else if (same_cfg(cfg, &default_f))
+            eval_n_int32_f(x, y, z, out, count);
+        else
             return -1;
-        eval_n_int32(x, y, z, out, count);
         return 0;
     case NP_SIMPLEX_BATCH_AVX2:
-        if (!same_cfg(cfg, &default_d) || !have_avx2())
+        if (!(same_cfg(cfg, &default_d) || same_cfg(cfg, &default_f)) || !have_avx2())
             return -1;
 #if NP_SIMPLEX_HAVE_AVX2
-        eval_n_avx2(x, y, z, out, count);
+        if (cfg->deriv)
+            eval_n_avx2(x, y, z, out, count);
+        else
+            eval_n_avx2_f(x, y, z, out, count);
 #endif
         return 0;
     case NP_SIMPLEX_BATCH_AVX512:
-        if (!same_cfg(cfg, &default_d) || !have_avx512() || !have_avx2())
+        if (!(same_cfg(cfg, &default_d) || same_cfg(cfg, &default_f)) || !have_avx512() || !have_avx2())
             return -1;
 #if NP_SIMPLEX_HAVE_AVX2
-        eval_n_avx512(x, y, z, out, count);
+        if (cfg->deriv)
+            eval_n_avx512(x, y, z, out, count);
+        else
+            eval_n_avx512_f(x, y, z, out, count);
 #endif
         return 0;
     default:

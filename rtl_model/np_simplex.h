@@ -384,9 +384,8 @@ void np_simplex_eval(const np_simplex_cfg *cfg, uint16_t x, uint16_t y, uint16_t
  * z[n]) for n < count, the same bits (fast.simplex_batch_* prove it). The
  * configuration is read once; the two default configurations (N = ND = 16
  * with and without the derivative, np_simplex_cfg_default) run specialised
- * loops, the one with the derivative in int32 lanes (np_simplex32.h), by
- * hand in AVX-512 or AVX2 where the CPU has it. The arrays may not overlap
- * out.
+ * loops in int32 lanes (np_simplex32.h), by hand in AVX-512 or AVX2 where
+ * the CPU has it. The arrays may not overlap out.
  */
 void np_simplex_eval_n(const np_simplex_cfg *cfg, const uint16_t *x, const uint16_t *y,
                        const uint16_t *z, np_simplex_out *out, size_t count);
@@ -398,8 +397,8 @@ void np_simplex_eval_n(const np_simplex_cfg *cfg, const uint16_t *x, const uint1
  *   WIDTHS   the model per input with the widths as compile-time constants
  *            (64-bit products, vectorised by the compiler where it can): the
  *            two defaults;
- *   INT32    the default with the derivative in int32 arithmetic (the split
- *            products of np_simplex32.h), portable C;
+ *   INT32    the two defaults in int32 arithmetic (the split products of
+ *            np_simplex32.h), portable C;
  *   AVX2     the same int32 arithmetic eight inputs a step, by hand for AVX2
  *            (x86-64 with GCC or Clang, on a CPU with AVX2);
  *   AVX512   the same sixteen inputs a step (a CPU with AVX-512F).

@@ -77,6 +77,23 @@ static inline int32_t m32_asr(int32_t v, unsigned sh)
  *
  * eterm(c, tau4) = floor((c tau4 + 2) / 4) = np_simplex_eterm: G_a tau4 from
  * Q.24 to Q.22, c in {-1, 0, 1}.
+ *
+ * The value-only default (N = 16, WT = 23, WP = 20, WK = 22) in the same
+ * way; its ranges: T, tau2, tau4 < 2^23; |fterm| <= 2^23 4608 / 2^12 + 1
+ * < 2^23.2; |S| < 2^25.2; Kf' S < 2^47.7 (64-bit).
+ * tau2_23 = floor((T^2 + 2^22) / 2^23) (np_simplex_tau2, WT = 23): with
+ * T = th 2^11 + tl and th^2 = 2 floor(th^2 / 2) + (th^2 mod 2),
+ * T^2 + 2^22 = floor(th^2 / 2) 2^23 + 2^12 ((th^2 mod 2) 2^10 + th tl) + tl^2 + 2^22,
+ * so tau2_23 = floor(th^2 / 2)
+ *            + floor(((th^2 mod 2) 2^10 + th tl + floor((tl^2 + 2^22) / 2^12)) / 2^11);
+ * th^2 < 2^24, th tl < 2^23, tl^2 + 2^22 < 2^23.
+ * tau4_23 = floor((tau2^2 + 2^22) / 2^23) (np_simplex_tau4, WT = 23) for
+ * tau2 < 2^23: tau2 = a 2^12 + b (a < 2^11), tau2^2 = 2 a^2 2^23 + a b 2^13 + b^2,
+ * tau4_23 = 2 a^2 + floor((a b + floor((b^2 + 2^22) / 2^13)) / 2^10);
+ * a b < 2^23, b^2 + 2^22 < 2^25.
+ * mul_rq12(p, g) = floor((p g + 2^11) / 2^12): mul_rq11's split at 2^12, for
+ * fterm (tau4 gd from Q.32 to WP = 20 bits; |floor(p / 2^12) g| < 2^11 4608,
+ * |pl g| < 2^12 4608).
  */
 #define NP_SIMPLEX32_PRODUCTS(P, T, ASR, MULC, ATTR)                                 \
     ATTR static inline T P##tau2(T t)                                            \
@@ -99,7 +116,22 @@ static inline int32_t m32_asr(int32_t v, unsigned sh)
         T ph = ASR(p, 11), pl = p & 2047;                                        \
         return ph * g + ASR(pl * g + (1 << 10), 11);                             \
     }                                                                            \
-    ATTR static inline T P##eterm(T c, T tau4) { return ASR(MULC(tau4, c) + 2, 2); }
+    ATTR static inline T P##eterm(T c, T tau4) { return ASR(MULC(tau4, c) + 2, 2); }     \
+    ATTR static inline T P##tau2_23(T t)                                         \
+    {                                                                            \
+        T th = t >> 11, tl = t & 2047, th2 = th * th;                            \
+        return (th2 >> 1) + ((((th2 & 1) << 10) + th * tl + ((tl * tl + (1 << 22)) >> 12)) >> 11); \
+    }                                                                            \
+    ATTR static inline T P##tau4_23(T tau2)                                      \
+    {                                                                            \
+        T a = tau2 >> 12, b = tau2 & 4095;                                       \
+        return 2 * a * a + ((a * b + ((b * b + (1 << 22)) >> 13)) >> 10);       \
+    }                                                                            \
+    ATTR static inline T P##mul_rq12(T p, T g)                                   \
+    {                                                                            \
+        T ph = ASR(p, 12), pl = p & 4095;                                        \
+        return ph * g + ASR(pl * g + (1 << 11), 12);                             \
+    }
 
 /* The shifts of t, tau2 (>= 0) and of the non-negative partial sums are exact either way. */
 #define NP_SIMPLEX32_MULC(d, c) ((c) * (d))

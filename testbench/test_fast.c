@@ -277,8 +277,8 @@ static void simplex_adversarial(np_rng *r, uint32_t k, uint16_t w[3])
  * other configurations: random inputs (a quarter of them boundary
  * fractions, wrapping cells) and the adversarial ones above, counts that
  * leave a tail after the vector steps; through each path that applies and
- * through np_simplex_eval_n. At the default with the derivative WIDTHS and
- * INT32 must apply, AVX2 where the CPU has it.
+ * through np_simplex_eval_n. At both defaults WIDTHS and INT32 must apply,
+ * AVX2 and AVX512 where the CPU has them.
  */
 static int t_simplex_batch_paths(void)
 {
@@ -291,7 +291,7 @@ static int t_simplex_batch_paths(void)
         for (unsigned path = 0; path <= NP_SIMPLEX_BATCH_PATHS; path++) {
             np_rng r;
             np_rng_seed(&r, 0x6661737434ull);
-            unsigned chunks = k == 0 ? 64u : 8u;
+            unsigned chunks = k < 2 ? 64u : 8u;
             uint64_t bad = 0, total = 0;
             int applies = 1;
             uint32_t adv = 0;
@@ -321,8 +321,8 @@ static int t_simplex_batch_paths(void)
             }
             const char *name = path == NP_SIMPLEX_BATCH_PATHS ? "np_simplex_eval_n" : simplex_path_name[path];
             if (!applies) {
-                NP_CHECK(k != 0 || (path != NP_SIMPLEX_BATCH_WIDTHS && path != NP_SIMPLEX_BATCH_INT32),
-                         "the %s path must apply to the default with the derivative", name);
+                NP_CHECK(k >= 2 || (path != NP_SIMPLEX_BATCH_WIDTHS && path != NP_SIMPLEX_BATCH_INT32),
+                         "the %s path must apply to both defaults", name);
                 printf("simplex3 N=%u ND=%u deriv=%u %s: does not apply here\n", cfgs[k].out_bits,
                        cfgs[k].dout_bits, cfgs[k].deriv, name);
                 continue;
@@ -436,7 +436,8 @@ static uint64_t simplex_kernel_check(const char *config, uint16_t xcell, uint16_
  * tau3 on 2^22 random (tau2, T) pairs besides, fterm/qterm (tau gd) for
  * every tau < 2^24 at 16 gd from the extremes +-4608 in and random ones,
  * eterm (G_a tau4) for every tau4 < 2^24 and G_a in {-1, 0, 1}, and mterm
- * (5q D) for every D in s12 at 4096 q from the extremes of |q| < 2^25.2.
+ * (5q D) for every D in s12 at 4096 q from the extremes of |q| < 2^25.2; and
+ * the value-only default's (WT = 23, WP = 20) tau2, tau4 and fterm alike.
  */
 static int t_simplex32_exhaustive(void)
 {
@@ -476,9 +477,20 @@ static int t_simplex32_exhaustive(void)
         for (int32_t d = -2048; d < 2048; d++, n++)
             bad += m32_mul_rq11(4 * q + q, d) != np_simplex_mterm(q, d);
     }
+    /* the value-only default (WT = 23, WP = 20): every T, every tau2 < 2^23, every tau4 < 2^23 at the 16 gd */
+    const np_simplex_cfg cf = np_simplex_cfg_default(16, 16, 0);
+    NP_CHECK(cf.t_frac == 23 && cf.p_frac == 20 && cf.k_frac == 22, "value-only widths WT/WP/WK = 23/20/22 (%u/%u/%u)",
+             cf.t_frac, cf.p_frac, cf.k_frac);
+    for (int32_t t = 0; t < (1 << 23); t++, n += 2) {
+        bad += (uint32_t)m32_tau2_23(t) != np_simplex_tau2(&cf, (uint32_t)t);
+        bad += (uint32_t)m32_tau4_23(t) != np_simplex_tau4(&cf, (uint32_t)t);
+    }
+    for (int32_t a = 0; a < (1 << 23); a++)
+        for (unsigned k = 0; k < 16; k++, n++)
+            bad += m32_mul_rq12(a, gds[k]) != np_simplex_fterm(&cf, (uint32_t)a, gds[k]);
     NP_CHECK(bad == 0, "%llu of %llu int32 products differ from np_simplex.h's", (unsigned long long)bad,
              (unsigned long long)n);
-    printf("simplex3 int32 products (WT/WP = 24/22): %llu compared, %llu differ\n", (unsigned long long)n,
+    printf("simplex3 int32 products (WT/WP = 24/22 and 23/20): %llu compared, %llu differ\n", (unsigned long long)n,
            (unsigned long long)bad);
     return 0;
 }
