@@ -4,6 +4,17 @@
 #include <stddef.h>
 #include <string.h>
 
+#include "np_simplex32.h"
+
+/* The hand-vectorised batch path: GCC or Clang on x86-64 (chosen at run time by the CPU). */
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__)
+#define NP_SIMPLEX_HAVE_AVX2 1
+#include <immintrin.h>
+#else
+#define NP_SIMPLEX_HAVE_AVX2 0
+#endif
+_Static_assert(sizeof(np_simplex_out) == 4 * sizeof(int32_t), "np_simplex_out is {f, df[3]}, no padding");
+
 static unsigned umax(unsigned a, unsigned b) { return a > b ? a : b; }
 
 np_simplex_cfg np_simplex_cfg_default(unsigned out_bits, unsigned dout_bits, unsigned deriv)
@@ -143,8 +154,9 @@ void np_simplex_eval(const np_simplex_cfg *cfg, uint16_t x, uint16_t y, uint16_t
 
 /*
  * Batch: the default configurations (N = ND = 16, with and without the
- * derivative) with the widths as compile-time constants; any other runs
- * eval_one with the configuration read once. Same bits either way.
+ * derivative) with the widths as compile-time constants (WIDTHS); any other
+ * runs eval_one with the configuration read once (GENERIC). Same bits either
+ * way.
  */
 static const np_simplex_cfg default_d = { 16, 16, 1, 24, 22, 22 };
 static const np_simplex_cfg default_f = { 16, 16, 0, 23, 20, 22 };
@@ -171,21 +183,386 @@ NP_BATCH_CLONES static void eval_n_default_f(const uint16_t *x, const uint16_t *
         eval_one(&default_f, kf, kd, x[n], y[n], z[n], &out[n]);
 }
 
+/*
+ * --- INT32: the two defaults in int32 arithmetic. ---
+ * eval_one's operations at WT = 24, WP = 22, WK = 22 (and, value only, at
+ * WT = 23, WP = 20, WK = 22: |S| < 2^25.2, Kf' S below 2^48, rounded by 26
+ * bits) with every signal in an int32 (np_simplex32.h gives the ranges: all
+ * below 2^31) and the rounded products that exceed 32 bits formed from
+ * 32-bit partial products (m32_tau2, ...: exact identities). Only Kf' S and
+ * Kd' Q_a are 64-bit:
+ * Kf' = 2860110 < 2^22, Kd' = 8580330 < 2^24 (np_simplex_kf, np_simplex_kd
+ * at WK = 22), |S| < 2^27.2, |Q_a| < 2^29.7, so each product is below 2^54
+ * and its rounded word below 2^23: the out words are those of
+ * np_simplex_out_f and np_simplex_out_d (rounding by WK + WP - 16 = 28 and
+ * WK + WP - 14 = 30 bits, saturation to s16).
+ */
+enum {
+    D32_F_DROP = 22 + 22 - 16, /* Kf' S: Q.44 to Q.16 */
+    D32_D_DROP = 22 + 22 - 14, /* Kd' Q_a: Q.44 to Q.14 */
+    D32_FV_DROP = 22 + 20 - 16, /* value only (WP = 20): Kf' S from Q.42 to Q.16 */
+    D32_OUT_MAX = 32767,
+    D32_OUT_MIN = -32768
+};
+
+static int32_t out32(int32_t v, int64_t k, unsigned drop)
+{
+    int64_t r = np_shr_round_half_up((int64_t)v * k, drop);
+    return (int32_t)(r > D32_OUT_MAX ? D32_OUT_MAX : r < D32_OUT_MIN ? D32_OUT_MIN : r);
+}
+
+/*
+ * Both defaults (deriv: WT = 24, WP = 22; value only: WT = 23, WP = 20,
+ * the _23 and rq12 products), WK = 22.
+ */
+ALWAYS_INLINE void eval_int32(const int deriv, const uint16_t *restrict xs, const uint16_t *restrict ys,
+                              const uint16_t *restrict zs, np_simplex_out *restrict out, size_t count)
+{
+    const np_simplex_cfg *cfg = deriv ? &default_d : &default_f;
+    const int64_t kf = np_simplex_kf(cfg), kd = np_simplex_kd(cfg);
+    for (size_t n = 0; n < count; n++) {
+        const uint16_t in[3] = { xs[n], ys[n], zs[n] };
+        uint32_t cell[3];
+        int32_t off[3];
+        for (unsigned a = 0; a < 3; a++)
+            cell[a] = np_simplex_cell(np_simplex_skew(in[a], in[(a + 1u) % 3u], in[(a + 2u) % 3u]));
+        uint32_t nn = cell[0] + cell[1] + cell[2];
+        for (unsigned a = 0; a < 3; a++)
+            off[a] = np_simplex_offset(in[a], cell[a], nn);
+        uint8_t hi, lo;
+        np_simplex_rank(off[0], off[1], off[2], &hi, &lo);
+        int32_t s = 0, qs[3] = { 0, 0, 0 };
+        for (unsigned c = 0; c < 4; c++) {
+            unsigned mask = np_simplex_corner_mask(hi, lo, c);
+            int32_t d[3], g[3];
+            for (unsigned a = 0; a < 3; a++)
+                d[a] = np_simplex_corner_d(off[a], mask >> a & 1u, c);
+            uint32_t gp = np_grad_packed32[np_hash6_fast32((cell[0] + (mask & 1u)) & NP_MASK(NP_SIMPLEX_HASH_BITS),
+                                                           (cell[1] + (mask >> 1 & 1u)) & NP_MASK(NP_SIMPLEX_HASH_BITS),
+                                                           (cell[2] + (mask >> 2 & 1u)) & NP_MASK(NP_SIMPLEX_HASH_BITS))];
+            for (unsigned a = 0; a < 3; a++)
+                g[a] = np_grad_unpack(gp, a);
+            int32_t gd = g[0] * d[0] + g[1] * d[1] + g[2] * d[2];            /* np_simplex_gdot */
+            int32_t td = NP_SIMPLEX_T_VERTEX - NP_SIMPLEX_R2_SCALE * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            int32_t t = td > 0 ? td : 0;                                     /* np_simplex_kernel_t */
+            if (!deriv) {
+                s += m32_mul_rq12(m32_tau4_23(m32_tau2_23(t)), gd);          /* np_simplex_fterm */
+                continue;
+            }
+            int32_t tau2 = m32_tau2(t), tau4 = m32_tau4(tau2), tau3 = m32_tau3(tau2, t);
+            s += m32_mul_rq11(tau4, gd);                                     /* np_simplex_fterm */
+            int32_t q = m32_mul_rq11(tau3, gd);                              /* np_simplex_qterm */
+            int32_t q5 = 4 * q + q;                                          /* np_simplex_mterm's 5q */
+            for (unsigned a = 0; a < 3; a++)
+                qs[a] += m32_eterm(g[a], tau4) - m32_mul_rq11(q5, d[a]);     /* e_a - m_a */
+        }
+        out[n].f = out32(s, kf, deriv ? D32_F_DROP : D32_FV_DROP);
+        for (unsigned a = 0; a < 3; a++)
+            out[n].df[a] = deriv ? out32(qs[a], kd, D32_D_DROP) : 0;
+    }
+}
+
+static void eval_n_int32(const uint16_t *xs, const uint16_t *ys, const uint16_t *zs, np_simplex_out *out,
+                         size_t count)
+{
+    eval_int32(1, xs, ys, zs, out, count);
+}
+
+static void eval_n_int32_f(const uint16_t *xs, const uint16_t *ys, const uint16_t *zs, np_simplex_out *out,
+                           size_t count)
+{
+    eval_int32(0, xs, ys, zs, out, count);
+}
+
+#if NP_SIMPLEX_HAVE_AVX2
+/*
+ * --- AVX2 and AVX-512: eval_n_int32 8 and 16 inputs a step, by hand. ---
+ * GCC's vector extension (v8i, v16i: int32 lanes) carries the arithmetic,
+ * so the rounded products are np_simplex32.h's text itself (v8_tau2, ...)
+ * and the rest of the corner loop is np_simplex_lanes.inc's, one text for
+ * both widths; the intrinsics do what the extension cannot say:
+ *   - the hash's nibble tables (np_hash6_fast32) are read by vpgatherdd;
+ *     the packed gradient (64 words) by vpgatherdd (AVX2) or by two
+ *     vpermt2d, 32 words each, and a blend on bit 5 of h (AVX-512);
+ *   - G_a D for a coefficient G_a in {-1, 0, +1} is vpsignd(D, G_a)
+ *     (AVX2) or vpmulld (AVX-512, which has no vpsignd): exactly G_a D;
+ *   - Kf' S and Kd' Q_a are vpmuldq (signed 32 x 32 -> 64 bits) on the even
+ *     and the odd lanes, rounded in 64 bits (out8, out16);
+ *   - the outputs are transposed to np_simplex_out's {f, df[3]} by unpacks
+ *     and lane shuffles.
+ * GCC and Clang define >> of a negative lane as arithmetic (V_ASR), and
+ * the lane operations wrap like the int32 ones, which never overflow here.
+ */
+typedef int32_t v8i __attribute__((vector_size(32)));
+typedef int32_t v16i __attribute__((vector_size(64)));
+#define V_ASR(v, sh) ((v) >> (sh))
+
+#define AVX2_FN __attribute__((target("avx2")))
+AVX2_FN static inline v8i v8_mulc(v8i d, v8i c) { return (v8i)_mm256_sign_epi32((__m256i)d, (__m256i)c); }
+NP_SIMPLEX32_PRODUCTS(v8_, v8i, V_ASR, v8_mulc, AVX2_FN)
+
+AVX2_FN static inline v8i load8(const uint16_t *p)
+{
+    return (v8i)_mm256_cvtepu16_epi32(_mm_loadu_si128((const __m128i *)(const void *)p));
+}
+AVX2_FN static inline v8i gather8(const uint32_t *table, v8i idx)
+{
+    return (v8i)_mm256_i32gather_epi32((const int *)(const void *)table, (__m256i)idx, 4);
+}
+AVX2_FN static inline v8i v8_grad(v8i lo, v8i hi)
+{
+    return gather8(np_grad_packed32, (gather8(np_hash6_lo32, lo) + gather8(np_hash6_hi32, hi)) & 63);
+}
+
+#define LANE_T v8i
+#define LANE(name) v8_##name
+#define LANE_FN AVX2_FN
+#include "np_simplex_lanes.inc"
+#undef LANE_T
+#undef LANE
+#undef LANE_FN
+
+/* out32 on eight lanes: sat16(floor((v k + 2^(drop-1)) / 2^drop)), 0 < k < 2^31. */
+AVX2_FN static inline __m256i out8(v8i v, int32_t k, int drop)
+{
+    const __m256i kk = _mm256_set1_epi32(k), half = _mm256_set1_epi64x(1LL << (drop - 1));
+    __m256i even = _mm256_add_epi64(_mm256_mul_epi32((__m256i)v, kk), half);
+    __m256i odd = _mm256_add_epi64(_mm256_mul_epi32(_mm256_srli_epi64((__m256i)v, 32), kk), half);
+    /*
+     * The rounded word fits 32 bits (see INT32) and drop <= 32, so the low 32
+     * bits of a logical 64-bit shift are those of the arithmetic one.
+     */
+    __m256i r = _mm256_blend_epi32(_mm256_srli_epi64(even, drop), _mm256_slli_epi64(_mm256_srli_epi64(odd, drop), 32),
+                                   0xaa);
+    return _mm256_min_epi32(_mm256_max_epi32(r, _mm256_set1_epi32(D32_OUT_MIN)), _mm256_set1_epi32(D32_OUT_MAX));
+}
+
+AVX2_FN static void eval_n_avx2(const uint16_t *restrict xs, const uint16_t *restrict ys,
+                                const uint16_t *restrict zs, np_simplex_out *restrict out, size_t count)
+{
+    const int32_t kf = (int32_t)np_simplex_kf(&default_d), kd = (int32_t)np_simplex_kd(&default_d);
+    size_t n = 0;
+    for (; n + 8u <= count; n += 8u) {
+        const v8i in[3] = { load8(xs + n), load8(ys + n), load8(zs + n) };
+        v8i s, qs[3];
+        v8_core(in, &s, qs);
+        __m256i f = out8(s, kf, D32_F_DROP), dx = out8(qs[0], kd, D32_D_DROP), dy = out8(qs[1], kd, D32_D_DROP),
+                dz = out8(qs[2], kd, D32_D_DROP);
+        /* {f, dx, dy, dz} per input: a 4 x 8 transpose */
+        __m256i a0 = _mm256_unpacklo_epi32(f, dx), a1 = _mm256_unpacklo_epi32(dy, dz);
+        __m256i a2 = _mm256_unpackhi_epi32(f, dx), a3 = _mm256_unpackhi_epi32(dy, dz);
+        __m256i r0 = _mm256_unpacklo_epi64(a0, a1), r1 = _mm256_unpackhi_epi64(a0, a1); /* inputs 0|4, 1|5 */
+        __m256i r2 = _mm256_unpacklo_epi64(a2, a3), r3 = _mm256_unpackhi_epi64(a2, a3); /* inputs 2|6, 3|7 */
+        __m256i *o = (__m256i *)(void *)(out + n);
+        _mm256_storeu_si256(o, _mm256_permute2x128_si256(r0, r1, 0x20));
+        _mm256_storeu_si256(o + 1, _mm256_permute2x128_si256(r2, r3, 0x20));
+        _mm256_storeu_si256(o + 2, _mm256_permute2x128_si256(r0, r1, 0x31));
+        _mm256_storeu_si256(o + 3, _mm256_permute2x128_si256(r2, r3, 0x31));
+    }
+    eval_n_int32(xs + n, ys + n, zs + n, out + n, count - n);
+}
+
+AVX2_FN static void eval_n_avx2_f(const uint16_t *restrict xs, const uint16_t *restrict ys,
+                                  const uint16_t *restrict zs, np_simplex_out *restrict out, size_t count)
+{
+    const int32_t kf = (int32_t)np_simplex_kf(&default_f);
+    const __m256i zero = _mm256_setzero_si256();
+    size_t n = 0;
+    for (; n + 8u <= count; n += 8u) {
+        const v8i in[3] = { load8(xs + n), load8(ys + n), load8(zs + n) };
+        __m256i f = out8(v8_core_f(in), kf, D32_FV_DROP);
+        /* {f, 0, 0, 0} per input */
+        __m256i a0 = _mm256_unpacklo_epi32(f, zero), a2 = _mm256_unpackhi_epi32(f, zero);
+        __m256i r0 = _mm256_unpacklo_epi64(a0, zero), r1 = _mm256_unpackhi_epi64(a0, zero);
+        __m256i r2 = _mm256_unpacklo_epi64(a2, zero), r3 = _mm256_unpackhi_epi64(a2, zero);
+        __m256i *o = (__m256i *)(void *)(out + n);
+        _mm256_storeu_si256(o, _mm256_permute2x128_si256(r0, r1, 0x20));
+        _mm256_storeu_si256(o + 1, _mm256_permute2x128_si256(r2, r3, 0x20));
+        _mm256_storeu_si256(o + 2, _mm256_permute2x128_si256(r0, r1, 0x31));
+        _mm256_storeu_si256(o + 3, _mm256_permute2x128_si256(r2, r3, 0x31));
+    }
+    eval_n_int32_f(xs + n, ys + n, zs + n, out + n, count - n);
+}
+
+#define AVX512_FN __attribute__((target("avx512f")))
+AVX512_FN static inline v16i v16_mulc(v16i d, v16i c) { return c * d; }
+NP_SIMPLEX32_PRODUCTS(v16_, v16i, V_ASR, v16_mulc, AVX512_FN)
+
+AVX512_FN static inline v16i load16(const uint16_t *p)
+{
+    return (v16i)_mm512_cvtepu16_epi32(_mm256_loadu_si256((const __m256i *)(const void *)p));
+}
+/*
+ * Without optimisation GCC 12's header makes _mm512_i32gather_epi32 a macro
+ * whose all-ones mask, (__mmask16)0xFFFF, converts to the builtin's signed
+ * parameter: a -Wsign-conversion warning in the header's text, not ours.
+ */
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wsign-conversion"
+AVX512_FN static inline v16i gather16(const uint32_t *table, v16i idx)
+{
+    return (v16i)_mm512_i32gather_epi32((__m512i)idx, (const void *)table, 4);
+}
+#pragma GCC diagnostic pop
+/* np_grad_packed32[h]: words 0..31 and 32..63 each by one two-table permute, then bit 5 of h picks. */
+AVX512_FN static inline v16i v16_grad(v16i lo, v16i hi)
+{
+    const __m512i *t = (const __m512i *)(const void *)np_grad_packed32;
+    __m512i h = (__m512i)((gather16(np_hash6_lo32, lo) + gather16(np_hash6_hi32, hi)) & 63);
+    __m512i g0 = _mm512_permutex2var_epi32(_mm512_loadu_si512(t), h, _mm512_loadu_si512(t + 1));
+    __m512i g1 = _mm512_permutex2var_epi32(_mm512_loadu_si512(t + 2), h, _mm512_loadu_si512(t + 3));
+    return (v16i)_mm512_mask_blend_epi32(_mm512_test_epi32_mask(h, _mm512_set1_epi32(32)), g0, g1);
+}
+
+#define LANE_T v16i
+#define LANE(name) v16_##name
+#define LANE_FN AVX512_FN
+#include "np_simplex_lanes.inc"
+#undef LANE_T
+#undef LANE
+#undef LANE_FN
+
+/* out32 on sixteen lanes (out8's argument). */
+AVX512_FN static inline __m512i out16(v16i v, int32_t k, unsigned drop)
+{
+    const __m512i kk = _mm512_set1_epi32(k), half = _mm512_set1_epi64(1LL << (drop - 1u));
+    __m512i even = _mm512_add_epi64(_mm512_mul_epi32((__m512i)v, kk), half);
+    __m512i odd = _mm512_add_epi64(_mm512_mul_epi32(_mm512_srli_epi64((__m512i)v, 32), kk), half);
+    __m512i r = _mm512_mask_blend_epi32(0xaaaa, _mm512_srli_epi64(even, drop),
+                                        _mm512_slli_epi64(_mm512_srli_epi64(odd, drop), 32));
+    return _mm512_min_epi32(_mm512_max_epi32(r, _mm512_set1_epi32(D32_OUT_MIN)), _mm512_set1_epi32(D32_OUT_MAX));
+}
+
+AVX512_FN static void eval_n_avx512(const uint16_t *restrict xs, const uint16_t *restrict ys,
+                                    const uint16_t *restrict zs, np_simplex_out *restrict out, size_t count)
+{
+    const int32_t kf = (int32_t)np_simplex_kf(&default_d), kd = (int32_t)np_simplex_kd(&default_d);
+    size_t n = 0;
+    for (; n + 16u <= count; n += 16u) {
+        const v16i in[3] = { load16(xs + n), load16(ys + n), load16(zs + n) };
+        v16i s, qs[3];
+        v16_core(in, &s, qs);
+        __m512i f = out16(s, kf, D32_F_DROP), dx = out16(qs[0], kd, D32_D_DROP),
+                dy = out16(qs[1], kd, D32_D_DROP), dz = out16(qs[2], kd, D32_D_DROP);
+        /* {f, dx, dy, dz} per input: in 128-bit lane L, r_m holds input 4 L + m */
+        __m512i a0 = _mm512_unpacklo_epi32(f, dx), a1 = _mm512_unpacklo_epi32(dy, dz);
+        __m512i a2 = _mm512_unpackhi_epi32(f, dx), a3 = _mm512_unpackhi_epi32(dy, dz);
+        __m512i r0 = _mm512_unpacklo_epi64(a0, a1), r1 = _mm512_unpackhi_epi64(a0, a1);
+        __m512i r2 = _mm512_unpacklo_epi64(a2, a3), r3 = _mm512_unpackhi_epi64(a2, a3);
+        __m512i t0 = _mm512_shuffle_i32x4(r0, r1, 0x44), t1 = _mm512_shuffle_i32x4(r2, r3, 0x44); /* lanes 0, 1 */
+        __m512i t2 = _mm512_shuffle_i32x4(r0, r1, 0xee), t3 = _mm512_shuffle_i32x4(r2, r3, 0xee); /* lanes 2, 3 */
+        void *o = out + n;
+        _mm512_storeu_si512(o, _mm512_shuffle_i32x4(t0, t1, 0x88));                      /* inputs 0..3 */
+        _mm512_storeu_si512((char *)o + 64, _mm512_shuffle_i32x4(t0, t1, 0xdd));         /* 4..7 */
+        _mm512_storeu_si512((char *)o + 128, _mm512_shuffle_i32x4(t2, t3, 0x88));        /* 8..11 */
+        _mm512_storeu_si512((char *)o + 192, _mm512_shuffle_i32x4(t2, t3, 0xdd));        /* 12..15 */
+    }
+    eval_n_avx2(xs + n, ys + n, zs + n, out + n, count - n);
+}
+
+AVX512_FN static void eval_n_avx512_f(const uint16_t *restrict xs, const uint16_t *restrict ys,
+                                      const uint16_t *restrict zs, np_simplex_out *restrict out, size_t count)
+{
+    const int32_t kf = (int32_t)np_simplex_kf(&default_f);
+    const __m512i zero = _mm512_setzero_si512();
+    size_t n = 0;
+    for (; n + 16u <= count; n += 16u) {
+        const v16i in[3] = { load16(xs + n), load16(ys + n), load16(zs + n) };
+        __m512i f = out16(v16_core_f(in), kf, D32_FV_DROP);
+        /* {f, 0, 0, 0} per input, as eval_n_avx512's transpose */
+        __m512i a0 = _mm512_unpacklo_epi32(f, zero), a2 = _mm512_unpackhi_epi32(f, zero);
+        __m512i r0 = _mm512_unpacklo_epi64(a0, zero), r1 = _mm512_unpackhi_epi64(a0, zero);
+        __m512i r2 = _mm512_unpacklo_epi64(a2, zero), r3 = _mm512_unpackhi_epi64(a2, zero);
+        __m512i t0 = _mm512_shuffle_i32x4(r0, r1, 0x44), t1 = _mm512_shuffle_i32x4(r2, r3, 0x44);
+        __m512i t2 = _mm512_shuffle_i32x4(r0, r1, 0xee), t3 = _mm512_shuffle_i32x4(r2, r3, 0xee);
+        void *o = out + n;
+        _mm512_storeu_si512(o, _mm512_shuffle_i32x4(t0, t1, 0x88));
+        _mm512_storeu_si512((char *)o + 64, _mm512_shuffle_i32x4(t0, t1, 0xdd));
+        _mm512_storeu_si512((char *)o + 128, _mm512_shuffle_i32x4(t2, t3, 0x88));
+        _mm512_storeu_si512((char *)o + 192, _mm512_shuffle_i32x4(t2, t3, 0xdd));
+    }
+    eval_n_avx2_f(xs + n, ys + n, zs + n, out + n, count - n);
+}
+#endif /* NP_SIMPLEX_HAVE_AVX2 */
+
+static int have_avx512(void)
+{
+#if NP_SIMPLEX_HAVE_AVX2
+    return __builtin_cpu_supports("avx512f");
+#else
+    return 0;
+#endif
+}
+
+static int have_avx2(void)
+{
+#if NP_SIMPLEX_HAVE_AVX2
+    return __builtin_cpu_supports("avx2");
+#else
+    return 0;
+#endif
+}
+
+int np_simplex_eval_n_path(unsigned path, const np_simplex_cfg *cfg, const uint16_t *x, const uint16_t *y,
+                           const uint16_t *z, np_simplex_out *out, size_t count)
+{
+    switch (path) {
+    case NP_SIMPLEX_BATCH_GENERIC: {
+        const np_simplex_cfg c = *cfg;
+        const int64_t kf = np_simplex_kf(&c), kd = np_simplex_kd(&c);
+        for (size_t n = 0; n < count; n++)
+            eval_one(&c, kf, kd, x[n], y[n], z[n], &out[n]);
+        return 0;
+    }
+    case NP_SIMPLEX_BATCH_WIDTHS:
+        if (same_cfg(cfg, &default_d))
+            eval_n_default_d(x, y, z, out, count);
+        else if (same_cfg(cfg, &default_f))
+            eval_n_default_f(x, y, z, out, count);
+        else
+            return -1;
+        return 0;
+    case NP_SIMPLEX_BATCH_INT32:
+        if (same_cfg(cfg, &default_d))
+            eval_n_int32(x, y, z, out, count);
+        else if (same_cfg(cfg, &default_f))
+            eval_n_int32_f(x, y, z, out, count);
+        else
+            return -1;
+        return 0;
+    case NP_SIMPLEX_BATCH_AVX2:
+        if (!(same_cfg(cfg, &default_d) || same_cfg(cfg, &default_f)) || !have_avx2())
+            return -1;
+#if NP_SIMPLEX_HAVE_AVX2
+        if (cfg->deriv)
+            eval_n_avx2(x, y, z, out, count);
+        else
+            eval_n_avx2_f(x, y, z, out, count);
+#endif
+        return 0;
+    case NP_SIMPLEX_BATCH_AVX512:
+        if (!(same_cfg(cfg, &default_d) || same_cfg(cfg, &default_f)) || !have_avx512() || !have_avx2())
+            return -1;
+#if NP_SIMPLEX_HAVE_AVX2
+        if (cfg->deriv)
+            eval_n_avx512(x, y, z, out, count);
+        else
+            eval_n_avx512_f(x, y, z, out, count);
+#endif
+        return 0;
+    default:
+        return -1;
+    }
+}
+
 void np_simplex_eval_n(const np_simplex_cfg *cfg, const uint16_t *x, const uint16_t *y,
                        const uint16_t *z, np_simplex_out *out, size_t count)
 {
-    if (same_cfg(cfg, &default_d)) {
-        eval_n_default_d(x, y, z, out, count);
-        return;
-    }
-    if (same_cfg(cfg, &default_f)) {
-        eval_n_default_f(x, y, z, out, count);
-        return;
-    }
-    const np_simplex_cfg c = *cfg;
-    const int64_t kf = np_simplex_kf(&c), kd = np_simplex_kd(&c);
-    for (size_t n = 0; n < count; n++)
-        eval_one(&c, kf, kd, x[n], y[n], z[n], &out[n]);
+    static const unsigned order[] = { NP_SIMPLEX_BATCH_AVX512, NP_SIMPLEX_BATCH_AVX2, NP_SIMPLEX_BATCH_WIDTHS };
+    for (unsigned k = 0; k < sizeof order / sizeof order[0]; k++)
+        if (np_simplex_eval_n_path(order[k], cfg, x, y, z, out, count) == 0)
+            return;
+    np_simplex_eval_n_path(NP_SIMPLEX_BATCH_GENERIC, cfg, x, y, z, out, count);
 }
 
 /* --- Pipeline stages: the same primitives, split at the register banks. --- */

@@ -383,11 +383,42 @@ void np_simplex_eval(const np_simplex_cfg *cfg, uint16_t x, uint16_t y, uint16_t
  * The bit-exact model over arrays: out[n] = np_simplex_eval(cfg, x[n], y[n],
  * z[n]) for n < count, the same bits (fast.simplex_batch_* prove it). The
  * configuration is read once; the two default configurations (N = ND = 16
- * with and without the derivative, np_simplex_cfg_default) run loops with
- * the widths as constants.
+ * with and without the derivative, np_simplex_cfg_default) run specialised
+ * loops in int32 lanes (np_simplex32.h), by hand in AVX-512 or AVX2 where
+ * the CPU has it. The arrays may not overlap out.
  */
 void np_simplex_eval_n(const np_simplex_cfg *cfg, const uint16_t *x, const uint16_t *y,
                        const uint16_t *z, np_simplex_out *out, size_t count);
+
+/*
+ * The batch model's implementations, each the same bits as np_simplex_eval:
+ *   GENERIC  the model per input with the configuration read once, any
+ *            configuration;
+ *   WIDTHS   the model per input with the widths as compile-time constants
+ *            (64-bit products, vectorised by the compiler where it can): the
+ *            two defaults;
+ *   INT32    the two defaults in int32 arithmetic (the split products of
+ *            np_simplex32.h), portable C;
+ *   AVX2     the same int32 arithmetic eight inputs a step, by hand for AVX2
+ *            (x86-64 with GCC or Clang, on a CPU with AVX2);
+ *   AVX512   the same sixteen inputs a step (a CPU with AVX-512F).
+ * np_simplex_eval_n runs the first of AVX512, AVX2, WIDTHS, GENERIC that
+ * applies (INT32 is the vector paths' tail; scalar, it is slower than
+ * WIDTHS, which the compiler vectorises). np_simplex_eval_n_path runs the one named,
+ * for the tests that prove each path against np_simplex_eval and for the
+ * bench; it returns -1 (writing nothing) when that path does not apply to
+ * cfg or this CPU, else 0.
+ */
+enum {
+    NP_SIMPLEX_BATCH_GENERIC,
+    NP_SIMPLEX_BATCH_WIDTHS,
+    NP_SIMPLEX_BATCH_INT32,
+    NP_SIMPLEX_BATCH_AVX2,
+    NP_SIMPLEX_BATCH_AVX512,
+    NP_SIMPLEX_BATCH_PATHS
+};
+int np_simplex_eval_n_path(unsigned path, const np_simplex_cfg *cfg, const uint16_t *x,
+                           const uint16_t *y, const uint16_t *z, np_simplex_out *out, size_t count);
 
 /* --- Cycle-accurate model --- */
 

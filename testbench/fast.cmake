@@ -3,7 +3,7 @@
 # batch APIs, against the bit loop and the per-input models.
 np_test_program(test_fast test_fast.c)
 np_add_cases(test_fast fast hash_exhaustive grad_table classic_batch_random classic_batch_block
-  simplex_batch_random simplex_batch_block simplex_kernel_block simplex_kernel_random
+  simplex_batch_random simplex_batch_block simplex_batch_paths simplex_kernel_block simplex_kernel_random
   simplex32_exhaustive
   pipe_no_copy ref_grad_fast)
 # noisepipe bench runs every figure (a crash or an overrun shows, under ASan too); timing is not asserted.

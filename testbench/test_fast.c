@@ -17,7 +17,7 @@
 #include "np_rng.h"
 #include "np_simplex.h"
 #include "np_sweep.h"
-#include "sweep_simplex32.h"
+#include "np_simplex32.h"
 #include "np_unit.h"
 #include "np_test.h"
 
@@ -221,6 +221,120 @@ static int t_simplex_batch_block(void)
     return 0;
 }
 
+static const char *const simplex_path_name[NP_SIMPLEX_BATCH_PATHS] = { "generic", "widths", "int32", "avx2", "avx512" };
+
+/* Words next to the input's edges and to cells of the 8.8 grid. */
+static const uint16_t simplex_edge_words[] = { 0x0000, 0x0001, 0x0002, 0x00ff, 0x0100, 0x0101, 0x017f,
+                                               0x0180, 0x02ff, 0x7fff, 0x8000, 0x8001, 0xfeff, 0xff00,
+                                               0xff01, 0xff7f, 0xff80, 0xfffd, 0xfffe, 0xffff };
+enum { EDGE_N = sizeof simplex_edge_words / sizeof simplex_edge_words[0] };
+
+/*
+ * Adversarial input number k (any k): the EDGE_N^3 triples of the edge words
+ * first, then in turn
+ *  - skewed cell boundaries: 4a + b + c within 1 of a multiple of 768 on a
+ *    random axis a (the cell decision), the other words random;
+ *  - rank ties: two or three offsets equal (the same word on two axes, or
+ *    two words 256 m apart), the simplex decision;
+ *  - all three words within 8 of 0 or of 0xffff (the wrap).
+ */
+static void simplex_adversarial(np_rng *r, uint32_t k, uint16_t w[3])
+{
+    if (k < EDGE_N * EDGE_N * EDGE_N) {
+        w[0] = simplex_edge_words[k % EDGE_N];
+        w[1] = simplex_edge_words[k / EDGE_N % EDGE_N];
+        w[2] = simplex_edge_words[k / (EDGE_N * EDGE_N)];
+        return;
+    }
+    uint64_t v = np_rng_next(r);
+    unsigned a = (unsigned)(v % 3u), b = (a + 1u) % 3u, c = (a + 2u) % 3u;
+    switch (k % 3u) {
+    case 0: { /* SX = 4 w[a] + w[b] + w[c] = 768 m + delta: solve for w[b] */
+        w[a] = (uint16_t)(v >> 8);
+        w[c] = (uint16_t)(v >> 24);
+        int32_t base = 4 * (int32_t)w[a] + w[c], delta = (int32_t)(v >> 40 & 3u) - 1; /* -1, 0, 1, 2 */
+        int32_t m = (base + 767) / 768 + (int32_t)(v >> 44 & 63u) % 86;
+        int32_t wb = 768 * m + (delta > 1 ? 0 : delta) - base;
+        w[b] = wb >= 0 && wb <= 0xffff ? (uint16_t)wb : (uint16_t)(v >> 48);
+        break;
+    }
+    case 1: /* ties: w[a] = w[b] (+ 256 m), sometimes all three */
+        w[a] = (uint16_t)(v >> 8);
+        w[b] = (uint16_t)(w[a] + ((v >> 24 & 3u) == 0 ? 0u : (unsigned)(v >> 26 & 0xffu) << 8));
+        w[c] = (v >> 34 & 1u) ? w[a] : (uint16_t)(v >> 40);
+        break;
+    default: /* near 0 and 0xffff on every axis */
+        for (unsigned i = 0; i < 3; i++) {
+            unsigned e = (unsigned)(v >> (8u + 5u * i) & 31u);
+            w[i] = (uint16_t)(e < 16u ? e & 7u : 0xfff8u | (e & 7u));
+        }
+        break;
+    }
+}
+
+/*
+ * Every batch path against np_simplex_eval, at the two defaults and two
+ * other configurations: random inputs (a quarter of them boundary
+ * fractions, wrapping cells) and the adversarial ones above, counts that
+ * leave a tail after the vector steps; through each path that applies and
+ * through np_simplex_eval_n. At both defaults WIDTHS and INT32 must apply,
+ * AVX2 and AVX512 where the CPU has them.
+ */
+static int t_simplex_batch_paths(void)
+{
+    static inputs in;
+    static np_simplex_out out[CHUNK];
+    np_simplex_cfg cfgs[4] = { np_simplex_cfg_default(16, 16, 1), np_simplex_cfg_default(16, 16, 0),
+                               np_simplex_cfg_default(8, 10, 1), np_simplex_cfg_default(20, 20, 1) };
+    const uint32_t adv_n = EDGE_N * EDGE_N * EDGE_N + 3u * 16384u;
+    for (unsigned k = 0; k < 4; k++) {
+        for (unsigned path = 0; path <= NP_SIMPLEX_BATCH_PATHS; path++) {
+            np_rng r;
+            np_rng_seed(&r, 0x6661737434ull);
+            unsigned chunks = k < 2 ? 64u : 8u;
+            uint64_t bad = 0, total = 0;
+            int applies = 1;
+            uint32_t adv = 0;
+            for (unsigned c = 0; applies && (c < chunks || adv < adv_n); c++) {
+                for (unsigned n = 0; n < CHUNK; n++) {
+                    if (c < chunks) {
+                        in.x[n] = rand_word(&r);
+                        in.y[n] = rand_word(&r);
+                        in.z[n] = rand_word(&r);
+                    } else {
+                        uint16_t w[3];
+                        simplex_adversarial(&r, adv++, w);
+                        in.x[n] = w[0];
+                        in.y[n] = w[1];
+                        in.z[n] = w[2];
+                    }
+                }
+                unsigned count = CHUNK - (c & 7u);
+                if (path == NP_SIMPLEX_BATCH_PATHS)
+                    np_simplex_eval_n(&cfgs[k], in.x, in.y, in.z, out, count);
+                else
+                    applies = np_simplex_eval_n_path(path, &cfgs[k], in.x, in.y, in.z, out, count) == 0;
+                if (applies) {
+                    bad += simplex_check(&cfgs[k], &in, out, count);
+                    total += count;
+                }
+            }
+            const char *name = path == NP_SIMPLEX_BATCH_PATHS ? "np_simplex_eval_n" : simplex_path_name[path];
+            if (!applies) {
+                NP_CHECK(k >= 2 || (path != NP_SIMPLEX_BATCH_WIDTHS && path != NP_SIMPLEX_BATCH_INT32),
+                         "the %s path must apply to both defaults", name);
+                printf("simplex3 N=%u ND=%u deriv=%u %s: does not apply here\n", cfgs[k].out_bits,
+                       cfgs[k].dout_bits, cfgs[k].deriv, name);
+                continue;
+            }
+            printf("simplex3 N=%u ND=%u deriv=%u %s: %llu inputs (%u random chunks, then adversarial), %llu mismatches\n",
+                   cfgs[k].out_bits, cfgs[k].dout_bits, cfgs[k].deriv, name, (unsigned long long)total, chunks,
+                   (unsigned long long)bad);
+        }
+    }
+    return 0;
+}
+
 /* All 2^24 lattice points: np_hash6_fast == np_hash6 (the two-nibble-table claim). */
 static int t_hash_exhaustive(void)
 {
@@ -316,12 +430,14 @@ static uint64_t simplex_kernel_check(const char *config, uint16_t xcell, uint16_
 }
 
 /*
- * The int32 forms of simplex3's rounded products (sweep_simplex32.h) ==
+ * The int32 forms of simplex3's rounded products (np_simplex32.h) ==
  * np_simplex.h's 64-bit ones at the default widths with the derivative:
  * tau2 and tau3(tau2(T), T) for every T < 2^23, tau4 for every tau2 < 2^24,
  * tau3 on 2^22 random (tau2, T) pairs besides, fterm/qterm (tau gd) for
- * every tau < 2^24 at 16 gd from the extremes +-4608 in and random ones, and
- * mterm (5q D) for every D in s12 at 4096 q from the extremes of |q| < 2^25.2.
+ * every tau < 2^24 at 16 gd from the extremes +-4608 in and random ones,
+ * eterm (G_a tau4) for every tau4 < 2^24 and G_a in {-1, 0, 1}, and mterm
+ * (5q D) for every D in s12 at 4096 q from the extremes of |q| < 2^25.2; and
+ * the value-only default's (WT = 23, WP = 20) tau2, tau4 and fterm alike.
  */
 static int t_simplex32_exhaustive(void)
 {
@@ -351,6 +467,9 @@ static int t_simplex32_exhaustive(void)
             bad += m32_mul_rq11(a, gds[k]) != np_simplex_fterm(&cfg, (uint32_t)a, gds[k]);
             bad += m32_mul_rq11(a, gds[k]) != np_simplex_qterm(&cfg, (uint32_t)a, gds[k]);
         }
+    for (int32_t a = 0; a < (1 << 24); a++)
+        for (int32_t c = -1; c <= 1; c++, n++)
+            bad += m32_eterm(c, a) != np_simplex_eterm(&cfg, (uint32_t)a, c);
     const int32_t qmax = 37748737; /* 2^24 4608 / 2^11 + 1 > |q| */
     for (unsigned k = 0; k < 4096; k++) {
         int32_t q = k < 8 ? (k & 1 ? -1 : 1) * (qmax - (int32_t)(k >> 1)) : k < 16 ? (int32_t)k - 12
@@ -358,9 +477,20 @@ static int t_simplex32_exhaustive(void)
         for (int32_t d = -2048; d < 2048; d++, n++)
             bad += m32_mul_rq11(4 * q + q, d) != np_simplex_mterm(q, d);
     }
+    /* the value-only default (WT = 23, WP = 20): every T, every tau2 < 2^23, every tau4 < 2^23 at the 16 gd */
+    const np_simplex_cfg cf = np_simplex_cfg_default(16, 16, 0);
+    NP_CHECK(cf.t_frac == 23 && cf.p_frac == 20 && cf.k_frac == 22, "value-only widths WT/WP/WK = 23/20/22 (%u/%u/%u)",
+             cf.t_frac, cf.p_frac, cf.k_frac);
+    for (int32_t t = 0; t < (1 << 23); t++, n += 2) {
+        bad += (uint32_t)m32_tau2_23(t) != np_simplex_tau2(&cf, (uint32_t)t);
+        bad += (uint32_t)m32_tau4_23(t) != np_simplex_tau4(&cf, (uint32_t)t);
+    }
+    for (int32_t a = 0; a < (1 << 23); a++)
+        for (unsigned k = 0; k < 16; k++, n++)
+            bad += m32_mul_rq12(a, gds[k]) != np_simplex_fterm(&cf, (uint32_t)a, gds[k]);
     NP_CHECK(bad == 0, "%llu of %llu int32 products differ from np_simplex.h's", (unsigned long long)bad,
              (unsigned long long)n);
-    printf("simplex3 int32 products (WT/WP = 24/22): %llu compared, %llu differ\n", (unsigned long long)n,
+    printf("simplex3 int32 products (WT/WP = 24/22 and 23/20): %llu compared, %llu differ\n", (unsigned long long)n,
            (unsigned long long)bad);
     return 0;
 }
@@ -517,6 +647,7 @@ static const np_test_case cases[] = {
     { "classic_batch_block", t_classic_batch_block },
     { "simplex_batch_random", t_simplex_batch_random },
     { "simplex_batch_block", t_simplex_batch_block },
+    { "simplex_batch_paths", t_simplex_batch_paths },
     { "simplex_kernel_block", t_simplex_kernel_block },
     { "simplex_kernel_random", t_simplex_kernel_random },
     { "simplex32_exhaustive", t_simplex32_exhaustive },

@@ -173,6 +173,7 @@ typedef struct side_in {
     np_simplex_out sout[SIDE_N];
     np_classic_cfg cc;
     np_simplex_cfg sd, sf;
+    unsigned spath; /* side_simplex_d_path's np_simplex_eval_n_path path */
 } side_in;
 
 typedef uint64_t (*side_fn)(side_in *in);
@@ -222,6 +223,11 @@ static uint64_t side_simplex_f_one(side_in *in) { return simplex_one(in, &in->sf
 static uint64_t side_simplex_d_n(side_in *in)
 {
     np_simplex_eval_n(&in->sd, in->x, in->y, in->z, in->sout, SIDE_N);
+    return (uint32_t)in->sout[SIDE_N / 2].f;
+}
+static uint64_t side_simplex_d_path(side_in *in)
+{
+    np_simplex_eval_n_path(in->spath, &in->sd, in->x, in->y, in->z, in->sout, SIDE_N);
     return (uint32_t)in->sout[SIDE_N / 2].f;
 }
 static uint64_t side_simplex_f_n(side_in *in)
@@ -305,6 +311,19 @@ static int bench_units(double secs, const np_unit *classic)
     side_row("classic3 float reference per input", side_run(side_classic_ref, in, secs), stb);
     side_row("simplex3 + derivatives, np_simplex_eval per input", side_run(side_simplex_d_one, in, secs), stb);
     side_row("simplex3 + derivatives, np_simplex_eval_n batch", side_run(side_simplex_d_n, in, secs), stb);
+    /* Each specialised path that applies on this CPU (np_simplex_eval_n runs the last of them that applies). */
+    static const struct { unsigned path; const char *what; } sp[] = {
+        { NP_SIMPLEX_BATCH_WIDTHS, "simplex3 + derivatives, batch path widths" },
+        { NP_SIMPLEX_BATCH_AVX2, "simplex3 + derivatives, batch path avx2" },
+        { NP_SIMPLEX_BATCH_AVX512, "simplex3 + derivatives, batch path avx512" },
+    };
+    for (unsigned k = 0; k < sizeof sp / sizeof sp[0]; k++) {
+        in->spath = sp[k].path;
+        if (np_simplex_eval_n_path(sp[k].path, &in->sd, in->x, in->y, in->z, in->sout, 16) == 0)
+            side_row(sp[k].what, side_run(side_simplex_d_path, in, secs), stb);
+        else
+            printf("%-50s does not apply on this CPU\n", sp[k].what);
+    }
     side_row("simplex3 value only, np_simplex_eval per input", side_run(side_simplex_f_one, in, secs), stb);
     side_row("simplex3 value only, np_simplex_eval_n batch", side_run(side_simplex_f_n, in, secs), stb);
     const np_unit *su = np_unit_find("simplex3");

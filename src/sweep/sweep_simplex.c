@@ -45,7 +45,7 @@
 #include "np_hash.h"
 #include "np_simplex.h"
 #include "np_sweep.h"
-#include "sweep_simplex32.h"
+#include "np_simplex32.h"
 
 /* ---- The reference row, in segments ---- */
 
@@ -522,9 +522,9 @@ NP_SWEEP_INLINE void m32_corner_add(const m32_corner k, int32_t u, int32_t *s, i
     int32_t q = m32_mul_rq11(tau3, gd);                        /* np_simplex_qterm */
     int32_t q5 = 4 * q + q;                                    /* np_simplex_mterm's 5q */
     /* np_simplex_eterm: G_a tau4 from Q.24 to Q.22, round half up; np_simplex_mterm: 5q D_a / 2^11 */
-    *q0 += m32_asr(k.cx * tau4 + 2, 2) - m32_mul_rq11(q5, d0);
-    *q1 += m32_asr(k.cy * tau4 + 2, 2) - m32_mul_rq11(q5, k.d1);
-    *q2 += m32_asr(k.cz * tau4 + 2, 2) - m32_mul_rq11(q5, k.d2);
+    *q0 += m32_eterm(k.cx, tau4) - m32_mul_rq11(q5, d0);
+    *q1 += m32_eterm(k.cy, tau4) - m32_mul_rq11(q5, k.d1);
+    *q2 += m32_eterm(k.cz, tau4) - m32_mul_rq11(q5, k.d2);
 }
 
 /*
@@ -535,7 +535,7 @@ NP_SWEEP_INLINE void m32_corner_add(const m32_corner k, int32_t u, int32_t *s, i
  * (m32_row), and the next run, or nothing, overwrites what it wrote. Those
  * spilled lanes pair another run's U (or 0) with this run's corners: still
  * |D| < 2^11 + 1536 + 768, so R2 < 2^26 and nothing overflows; and T > 0
- * only when every |D_a| < 1190, within the ranges of sweep_simplex32.h.
+ * only when every |D_a| < 1190, within the ranges of np_simplex32.h.
  */
 enum { M32_LANES = 16 };
 NP_SWEEP_INLINE void m32_pass2(const mdl_corner *restrict cn, unsigned t0, unsigned t1, const int32_t *restrict o0,
