@@ -559,8 +559,13 @@ static void out_round(np_op *ops, size_t max, size_t *n, unsigned count, unsigne
     else if (!sat)
         put(ops, max, n, (np_op){ "O", sig, NP_OP_REG, 0, 0, 0, ow, 1, lvl }); /* wiring only */
     if (sat) {
-        put(ops, max, n, (np_op){ "O", NULL, NP_OP_CMPK, 2u * count, rw, 0, 0, 0, lvl + 1u });
-        put(ops, max, n, (np_op){ "O", sig, NP_OP_MUX, count, ow, 3, ow, 1, lvl + 2u });
+        /*
+         * Out of range when the bits from ow - 1 up are not all the sign:
+         * one check of rw - ow + 1 bits; the saturated word is the sign and
+         * its complement (wiring and an inverter), picked by a 2:1 select.
+         */
+        put(ops, max, n, (np_op){ "O", NULL, NP_OP_CMPK, count, rw >= ow ? rw - ow + 1u : 1u, 0, 0, 0, lvl + 1u });
+        put(ops, max, n, (np_op){ "O", sig, NP_OP_MUX, count, ow, 2, ow, 1, lvl + 2u });
     }
 }
 

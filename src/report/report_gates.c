@@ -26,9 +26,8 @@
  *   the carry out of a 10-bit sum alone (carry10) 52
  * The per-bit slopes and the per-operator edges (add, inc, carry, sqr) are
  * the values that put every stage of the synthesised classic3 (five
- * configurations) and simplex3 (four) closest to Yosys (within 8.6 % but
- * simplex3's O at t_frac < 9, 14 % high; docs/cost-model.md "Model against
- * synthesis, per stage").
+ * configurations) and simplex3 (four) closest to Yosys (largest deviation
+ * 8.9 %, docs/cost-model.md "Model against synthesis, per stage").
  */
 const np_cost_model np_cost_default = {
     .add_bit = 9.6,
