@@ -606,11 +606,20 @@ size_t np_simplex_datapath(const np_simplex_cfg *cfg, np_op *ops, size_t max)
         h.em = wp + 9u;
         h.s = h.qs = wp + 10u;
         h.smax = h.qsmax = ((uint64_t)1 << (wp + 9u)) - 1u;
-        uint64_t fprod = (uint64_t)np_simplex_kf(cfg) * h.smax, dprod = (uint64_t)np_simplex_kd(cfg) * h.qsmax;
-        h.fprod = sbits(fprod);
-        h.fr = sbits(requant_bound(fprod, wk + wp, np_simplex_f_frac(cfg)));
-        h.dprod = sbits(dprod);
-        h.dr = sbits(requant_bound(dprod, wk + wp, np_simplex_d_frac(cfg)));
+        /* |K S| < 2^(bits(K) + WP + 9): exact while that fits 63 bits, else that bound's width */
+        uint64_t kf = (uint64_t)np_simplex_kf(cfg), kd = (uint64_t)np_simplex_kd(cfg);
+        unsigned ff = np_simplex_f_frac(cfg), fd = np_simplex_d_frac(cfg), sh = wk + wp;
+        if (ubits(kd) + wp + 9u <= 62u) {
+            h.fprod = sbits(kf * h.smax);
+            h.fr = sbits(requant_bound(kf * h.smax, sh, ff));
+            h.dprod = sbits(kd * h.qsmax);
+            h.dr = sbits(requant_bound(kd * h.qsmax, sh, fd));
+        } else {
+            h.fprod = ubits(kf) + wp + 10u;
+            h.fr = sh > ff ? h.fprod - (sh - ff) + 1u : h.fprod + (ff - sh);
+            h.dprod = ubits(kd) + wp + 10u;
+            h.dr = sh > fd ? h.dprod - (sh - fd) + 1u : h.dprod + (fd - sh);
+        }
     }
     unsigned nb = cfg->out_bits, nd = cfg->dout_bits, ob = NP_SIMPLEX_OFF_BITS;
     /* Carried for the derivative only: D to M2, each corner's gradient index to M (e_a). */
