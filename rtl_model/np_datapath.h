@@ -31,6 +31,7 @@ typedef enum np_op_kind {
     NP_OP_INC,  /* adding a constant (half an LSB to round, +1, constant - x): a = width */
     NP_OP_CMPK, /* comparison with a constant (saturation, clamps): a = width */
     NP_OP_SQR,  /* squarer x * x: a = the operand's width */
+    NP_OP_CARRY, /* the carry out of an a-bit sum whose sum bits are not read (a majority chain) */
     NP_OP_KINDS
 } np_op_kind;
 

@@ -739,7 +739,29 @@ enum {
     GD_BITS = 13,         /* so gd is s13 */
     CELL_LIVE = 8,        /* the bits of a cell index read after SK (the hash reads it mod 256) */
     IN_LIVE = 11,         /* the bits of an input word read after SK: 6a mod 2^12 needs a mod 2^11 */
-    GRAD_BITS = 6         /* a corner's gradient index h */
+    GRAD_BITS = 6,        /* a corner's gradient index h */
+    /*
+     * Bits that are constant or shared, which the hardware (Yosys's
+     * synthesis of the RTL, docs/cost-model.md) neither stores twice nor
+     * computes: U = 6a - 1536 i + 256 n is even, and so are every corner's
+     * D = U - 1536 A + 256 c and G . D, so bit 0 of each is 0; R2 = sum D_a^2
+     * is then a multiple of 4, and so is T = 27 * 2^18 - 5 R2. Hence the live
+     * widths below: U, D s12 -> 11 bits; |D_a| = 2 |D_a / 2|, an 11-bit
+     * negate and a 10-bit squarer; R2, 5 R2, T two bits narrower; G . D s13
+     * -> 12 bits (so T^2 is a 21-bit squarer and the products with G . D
+     * and D one bit narrower).
+     */
+    OFF_LIVE = NP_SIMPLEX_OFF_BITS - 1,
+    GD_LIVE = GD_BITS - 1,
+    T_LIVE = NP_SIMPLEX_T_BITS - 2,
+    /*
+     * The four corners' offsets D held in a bank: D_c differs from U only
+     * from bit 8 on, so D[7:0] = U[7:0] at every corner and one register
+     * holds its 7 live bits for the four (Yosys merges the RTL's identical
+     * flip-flops): 3 x 7 + 12 x 4 = 69 bits, not 12 x 12.
+     */
+    D_LOW = 8,
+    D_REG_BITS = 3 * (D_LOW - 1) + 4 * 3 * (NP_SIMPLEX_OFF_BITS - D_LOW)
 };
 
 /* Widths of an unsigned / a signed (symmetric) word of magnitude at most v. */
@@ -840,11 +862,15 @@ static void widths_of(const np_simplex_cfg *cfg, sx_widths *w)
  * adder of two partial sums whose lowest set bits are l1 < l2 spans the
  * result's bits from l2 up (the bits below l2 are the first operand's:
  * wiring); a partial sum of the terms T is bounded by vmax * sum 2^s over T,
- * the whole product by k vmax (width bits, named sig). Returns the tree's
- * depth in levels.
+ * the whole product by k vmax (width bits, named sig, traced at `traced`
+ * bits: the range argument's, where the RTL holds wider words). The
+ * rounding after it drops the product's drop low bits, so the last adder's
+ * bits under the round bit only carry (`carry`); the operand's zero low
+ * bits (0 when WP is finer than the products) add nothing. Returns the tree's depth
+ * in levels.
  */
 static unsigned const_mul(np_op *ops, size_t max, size_t *n, unsigned count, uint64_t k, uint64_t vmax,
-                          unsigned width, const char *sig)
+                          unsigned width, unsigned traced, unsigned drop, unsigned zero, const char *sig)
 {
     enum { MAX_DIGITS = 40 };
     unsigned low[MAX_DIGITS], terms = 0, lvl = 0;
@@ -856,7 +882,7 @@ static unsigned const_mul(np_op *ops, size_t max, size_t *n, unsigned count, uin
             k = (k & 2u) ? k + 1u : k - 1u; /* digit -1 or +1 */
         }
     if (terms <= 1u) { /* a power of two (or 0): wiring */
-        put(ops, max, n, (np_op){ "O", sig, NP_OP_REG, 0, 0, 0, width, 1, 0 });
+        put(ops, max, n, (np_op){ "O", sig, NP_OP_REG, 0, 0, 0, traced, 1, 0 });
         return 0;
     }
     while (terms > 1u) {
@@ -864,7 +890,7 @@ static unsigned const_mul(np_op *ops, size_t max, size_t *n, unsigned count, uin
         for (unsigned i = 0; i + 1u < terms; i += 2u) {
             uint64_t m = mag[i] + mag[i + 1u];
             unsigned rw = terms == 2u ? width : sbits(m);
-            w[nw++] = rw > low[i + 1u] ? rw - low[i + 1u] : 1u;
+            w[nw++] = rw > low[i + 1u] + zero ? rw - low[i + 1u] - zero : 1u;
             low[next] = low[i];
             mag[next++] = m;
         }
@@ -872,12 +898,21 @@ static unsigned const_mul(np_op *ops, size_t max, size_t *n, unsigned count, uin
             low[next] = low[terms - 1u];
             mag[next++] = mag[terms - 1u];
         }
+        if (next == 1u && drop > low[1] + zero + 1u && w[0] > 1u) {
+            /*
+             * The last adder: the rounding reads its bits from drop - 1 (the
+             * round bit) up; below, only its carry (from bit low[1] on).
+             */
+            unsigned c = drop - 1u - low[1] - zero < w[0] ? drop - 1u - low[1] - zero : w[0] - 1u;
+            put(ops, max, n, (np_op){ "O", NULL, NP_OP_CARRY, count, c, 0, 0, 0, lvl });
+            w[0] -= c;
+        }
         for (unsigned i = 0; i < nw;) { /* one op per run of equal widths */
             unsigned j = i;
             while (j < nw && w[j] == w[i])
                 j++;
             put(ops, max, n, (np_op){ "O", next == 1u ? sig : NULL, NP_OP_ADD, count * (j - i), w[i], 0,
-                                      next == 1u ? width : 0u, 1, lvl });
+                                      next == 1u ? traced : 0u, 1, lvl });
             i = j;
         }
         terms = next;
@@ -889,27 +924,36 @@ static unsigned const_mul(np_op *ops, size_t max, size_t *n, unsigned count, uin
 /*
  * O: round the product (kept bits plus the round bit) to the output width
  * and saturate, unless the range argument shows the rounded word already
- * fits (then the saturation can never act and is left out, bits unchanged).
+ * fits (then the saturation can never act and is left out, bits unchanged)
+ * and the RTL leaves it out too (force_sat = 0: its TIGHT widths).
  */
 static void out_round(np_op *ops, size_t max, size_t *n, unsigned count, unsigned drop, unsigned rw,
-                      unsigned ow, const char *sig, unsigned lvl)
+                      unsigned ow, int force_sat, const char *sig, unsigned lvl)
 {
-    int sat = rw > ow;
+    int sat = force_sat || rw > ow;
     if (drop > 0u)
         put(ops, max, n, (np_op){ "O", sat ? NULL : sig, NP_OP_INC, count, rw + 1u, 0, sat ? 0u : ow, 1, lvl });
     else if (!sat)
         put(ops, max, n, (np_op){ "O", sig, NP_OP_REG, 0, 0, 0, ow, 1, lvl }); /* wiring only */
     if (sat) {
-        put(ops, max, n, (np_op){ "O", NULL, NP_OP_CMPK, 2u * count, rw, 0, 0, 0, lvl + 1u });
-        put(ops, max, n, (np_op){ "O", sig, NP_OP_MUX, count, ow, 3, ow, 1, lvl + 2u });
+        /*
+         * Out of range when the bits from ow - 1 up are not all the sign:
+         * one check of rw - ow + 1 bits; the saturated word is the sign and
+         * its complement (wiring and an inverter), picked by a 2:1 select.
+         */
+        put(ops, max, n, (np_op){ "O", NULL, NP_OP_CMPK, count, rw >= ow ? rw - ow + 1u : 1u, 0, 0, 0, lvl + 1u });
+        put(ops, max, n, (np_op){ "O", sig, NP_OP_MUX, count, ow, 2, ow, 1, lvl + 2u });
     }
 }
 
-/* A rounding that drops sh bits: adding half an LSB over the kept bits plus the round bit, or wiring. */
-#define ROUND(stage, sig, count, sh, vw, level)                          \
+/*
+ * A rounding that drops sh bits to a word held in pw bits (traced at vw):
+ * adding half an LSB over the kept bits plus the round bit, or wiring.
+ */
+#define ROUND(stage, sig, count, sh, pw, vw, level)                     \
     do {                                                                \
         if ((sh) > 0)                                                   \
-            OP(stage, sig, NP_OP_INC, count, (vw) + 1u, 0, vw, 1, level); \
+            OP(stage, sig, NP_OP_INC, count, (pw) + 1u, 0, vw, 1, level); \
         else                                                            \
             OP(stage, sig, NP_OP_REG, 0, 0, 0, vw, 1, level);           \
     } while (0)
@@ -917,12 +961,46 @@ static void out_round(np_op *ops, size_t max, size_t *n, unsigned count, unsigne
 size_t np_simplex_datapath(const np_simplex_cfg *cfg, np_op *ops, size_t max)
 {
     size_t n = 0;
-    sx_widths w;
+    sx_widths w, h;
     widths_of(cfg, &w);
     unsigned dv = cfg->deriv, wt = cfg->t_frac, wp = cfg->p_frac, wk = cfg->k_frac;
+    /*
+     * h: the widths the hardware holds from M on. The reference RTL
+     * (np_simplex3.v) holds w's when TIGHT (WT >= 9 and WP >= 9) and leaves
+     * O's saturation out; otherwise it holds every word wide enough never to
+     * wrap at any configuration (fc, q WP+6; 5q WP+9; m WP+8; e WP+2; e_a - m_a
+     * WP+9; S, Q_a WP+10) and saturates both outputs, so those are priced.
+     * The traced signals keep w's widths (the range argument's).
+     */
+    int tight = wt >= 9 && wp >= 9;
+    h = w;
+    if (!tight) {
+        h.fc = wp + 6u;
+        h.q = wp + 6u;
+        h.q5 = wp + 9u;
+        h.m = wp + 8u;
+        h.e = wp + 2u;
+        h.em = wp + 9u;
+        h.s = h.qs = wp + 10u;
+        h.smax = h.qsmax = ((uint64_t)1 << (wp + 9u)) - 1u;
+        /* |K S| < 2^(bits(K) + WP + 9): exact while that fits 63 bits, else that bound's width */
+        uint64_t kf = (uint64_t)np_simplex_kf(cfg), kd = (uint64_t)np_simplex_kd(cfg);
+        unsigned ff = np_simplex_f_frac(cfg), fd = np_simplex_d_frac(cfg), sh = wk + wp;
+        if (ubits(kd) + wp + 9u <= 62u) {
+            h.fprod = sbits(kf * h.smax);
+            h.fr = sbits(requant_bound(kf * h.smax, sh, ff));
+            h.dprod = sbits(kd * h.qsmax);
+            h.dr = sbits(requant_bound(kd * h.qsmax, sh, fd));
+        } else {
+            h.fprod = ubits(kf) + wp + 10u;
+            h.fr = sh > ff ? h.fprod - (sh - ff) + 1u : h.fprod + (ff - sh);
+            h.dprod = ubits(kd) + wp + 10u;
+            h.dr = sh > fd ? h.dprod - (sh - fd) + 1u : h.dprod + (fd - sh);
+        }
+    }
     unsigned nb = cfg->out_bits, nd = cfg->dout_bits, ob = NP_SIMPLEX_OFF_BITS;
     /* Carried for the derivative only: D to M2, each corner's gradient index to M (e_a). */
-    unsigned d_live = dv ? 4u * 3u * ob : 0u, h_live = dv ? 4u * GRAD_BITS : 0u;
+    unsigned d_live = dv ? (unsigned)D_REG_BITS : 0u, h_live = dv ? 4u * GRAD_BITS : 0u;
 
     /*
      * SK. SX = 4a + (b + c): b + c <= 2 * 65535 (u17), SX <= 6 * 65535 = 393210
@@ -934,8 +1012,8 @@ size_t np_simplex_datapath(const np_simplex_cfg *cfg, np_op *ops, size_t max)
      * Y's bits (wiring), where both operands have bits a full adder, above
      * Y's top bit an incrementer of X's bits (the carry), and where only the
      * carry out of a position is read (SX below bit 8, 683 nn below bit 11:
-     * the cell reads SX[18:8] and (683 nn)[19:11]) a carry chain, priced
-     * as a comparator's:
+     * the cell reads SX[18:8] and (683 nn)[19:11]) a carry chain (`carry`,
+     * a majority chain: cheaper than a comparator, carry10 in cost_calib.v):
      *   bc = b + c: 16 full adders;  SX = (a << 2) + bc: bits 2..7 carry,
      *   8..16 full, 17..18 increment;  5 nn = (nn << 2) + nn: 2..10 full,
      *   11..12 increment;  11 nn = (5 nn << 1) + nn: 1..10 full, 11..14
@@ -946,7 +1024,7 @@ size_t np_simplex_datapath(const np_simplex_cfg *cfg, np_op *ops, size_t max)
      */
     OP("SK", "bc", NP_OP_ADD, 3, 16, 0, 17, 0, 0);
     OP("SK", "sk", NP_OP_ADD, 3, 9, 0, NP_SIMPLEX_SKEW_BITS, 0, 1);
-    OP("SK", NULL, NP_OP_CMP, 3, 6, 0, 0, 0, 1);
+    OP("SK", NULL, NP_OP_CARRY, 3, 6, 0, 0, 0, 1);
     OP("SK", NULL, NP_OP_INC, 3, 2, 0, 0, 0, 1);
     OP("SK", "n5", NP_OP_ADD, 3, 9, 0, 13, 0, 2);
     OP("SK", NULL, NP_OP_INC, 3, 2, 0, 0, 0, 2);
@@ -954,7 +1032,7 @@ size_t np_simplex_datapath(const np_simplex_cfg *cfg, np_op *ops, size_t max)
     OP("SK", NULL, NP_OP_INC, 3, 4, 0, 0, 0, 3);
     OP("SK", "n341", NP_OP_ADD, 3, 10, 0, 19, 0, 4);
     OP("SK", NULL, NP_OP_INC, 3, 10, 0, 0, 0, 4);
-    OP("SK", NULL, NP_OP_CMP, 3, 10, 0, 0, 0, 5);
+    OP("SK", NULL, NP_OP_CARRY, 3, 10, 0, 0, 0, 5);
     OP("SK", "n683", NP_OP_INC, 3, 9, 0, 20, 0, 6);
     /*
      * Live after SK: each input word mod 2^11 (all that U mod 2^12 reads) and
@@ -968,21 +1046,23 @@ size_t np_simplex_datapath(const np_simplex_cfg *cfg, np_op *ops, size_t max)
      * s12 holds it and it is computed mod 2^12 exactly: U[7:0] = (6a)[7:0],
      * U[11:8] = (6a)[11:8] + (n - 2 (3i mod 8)) mod 16, with 6a mod 2^12 =
      * 2 ((2a + a) mod 2^11), 3i mod 8 = (2i + i) mod 8, n mod 16 =
-     * (i + j + k) mod 16.
+     * (i + j + k) mod 16. Each adder spans only the bits where both
+     * operands have bits (bit 0 of 2a + a is a's, of 2i + i is i's, of n - 6i
+     * is n's: wiring), and none has a carry out (all are modular).
      */
-    OP("RK", NULL, NP_OP_ADD, 3, 11, 0, 0, 0, 0);             /* (2a + a) mod 2^11 */
-    OP("RK", NULL, NP_OP_ADD, 3, 3, 0, 0, 0, 0);              /* 3i mod 8 */
+    OP("RK", NULL, NP_OP_ADD, 3, 10, 0, 0, 0, 0);             /* (2a + a) mod 2^11: bits 1..10 */
+    OP("RK", NULL, NP_OP_ADD, 3, 2, 0, 0, 0, 0);              /* 3i mod 8: bits 1..2 */
     OP("RK", NULL, NP_OP_ADD, 1, 4, 0, 0, 0, 0);              /* (i + j) mod 16 */
     OP("RK", NULL, NP_OP_ADD, 1, 4, 0, 0, 0, 1);              /* n mod 16 */
-    OP("RK", NULL, NP_OP_ADD, 3, 4, 0, 0, 0, 2);              /* (n - 6i) mod 16 */
+    OP("RK", NULL, NP_OP_ADD, 3, 3, 0, 0, 0, 2);              /* (n - 6i) mod 16: bits 1..3 */
     OP("RK", "off", NP_OP_ADD, 3, 4, 0, ob, 1, 3);            /* U[11:8] */
     /*
      * Appendix B's ranking: three comparators, encoded as the axes of the
      * largest and the smallest offset (2 bits each; the RTL's hi and lo).
      */
-    OP("RK", NULL, NP_OP_CMP, 3, ob, 0, 0, 0, 4);
+    OP("RK", NULL, NP_OP_CMP, 3, OFF_LIVE, 0, 0, 0, 4);
     OP("RK", NULL, NP_OP_LUT, 1, 3, 4, 0, 0, 5);
-    OP("RK", NULL, NP_OP_REG, 1, 3 * ob + 4 + 3 * CELL_LIVE + 1, 0, 0, 0, 0); /* U; hi, lo; cell */
+    OP("RK", NULL, NP_OP_REG, 1, 3 * OFF_LIVE + 4 + 3 * CELL_LIVE + 1, 0, 0, 0, 0); /* U; hi, lo; cell */
 
     /*
      * CH. D_c = U - 1536 A + 256 c for corners 1..3 (corner 0's is U): |D| <= 1536
@@ -1002,13 +1082,13 @@ size_t np_simplex_datapath(const np_simplex_cfg *cfg, np_op *ops, size_t max)
     OP("CH", "d", NP_OP_ADD, 9, 4, 0, ob, 1, 0);
     OP("CH", NULL, NP_OP_LUT, 32, 3, 6, 0, 0, 1);
     OP("CH", NULL, NP_OP_ADD, 16, 6, 0, 0, 0, 2);
-    OP("CH", NULL, NP_OP_NEG, 12, ob, 0, 0, 0, 2);
+    OP("CH", NULL, NP_OP_NEG, 12, OFF_LIVE, 0, 0, 0, 2);
     OP("CH", NULL, NP_OP_ADD, 8, 6, 0, 0, 0, 3);
     OP("CH", "h", NP_OP_ADD, 4, 6, 0, 6, 0, 4);
-    OP("CH", NULL, NP_OP_MUX, 12, ob, 3, 0, 0, 5);
-    OP("CH", "gd2", NP_OP_ADD, 4, GD_BITS, 0, GD_BITS, 1, 6);
-    OP("CH", "gd", NP_OP_ADD, 4, GD_BITS, 0, GD_BITS, 1, 7);
-    OP("CH", NULL, NP_OP_REG, 1, 4 * 3 * ob + 4 * GD_BITS + h_live + 1, 0, 0, 0, 0); /* D; gd; (h) */
+    OP("CH", NULL, NP_OP_MUX, 12, OFF_LIVE, 3, 0, 0, 5);
+    OP("CH", "gd2", NP_OP_ADD, 4, GD_LIVE, 0, GD_BITS, 1, 6);
+    OP("CH", "gd", NP_OP_ADD, 4, GD_LIVE, 0, GD_BITS, 1, 7);
+    OP("CH", NULL, NP_OP_REG, 1, D_REG_BITS + 4 * GD_LIVE + h_live + 1, 0, 0, 0, 0); /* D; gd; (h) */
 
     /*
      * KT. |D_a| <= 1536 (u11: a conditional negate of the s12 word, then an
@@ -1016,33 +1096,35 @@ size_t np_simplex_datapath(const np_simplex_cfg *cfg, np_op *ops, size_t max)
      * its partial sum <= 1536^2 (u22);
      * 5 R2 = 4 R2 + R2 <= 11796480 < 2^24 (u24); 7077888 - 5 R2 in
      * [-4718592, 7077888] (s24); T = the clamp at 0 by the sign bit (u23).
+     * Priced at the live widths (D even, R2 and T multiples of 4, above).
      */
-    OP("KT", NULL, NP_OP_NEG, 12, ob, 0, 0, 0, 0);
-    OP("KT", "dsq", NP_OP_SQR, 12, ob - 1u, 0, NP_SIMPLEX_R2_BITS, 0, 1);
-    OP("KT", "r2p", NP_OP_ADD, 4, NP_SIMPLEX_R2_BITS, 0, NP_SIMPLEX_R2_BITS, 0, 2);
-    OP("KT", "r2", NP_OP_ADD, 4, NP_SIMPLEX_R2_BITS, 0, NP_SIMPLEX_R2_BITS, 0, 3);
-    OP("KT", "r2x5", NP_OP_ADD, 4, NP_SIMPLEX_TD_BITS, 0, NP_SIMPLEX_TD_BITS, 0, 4);
-    OP("KT", "td", NP_OP_INC, 4, NP_SIMPLEX_TD_BITS, 0, NP_SIMPLEX_TD_BITS, 1, 5); /* a constant minus 5 R2 */
-    OP("KT", "t", NP_OP_MUX, 4, NP_SIMPLEX_T_BITS, 2, NP_SIMPLEX_T_BITS, 0, 6);
-    OP("KT", NULL, NP_OP_REG, 1, 4 * NP_SIMPLEX_T_BITS + 4 * GD_BITS + d_live + h_live + 1, 0, 0, 0, 0);
+    OP("KT", NULL, NP_OP_NEG, 12, OFF_LIVE, 0, 0, 0, 0);
+    OP("KT", "dsq", NP_OP_SQR, 12, ob - 2u, 0, NP_SIMPLEX_R2_BITS, 0, 1);
+    OP("KT", "r2p", NP_OP_ADD, 4, NP_SIMPLEX_R2_BITS - 2u, 0, NP_SIMPLEX_R2_BITS, 0, 2);
+    OP("KT", "r2", NP_OP_ADD, 4, NP_SIMPLEX_R2_BITS - 2u, 0, NP_SIMPLEX_R2_BITS, 0, 3);
+    OP("KT", "r2x5", NP_OP_ADD, 4, NP_SIMPLEX_TD_BITS - 2u, 0, NP_SIMPLEX_TD_BITS, 0, 4);
+    OP("KT", "td", NP_OP_INC, 4, NP_SIMPLEX_TD_BITS - 2u, 0, NP_SIMPLEX_TD_BITS, 1, 5); /* a constant minus 5 R2 */
+    OP("KT", "t", NP_OP_MUX, 4, T_LIVE, 2, NP_SIMPLEX_T_BITS, 0, 6);
+    OP("KT", NULL, NP_OP_REG, 1, 4 * T_LIVE + 4 * GD_LIVE + d_live + h_live + 1, 0, 0, 0, 0);
 
     /*
      * P2, P4. T^2 <= 7077888^2 < 2^46 (u46). The powers' largest words are
      * those at T = 7077888 (widths_of): tau2 ~ 0.7119, tau4 ~ 0.5068,
      * tau3 ~ 0.6007, each u(WT); the products tau2^2 and tau2 T at their
      * exact maxima. Each rounding drops at least one bit (46 - WT, WT, 23).
+     * T's two low bits are 0: T^2 = 16 (T / 4)^2, a 21-bit squarer.
      */
-    OP("P2", "tsq", NP_OP_SQR, 4, NP_SIMPLEX_T_BITS, 0, w.tsq, 0, 0);
+    OP("P2", "tsq", NP_OP_SQR, 4, T_LIVE, 0, w.tsq, 0, 0);
     OP("P2", "tau2", NP_OP_INC, 4, w.tau2 + 1u, 0, w.tau2, 0, 1);
     OP("P2", NULL, NP_OP_REG, 1,
-       4 * w.tau2 + 4 * GD_BITS + (dv ? 4u * NP_SIMPLEX_T_BITS : 0u) + d_live + h_live + 1, 0, 0, 0, 0);
+       4 * w.tau2 + 4 * GD_LIVE + (dv ? 4u * T_LIVE : 0u) + d_live + h_live + 1, 0, 0, 0, 0);
     OP("P4", "tau4p", NP_OP_SQR, 4, w.tau2, 0, w.t4p, 0, 0);
     OP("P4", "tau4", NP_OP_INC, 4, w.tau4 + 1u, 0, w.tau4, 0, 1);
     if (dv) {
-        OP("P4", "tau3p", NP_OP_MUL, 4, w.tau2, NP_SIMPLEX_T_BITS, w.t3p, 0, 0);
+        OP("P4", "tau3p", NP_OP_MUL, 4, w.tau2, T_LIVE, w.t3p, 0, 0);
         OP("P4", "tau3", NP_OP_INC, 4, w.tau3 + 1u, 0, w.tau3, 0, 1);
     }
-    OP("P4", NULL, NP_OP_REG, 1, 4 * w.tau4 + 4 * GD_BITS + (dv ? 4u * w.tau3 : 0u) + d_live + h_live + 1, 0, 0,
+    OP("P4", NULL, NP_OP_REG, 1, 4 * w.tau4 + 4 * GD_LIVE + (dv ? 4u * w.tau3 : 0u) + d_live + h_live + 1, 0, 0,
        0, 0);
 
     /*
@@ -1053,17 +1135,29 @@ size_t np_simplex_datapath(const np_simplex_cfg *cfg, np_op *ops, size_t max)
      * shared by the three axes; |e| <= round(max tau4) ~ 0.5068: s(WP+1)).
      */
     unsigned shp = wt + NP_SIMPLEX_GD_FRAC > wp ? wt + NP_SIMPLEX_GD_FRAC - wp : 0u;
-    OP("M", "fcp", NP_OP_MUL, 4, w.tau4, GD_BITS, w.fcp, 1, 0);
-    ROUND("M", "fc", 4, shp, w.fc, 1);
+    /*
+     * Low bits that are 0 when WP is finer than the products (the requant
+     * shifts left): zf of fc, q, S and 5q (WP > WT + 9), ze of e (WP > WT),
+     * zm of m (5 q D has zf + 0 zero bits, m drops 11 of them), zq of e - m
+     * and Q_a. Nothing stores or adds them (Yosys drops constant flip-flops).
+     */
+    unsigned zf = wp > wt + NP_SIMPLEX_GD_FRAC ? wp - wt - NP_SIMPLEX_GD_FRAC : 0u;
+    unsigned ze = wp > wt ? wp - wt : 0u;
+    unsigned zm = zf > NP_SIMPLEX_M_SHIFT + NP_SIMPLEX_GD_FRAC ? zf - NP_SIMPLEX_M_SHIFT - NP_SIMPLEX_GD_FRAC : 0u;
+    unsigned zq = ze < zm ? ze : zm;
+#define LIVE(width, z) ((width) > (z) ? (width) - (z) : 1u)
+    OP("M", "fcp", NP_OP_MUL, 4, w.tau4, GD_LIVE, w.fcp, 1, 0);
+    ROUND("M", "fc", 4, shp, h.fc, w.fc, 1);
     if (dv) {
-        OP("M", "qp", NP_OP_MUL, 4, w.tau3, GD_BITS, w.qp, 1, 0);
-        ROUND("M", "q", 4, shp, w.q, 1);
+        OP("M", "qp", NP_OP_MUL, 4, w.tau3, GD_LIVE, w.qp, 1, 0);
+        ROUND("M", "q", 4, shp, h.q, w.q, 1);
         OP("M", NULL, NP_OP_NEG, 4, w.tau4 + 1u, 0, 0, 0, 0);
         if (wt > wp)
-            OP("M", NULL, NP_OP_INC, 8, w.e + 1u, 0, 0, 0, 1);
-        OP("M", "e", NP_OP_MUX, 12, w.e, 3, w.e, 1, 2);
+            OP("M", NULL, NP_OP_INC, 8, h.e + 1u, 0, 0, 0, 1);
+        OP("M", "e", NP_OP_MUX, 12, LIVE(h.e, ze), 3, w.e, 1, 2);
     }
-    OP("M", NULL, NP_OP_REG, 1, 4 * w.fc + (dv ? 4u * w.q + 12u * w.e : 0u) + d_live + 1, 0, 0, 0, 0);
+    OP("M", NULL, NP_OP_REG, 1, 4 * LIVE(h.fc, zf) + (dv ? 4u * LIVE(h.q, zf) + 12u * LIVE(h.e, ze) : 0u) + d_live + 1,
+       0, 0, 0, 0);
 
     /*
      * M2 (derivative only). 5q = 4q + q (|5q| <= 5 max |q|); 5 q D in
@@ -1071,10 +1165,13 @@ size_t np_simplex_datapath(const np_simplex_cfg *cfg, np_op *ops, size_t max)
      * rounded by 11 bits (s(WP+1)).
      */
     if (dv) {
-        OP("M2", "q5", NP_OP_ADD, 4, w.q5, 0, w.q5, 1, 0);
-        OP("M2", "mp", NP_OP_MUL, 12, w.q5, ob, w.mp, 1, 1);
-        OP("M2", "m", NP_OP_INC, 12, w.m + 1u, 0, w.m, 1, 2);
-        OP("M2", NULL, NP_OP_REG, 1, 4 * w.fc + 12 * w.e + 12 * w.m + 1, 0, 0, 0, 0);
+        OP("M2", "q5", NP_OP_ADD, 4, LIVE(h.q5, zf + NP_SIMPLEX_M_SHIFT), 0, w.q5, 1, 0);
+        OP("M2", "mp", NP_OP_MUL, 12, LIVE(h.q5, zf), OFF_LIVE, w.mp, 1, 1);
+        if (zf < NP_SIMPLEX_M_SHIFT + NP_SIMPLEX_GD_FRAC) /* else the dropped bits are 0: exact */
+            OP("M2", "m", NP_OP_INC, 12, h.m + 1u, 0, w.m, 1, 2);
+        else
+            OP("M2", "m", NP_OP_REG, 0, 0, 0, w.m, 1, 2);
+        OP("M2", NULL, NP_OP_REG, 1, 4 * LIVE(h.fc, zf) + 12 * LIVE(h.e, ze) + 12 * LIVE(h.m, zm) + 1, 0, 0, 0, 0);
     }
 
     /*
@@ -1083,14 +1180,15 @@ size_t np_simplex_datapath(const np_simplex_cfg *cfg, np_op *ops, size_t max)
      * |Q_a| <= 0.8510 + E_d (s(WP+1)). Each tree adds mod 2^width: partial
      * sums may wrap, the final one fits, so it is exact.
      */
-    OP("A", NULL, NP_OP_ADD, 2, w.s, 0, 0, 0, 0);
-    OP("A", "s", NP_OP_ADD, 1, w.s, 0, w.s, 1, 1);
+    OP("A", NULL, NP_OP_ADD, 2, LIVE(h.s, zf), 0, 0, 0, 0);
+    OP("A", "s", NP_OP_ADD, 1, LIVE(h.s, zf), 0, w.s, 1, 1);
     if (dv) {
-        OP("A", "em", NP_OP_ADD, 12, w.em, 0, w.em, 1, 0);
-        OP("A", NULL, NP_OP_ADD, 6, w.qs, 0, 0, 0, 1);
-        OP("A", "qs", NP_OP_ADD, 3, w.qs, 0, w.qs, 1, 2);
+        /* e_a - m_a: below e's zero bits it is -m_a, whose inversion and carry-in the tree takes */
+        OP("A", "em", NP_OP_ADD, 12, LIVE(h.em, ze), 0, w.em, 1, 0);
+        OP("A", NULL, NP_OP_ADD, 6, LIVE(h.qs, zq), 0, 0, 0, 1);
+        OP("A", "qs", NP_OP_ADD, 3, LIVE(h.qs, zq), 0, w.qs, 1, 2);
     }
-    OP("A", NULL, NP_OP_REG, 1, w.s + (dv ? 3u * w.qs : 0u) + 1, 0, 0, 0, 0);
+    OP("A", NULL, NP_OP_REG, 1, LIVE(h.s, zf) + (dv ? 3u * LIVE(h.qs, zq) : 0u) + 1, 0, 0, 0, 0);
 
     /*
      * O. Kf' S and (derivative) Kd' Q_a as shift-adds of the constants' CSD
@@ -1098,13 +1196,16 @@ size_t np_simplex_datapath(const np_simplex_cfg *cfg, np_op *ops, size_t max)
      * by WK + WP - F bits (F = N, ND - 2); the rounded words' bounds give
      * the saturation's need.
      */
-    unsigned lf = const_mul(ops, max, &n, 1, (uint64_t)np_simplex_kf(cfg), w.smax, w.fprod, "fprod");
-    unsigned ld = dv ? const_mul(ops, max, &n, 3, (uint64_t)np_simplex_kd(cfg), w.qsmax, w.dprod, "dprod") : 0u;
-    unsigned lr = lf > ld ? lf : ld;
     unsigned ff = np_simplex_f_frac(cfg), fd = np_simplex_d_frac(cfg);
-    out_round(ops, max, &n, 1, wk + wp > ff ? wk + wp - ff : 0u, w.fr, nb, "f", lr);
+    unsigned lf = const_mul(ops, max, &n, 1, (uint64_t)np_simplex_kf(cfg), h.smax, h.fprod, w.fprod,
+                            wk + wp > ff ? wk + wp - ff : 0u, zf, "fprod");
+    unsigned ld = dv ? const_mul(ops, max, &n, 3, (uint64_t)np_simplex_kd(cfg), h.qsmax, h.dprod, w.dprod,
+                                 wk + wp > fd ? wk + wp - fd : 0u, zq, "dprod")
+                     : 0u;
+    unsigned lr = lf > ld ? lf : ld;
+    out_round(ops, max, &n, 1, wk + wp > ff ? wk + wp - ff : 0u, h.fr, nb, !tight, "f", lr);
     if (dv)
-        out_round(ops, max, &n, 3, wk + wp > fd ? wk + wp - fd : 0u, w.dr, nd, "df", lr);
+        out_round(ops, max, &n, 3, wk + wp > fd ? wk + wp - fd : 0u, h.dr, nd, !tight, "df", lr);
     OP("O", NULL, NP_OP_REG, 1, nb + (dv ? 3u * nd : 0u) + 1, 0, 0, 0, 0);
     return n;
 }

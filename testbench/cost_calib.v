@@ -20,6 +20,8 @@ module dffe16(input clk, en, input [15:0] d, output reg [15:0] q); always @(pose
 module inc16(input [15:0] a, output [15:0] y); assign y = a + 16'd1; endmodule
 module cmpk16(input signed [15:0] a, output y); assign y = a > 16'sd1234; endmodule
 module sqr8(input [7:0] a, output [15:0] y); assign y = a * a; endmodule
+// The carry out of a sum whose sum bits are not read (simplex3's SK reads SX[18:8] and (683 nn)[19:11]).
+module carry10(input [9:0] a, b, output y); wire [10:0] s = a + b; assign y = s[10]; endmodule
 // The seed's whole table-free hash: 8 lookups and 7 six-bit additions.
 module hash6(input [7:0] i, j, k, output [5:0] h);
   function [5:0] T(input [2:0] x);

@@ -44,4 +44,4 @@ add_test(NAME report.scene_aacount COMMAND ${CMAKE_COMMAND}
 add_test(NAME report.scene_sized_wood COMMAND noisepipe report gates --sized --scene
   ${PROJECT_SOURCE_DIR}/vectors/scenes/wood.json)
 set_tests_properties(report.scene_sized_wood PROPERTIES PASS_REGULAR_EXPRESSION
-  "Registers \\*\\*sized by the scene\\*\\*.*\\| fdiff \\| `texture=sized:wood idx_int=2 w_frac=12 guard=16 resetup=0 setup_mults=1 [^`]*` \\| s7 Q6\\.0 \\| s4 Q3\\.0 \\| 0\\.788 LSB \\|.*Set-up multipliers of fdiff.*\\| \\*\\*1 \\(chosen\\)\\*\\* \\| 107585 \\| 66086 \\| 30946 \\|.*\\| 4 \\| 291412 \\| 37480 \\| 2340 \\|.*\\| fdiff \\| 1 \\| 107585 \\|")
+  "Registers \\*\\*sized by the scene\\*\\*.*\\| fdiff \\| `texture=sized:wood idx_int=2 w_frac=12 guard=16 resetup=0 setup_mults=1 [^`]*` \\| s7 Q6\\.0 \\| s4 Q3\\.0 \\| 0\\.788 LSB \\|.*Set-up multipliers of fdiff.*\\| \\*\\*1 \\(chosen\\)\\*\\* \\| 106439 \\| 66086 \\| 30946 \\|.*\\| 4 \\| 290141 \\| 37480 \\| 2340 \\|.*\\| fdiff \\| 1 \\| 106439 \\|")

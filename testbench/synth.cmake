@@ -20,6 +20,16 @@ add_test(NAME synth.classic3_cheap
           $<TARGET_FILE:noisepipe>)
 set_tests_properties(synth.classic3_cheap PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 900 LABELS "synth"
   PASS_REGULAR_EXPRESSION "\\| O \\|.*\\| \\*\\*total\\*\\* \\|.*largest stage deviation [0-9]\\.[0-9] %")
+# The same for simplex3 at its cheapest calibrated configuration (f only, t_frac = p_frac = 9,
+# k_frac = 6: the front end SK..P2 is as at the default, the rest narrow; about 95 s of CPU
+# with --per-stage, which keeps ABC on one stage at a time). docs/cost-model.md has the table
+# for it, the default and two other configurations.
+add_test(NAME synth.simplex3_cheap
+  COMMAND sh -c "command -v yosys > /dev/null || { echo 'yosys not installed: skipped'; exit 77; }
+                 \"$0\" report gates --synth --unit simplex3 --per-stage --config deriv=0,out_bits=4,t_frac=9,p_frac=9,k_frac=6 --tolerance 10"
+          $<TARGET_FILE:noisepipe>)
+set_tests_properties(synth.simplex3_cheap PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 900 LABELS "synth;nosan"
+  PASS_REGULAR_EXPRESSION "\\| KT \\|.*\\| O \\|.*\\| \\*\\*total\\*\\* \\|.*largest stage deviation [0-9]\\.[0-9] %")
 # --rtl-param (RTL parameters that are not configuration keys): bad uses exit 2 before any
 # synthesis (an unknown name, naming the allowed ones; a value other than 0/1; without --unit;
 # with --tolerance, since the cost model declares no variant).

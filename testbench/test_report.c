@@ -59,6 +59,7 @@ static int cost_model_calibration(void)
         { "inc16", { { "S", NULL, NP_OP_INC, 1, 16, 0, 0, 0, 0 } }, 1 },
         { "cmpk16", { { "S", NULL, NP_OP_CMPK, 1, 16, 0, 0, 0, 0 } }, 1 },
         { "sqr8", { { "S", NULL, NP_OP_SQR, 1, 8, 0, 0, 0, 0 } }, 1 },
+        { "carry10", { { "S", NULL, NP_OP_CARRY, 1, 10, 0, 0, 0, 0 } }, 1 },
         /* A pattern lookup alone (lut3x6) is not what the model prices: feeding an adder it merges into it. */
         { "hash6", { { "S", NULL, NP_OP_LUT, 8, 3, 6, 0, 0, 0 }, { "S", NULL, NP_OP_ADD, 7, 6, 0, 0, 0, 0 } }, 2 },
     };

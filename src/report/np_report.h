@@ -22,7 +22,8 @@ extern "C" {
  * transistors / 4; ltp -noff for levels) on testbench/cost_calib.v.
  */
 typedef struct np_cost_model {
-    double add_bit;   /* ripple-carry adder, per bit */
+    double add_bit;   /* ripple-carry adder of w bits: add_bit w - add_edge */
+    double add_edge;
     double cmp_bit;   /* magnitude comparator, per bit */
     double mul_pp;    /* array multiplier a x b: mul_pp a b - mul_edge (a + b) (at least 1.5 a b: the AND array) */
     double mul_edge;
@@ -31,9 +32,12 @@ typedef struct np_cost_model {
     double lut_bit;   /* fixed-function lookup logic, per stored bit (2^a * b) */
     double rom_bit;   /* ROM, per stored bit */
     double ff_bit;    /* D flip-flop with its load enable (every pipeline bank holds under a stall) */
-    double inc_bit;   /* adding a constant, per bit (an incrementer: half adders) */
+    double inc_bit;   /* adding a constant (an incrementer: half adders), w bits: inc_bit w - inc_edge */
+    double inc_edge;
     double cmpk_bit;  /* comparison with a constant, per bit */
-    double sqr_pp;    /* squarer, per partial-product bit (a * a) */
+    double sqr_pp;    /* squarer a x a: sqr_pp a^2 - sqr_edge a */
+    double sqr_edge;
+    double carry_bit; /* the carry out of a sum whose sum bits are not read, per bit */
     /* delays, in gate levels: add 2w + add_d0; cmp w; mul mul_d * (a + b); mux levels per 2:1 */
     double add_d0, mul_d, mux_d, lut_d;
 } np_cost_model;

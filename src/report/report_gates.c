@@ -8,7 +8,8 @@
  * Calibration (docs/cost-model.md has the commands; the CTest case
  * report.cost_model_calibration re-measures with Yosys and fails when the
  * model is more than 25 % from a measurement):
- *   16-bit adder 156, 24-bit adder 240 (-> 9.9 per bit, 35 / 51 levels: 2w + 3)
+ *   adders 4, 9, 16, 24 bits: 34, 84.5, 156, 240 (narrow ones cost less
+ *     per bit; 35 / 51 levels for 16 / 24: 2w + 3)
  *   16-bit comparator 126 (7.9 per bit, 16 levels)
  *   16-bit 2:1 mux 48.5 (3.0 per bit, 3 levels)
  *   12-bit conditional negate 70.5 (5.9 per bit, 23 levels)
@@ -19,11 +20,18 @@
  *   3 -> 6 bit pattern lookup 16 alone, but nothing beyond the adder it feeds
  *     (hash6: 448 against 415.8 for its seven adders): 0
  *   D flip-flop 4, with its load enable 7.03 per bit (dffe16 112.5): 7.0
- *   incrementer 16 bits 67 (4.3 per bit), comparison with a constant 16 bits
- *     23.5 (1.5), squarer 8 bits 354 - 364 (5.5 per a^2 bit)
+ *   incrementer 8 / 16 bits 35.5 / 67, comparison with a constant 16 bits
+ *     23.5 (1.5), squarers 8, 11, 16, 23 bits 359, 857, 1950.5, 4327.5
+ *     (Yosys builds the whole a x a array: the cost per a^2 bit grows)
+ *   the carry out of a 10-bit sum alone (carry10) 52
+ * The per-bit slopes and the per-operator edges (add, inc, carry, sqr) are
+ * the values that put every stage of the synthesised classic3 (five
+ * configurations) and simplex3 (four) closest to Yosys (largest deviation
+ * 8.9 %, docs/cost-model.md "Model against synthesis, per stage").
  */
 const np_cost_model np_cost_default = {
-    .add_bit = 9.9,
+    .add_bit = 9.6,
+    .add_edge = 6.0,
     .cmp_bit = 7.9,
     .mul_pp = 10.2,
     .mul_edge = 8.0,
@@ -32,9 +40,12 @@ const np_cost_model np_cost_default = {
     .lut_bit = 0.0,
     .rom_bit = 0.33,
     .ff_bit = 7.0,
-    .inc_bit = 4.3,
+    .inc_bit = 4.0,
+    .inc_edge = 4.0,
     .cmpk_bit = 1.5,
-    .sqr_pp = 5.5,
+    .sqr_pp = 9.0,
+    .sqr_edge = 27.1,
+    .carry_bit = 4.8,
     .add_d0 = 3.0,
     .mul_d = 2.8,
     .mux_d = 3.0,
@@ -53,7 +64,7 @@ double np_cost_op_gates(const np_cost_model *m, const np_op *op)
 {
     double a = (double)op->a, b = (double)op->b, per;
     switch (op->kind) {
-    case NP_OP_ADD: per = m->add_bit * a; break;
+    case NP_OP_ADD: per = m->add_bit * a - m->add_edge; break;
     case NP_OP_CMP: per = m->cmp_bit * a; break;
     case NP_OP_MUL:
         per = m->mul_pp * a * b - m->mul_edge * (a + b);
@@ -65,11 +76,14 @@ double np_cost_op_gates(const np_cost_model *m, const np_op *op)
     case NP_OP_LUT: per = m->lut_bit * ldexp(1.0, (int)op->a) * b; break;
     case NP_OP_ROM: per = m->rom_bit * ldexp(1.0, (int)op->a) * b; break;
     case NP_OP_REG: per = m->ff_bit * a; break;
-    case NP_OP_INC: per = m->inc_bit * a; break;
+    case NP_OP_INC: per = m->inc_bit * a - m->inc_edge; break;
     case NP_OP_CMPK: per = m->cmpk_bit * a; break;
-    case NP_OP_SQR: per = m->sqr_pp * a * a; break;
+    case NP_OP_SQR: per = m->sqr_pp * a * a - m->sqr_edge * a; break;
+    case NP_OP_CARRY: per = m->carry_bit * a; break;
     default: per = 0.0; break;
     }
+    if (per < 0.0) /* a 0-bit operator (inc_edge, add_edge: an incrementer of 1 bit is an inverter) */
+        per = 0.0;
     return per * (double)op->count;
 }
 
@@ -88,6 +102,7 @@ double np_cost_op_delay(const np_cost_model *m, const np_op *op)
     case NP_OP_ROM: return 2.0 * a + m->lut_d;
     case NP_OP_INC: return 2.0 * a + m->add_d0;
     case NP_OP_CMPK: return a;
+    case NP_OP_CARRY: return 2.0 * a;
     case NP_OP_SQR: return m->mul_d * 2.0 * a;
     default: return 0.0;
     }
@@ -347,7 +362,7 @@ void np_report_levels_md(FILE *f, const np_unit_cost *c, size_t n, unsigned leve
 static const char *kind_name(np_op_kind k)
 {
     static const char *const n[NP_OP_KINDS] = { "add", "cmp", "mul", "mux", "neg", "lut", "rom", "reg",
-                                                                "inc", "cmpk", "sqr" };
+                                                                "inc", "cmpk", "sqr", "carry" };
     return k < NP_OP_KINDS ? n[k] : "?";
 }
 
