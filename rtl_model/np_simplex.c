@@ -337,6 +337,20 @@ AVX2_FN static inline __m256i out8(v8i v, int32_t k, int drop)
     return _mm256_min_epi32(_mm256_max_epi32(r, _mm256_set1_epi32(D32_OUT_MIN)), _mm256_set1_epi32(D32_OUT_MAX));
 }
 
+/* Four 8-lane words to eight {f, dx, dy, dz} outputs: a 4 x 8 transpose. */
+AVX2_FN static inline void store8x4(np_simplex_out *out, __m256i f, __m256i dx, __m256i dy, __m256i dz)
+{
+    __m256i a0 = _mm256_unpacklo_epi32(f, dx), a1 = _mm256_unpacklo_epi32(dy, dz);
+    __m256i a2 = _mm256_unpackhi_epi32(f, dx), a3 = _mm256_unpackhi_epi32(dy, dz);
+    __m256i r0 = _mm256_unpacklo_epi64(a0, a1), r1 = _mm256_unpackhi_epi64(a0, a1); /* inputs 0|4, 1|5 */
+    __m256i r2 = _mm256_unpacklo_epi64(a2, a3), r3 = _mm256_unpackhi_epi64(a2, a3); /* inputs 2|6, 3|7 */
+    __m256i *o = (__m256i *)(void *)out;
+    _mm256_storeu_si256(o, _mm256_permute2x128_si256(r0, r1, 0x20));
+    _mm256_storeu_si256(o + 1, _mm256_permute2x128_si256(r2, r3, 0x20));
+    _mm256_storeu_si256(o + 2, _mm256_permute2x128_si256(r0, r1, 0x31));
+    _mm256_storeu_si256(o + 3, _mm256_permute2x128_si256(r2, r3, 0x31));
+}
+
 AVX2_FN static void eval_n_avx2(const uint16_t *restrict xs, const uint16_t *restrict ys,
                                 const uint16_t *restrict zs, np_simplex_out *restrict out, size_t count)
 {
@@ -348,16 +362,7 @@ AVX2_FN static void eval_n_avx2(const uint16_t *restrict xs, const uint16_t *res
         v8_core(in, &s, qs);
         __m256i f = out8(s, kf, D32_F_DROP), dx = out8(qs[0], kd, D32_D_DROP), dy = out8(qs[1], kd, D32_D_DROP),
                 dz = out8(qs[2], kd, D32_D_DROP);
-        /* {f, dx, dy, dz} per input: a 4 x 8 transpose */
-        __m256i a0 = _mm256_unpacklo_epi32(f, dx), a1 = _mm256_unpacklo_epi32(dy, dz);
-        __m256i a2 = _mm256_unpackhi_epi32(f, dx), a3 = _mm256_unpackhi_epi32(dy, dz);
-        __m256i r0 = _mm256_unpacklo_epi64(a0, a1), r1 = _mm256_unpackhi_epi64(a0, a1); /* inputs 0|4, 1|5 */
-        __m256i r2 = _mm256_unpacklo_epi64(a2, a3), r3 = _mm256_unpackhi_epi64(a2, a3); /* inputs 2|6, 3|7 */
-        __m256i *o = (__m256i *)(void *)(out + n);
-        _mm256_storeu_si256(o, _mm256_permute2x128_si256(r0, r1, 0x20));
-        _mm256_storeu_si256(o + 1, _mm256_permute2x128_si256(r2, r3, 0x20));
-        _mm256_storeu_si256(o + 2, _mm256_permute2x128_si256(r0, r1, 0x31));
-        _mm256_storeu_si256(o + 3, _mm256_permute2x128_si256(r2, r3, 0x31));
+        store8x4(out + n, f, dx, dy, dz);
     }
     eval_n_int32(xs + n, ys + n, zs + n, out + n, count - n);
 }
@@ -371,15 +376,7 @@ AVX2_FN static void eval_n_avx2_f(const uint16_t *restrict xs, const uint16_t *r
     for (; n + 8u <= count; n += 8u) {
         const v8i in[3] = { load8(xs + n), load8(ys + n), load8(zs + n) };
         __m256i f = out8(v8_core_f(in), kf, D32_FV_DROP);
-        /* {f, 0, 0, 0} per input */
-        __m256i a0 = _mm256_unpacklo_epi32(f, zero), a2 = _mm256_unpackhi_epi32(f, zero);
-        __m256i r0 = _mm256_unpacklo_epi64(a0, zero), r1 = _mm256_unpackhi_epi64(a0, zero);
-        __m256i r2 = _mm256_unpacklo_epi64(a2, zero), r3 = _mm256_unpackhi_epi64(a2, zero);
-        __m256i *o = (__m256i *)(void *)(out + n);
-        _mm256_storeu_si256(o, _mm256_permute2x128_si256(r0, r1, 0x20));
-        _mm256_storeu_si256(o + 1, _mm256_permute2x128_si256(r2, r3, 0x20));
-        _mm256_storeu_si256(o + 2, _mm256_permute2x128_si256(r0, r1, 0x31));
-        _mm256_storeu_si256(o + 3, _mm256_permute2x128_si256(r2, r3, 0x31));
+        store8x4(out + n, f, zero, zero, zero);
     }
     eval_n_int32_f(xs + n, ys + n, zs + n, out + n, count - n);
 }
@@ -433,6 +430,22 @@ AVX512_FN static inline __m512i out16(v16i v, int32_t k, unsigned drop)
     return _mm512_min_epi32(_mm512_max_epi32(r, _mm512_set1_epi32(D32_OUT_MIN)), _mm512_set1_epi32(D32_OUT_MAX));
 }
 
+/* store8x4 on sixteen lanes: in 128-bit lane L, r_m holds input 4 L + m. */
+AVX512_FN static inline void store16x4(np_simplex_out *out, __m512i f, __m512i dx, __m512i dy, __m512i dz)
+{
+    __m512i a0 = _mm512_unpacklo_epi32(f, dx), a1 = _mm512_unpacklo_epi32(dy, dz);
+    __m512i a2 = _mm512_unpackhi_epi32(f, dx), a3 = _mm512_unpackhi_epi32(dy, dz);
+    __m512i r0 = _mm512_unpacklo_epi64(a0, a1), r1 = _mm512_unpackhi_epi64(a0, a1);
+    __m512i r2 = _mm512_unpacklo_epi64(a2, a3), r3 = _mm512_unpackhi_epi64(a2, a3);
+    __m512i t0 = _mm512_shuffle_i32x4(r0, r1, 0x44), t1 = _mm512_shuffle_i32x4(r2, r3, 0x44); /* lanes 0, 1 */
+    __m512i t2 = _mm512_shuffle_i32x4(r0, r1, 0xee), t3 = _mm512_shuffle_i32x4(r2, r3, 0xee); /* lanes 2, 3 */
+    char *o = (char *)(void *)out;
+    _mm512_storeu_si512(o, _mm512_shuffle_i32x4(t0, t1, 0x88));       /* inputs 0..3 */
+    _mm512_storeu_si512(o + 64, _mm512_shuffle_i32x4(t0, t1, 0xdd));  /* 4..7 */
+    _mm512_storeu_si512(o + 128, _mm512_shuffle_i32x4(t2, t3, 0x88)); /* 8..11 */
+    _mm512_storeu_si512(o + 192, _mm512_shuffle_i32x4(t2, t3, 0xdd)); /* 12..15 */
+}
+
 AVX512_FN static void eval_n_avx512(const uint16_t *restrict xs, const uint16_t *restrict ys,
                                     const uint16_t *restrict zs, np_simplex_out *restrict out, size_t count)
 {
@@ -444,18 +457,7 @@ AVX512_FN static void eval_n_avx512(const uint16_t *restrict xs, const uint16_t 
         v16_core(in, &s, qs);
         __m512i f = out16(s, kf, D32_F_DROP), dx = out16(qs[0], kd, D32_D_DROP),
                 dy = out16(qs[1], kd, D32_D_DROP), dz = out16(qs[2], kd, D32_D_DROP);
-        /* {f, dx, dy, dz} per input: in 128-bit lane L, r_m holds input 4 L + m */
-        __m512i a0 = _mm512_unpacklo_epi32(f, dx), a1 = _mm512_unpacklo_epi32(dy, dz);
-        __m512i a2 = _mm512_unpackhi_epi32(f, dx), a3 = _mm512_unpackhi_epi32(dy, dz);
-        __m512i r0 = _mm512_unpacklo_epi64(a0, a1), r1 = _mm512_unpackhi_epi64(a0, a1);
-        __m512i r2 = _mm512_unpacklo_epi64(a2, a3), r3 = _mm512_unpackhi_epi64(a2, a3);
-        __m512i t0 = _mm512_shuffle_i32x4(r0, r1, 0x44), t1 = _mm512_shuffle_i32x4(r2, r3, 0x44); /* lanes 0, 1 */
-        __m512i t2 = _mm512_shuffle_i32x4(r0, r1, 0xee), t3 = _mm512_shuffle_i32x4(r2, r3, 0xee); /* lanes 2, 3 */
-        void *o = out + n;
-        _mm512_storeu_si512(o, _mm512_shuffle_i32x4(t0, t1, 0x88));                      /* inputs 0..3 */
-        _mm512_storeu_si512((char *)o + 64, _mm512_shuffle_i32x4(t0, t1, 0xdd));         /* 4..7 */
-        _mm512_storeu_si512((char *)o + 128, _mm512_shuffle_i32x4(t2, t3, 0x88));        /* 8..11 */
-        _mm512_storeu_si512((char *)o + 192, _mm512_shuffle_i32x4(t2, t3, 0xdd));        /* 12..15 */
+        store16x4(out + n, f, dx, dy, dz);
     }
     eval_n_avx2(xs + n, ys + n, zs + n, out + n, count - n);
 }
@@ -469,17 +471,7 @@ AVX512_FN static void eval_n_avx512_f(const uint16_t *restrict xs, const uint16_
     for (; n + 16u <= count; n += 16u) {
         const v16i in[3] = { load16(xs + n), load16(ys + n), load16(zs + n) };
         __m512i f = out16(v16_core_f(in), kf, D32_FV_DROP);
-        /* {f, 0, 0, 0} per input, as eval_n_avx512's transpose */
-        __m512i a0 = _mm512_unpacklo_epi32(f, zero), a2 = _mm512_unpackhi_epi32(f, zero);
-        __m512i r0 = _mm512_unpacklo_epi64(a0, zero), r1 = _mm512_unpackhi_epi64(a0, zero);
-        __m512i r2 = _mm512_unpacklo_epi64(a2, zero), r3 = _mm512_unpackhi_epi64(a2, zero);
-        __m512i t0 = _mm512_shuffle_i32x4(r0, r1, 0x44), t1 = _mm512_shuffle_i32x4(r2, r3, 0x44);
-        __m512i t2 = _mm512_shuffle_i32x4(r0, r1, 0xee), t3 = _mm512_shuffle_i32x4(r2, r3, 0xee);
-        void *o = out + n;
-        _mm512_storeu_si512(o, _mm512_shuffle_i32x4(t0, t1, 0x88));
-        _mm512_storeu_si512((char *)o + 64, _mm512_shuffle_i32x4(t0, t1, 0xdd));
-        _mm512_storeu_si512((char *)o + 128, _mm512_shuffle_i32x4(t2, t3, 0x88));
-        _mm512_storeu_si512((char *)o + 192, _mm512_shuffle_i32x4(t2, t3, 0xdd));
+        store16x4(out + n, f, zero, zero, zero);
     }
     eval_n_avx2_f(xs + n, ys + n, zs + n, out + n, count - n);
 }
