@@ -11,25 +11,29 @@ add_test(NAME synth.bad_usage
   COMMAND sh -c "\"$0\" report gates --synth --unit fdiff > /dev/null 2>&1; s=$?; test $s -eq 2 || { echo \"fdiff: exit $s\"; exit 1; }
                  \"$0\" report gates --tolerance 10 > /dev/null 2>&1; s=$?; test $s -eq 2 || { echo \"--tolerance alone: exit $s\"; exit 1; }"
           $<TARGET_FILE:noisepipe>)
+# np_synth_test(NAME LABELS PATTERN ARGS...): `noisepipe report gates --synth ARGS...`, skipped
+# (exit 77) without yosys on PATH, passing when its output matches PATTERN.
+function(np_synth_test name labels pattern)
+  add_test(NAME ${name}
+    COMMAND sh -c "command -v yosys > /dev/null || { echo 'yosys not installed: skipped'; exit 77; }
+                   exec \"$0\" report gates --synth \"$@\"" $<TARGET_FILE:noisepipe> ${ARGN})
+  set_tests_properties(${name} PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 900 LABELS "${labels}"
+    PASS_REGULAR_EXPRESSION "${pattern}")
+endfunction()
+
 # The drift test: the synthesis on a small configuration of classic3 (about 20 s
 # of CPU) and every stage of the cost model within 10 % of it (exit 1 otherwise;
 # docs/cost-model.md has the table for the default and other configurations).
-add_test(NAME synth.classic3_cheap
-  COMMAND sh -c "command -v yosys > /dev/null || { echo 'yosys not installed: skipped'; exit 77; }
-                 \"$0\" report gates --synth --unit classic3 --config out_bits=8,s_frac=4,lerp_frac=6 --tolerance 10"
-          $<TARGET_FILE:noisepipe>)
-set_tests_properties(synth.classic3_cheap PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 900 LABELS "synth"
-  PASS_REGULAR_EXPRESSION "\\| O \\|.*\\| \\*\\*total\\*\\* \\|.*largest stage deviation [0-9]\\.[0-9] %")
+np_synth_test(synth.classic3_cheap "synth"
+  "\\| O \\|.*\\| \\*\\*total\\*\\* \\|.*largest stage deviation [0-9]\\.[0-9] %"
+  --unit classic3 --config out_bits=8,s_frac=4,lerp_frac=6 --tolerance 10)
 # The same for simplex3 at its cheapest calibrated configuration (f only, t_frac = p_frac = 9,
 # k_frac = 6: the front end SK..P2 is as at the default, the rest narrow; about 95 s of CPU
 # with --per-stage, which keeps ABC on one stage at a time). docs/cost-model.md has the table
 # for it, the default and two other configurations.
-add_test(NAME synth.simplex3_cheap
-  COMMAND sh -c "command -v yosys > /dev/null || { echo 'yosys not installed: skipped'; exit 77; }
-                 \"$0\" report gates --synth --unit simplex3 --per-stage --config deriv=0,out_bits=4,t_frac=9,p_frac=9,k_frac=6 --tolerance 10"
-          $<TARGET_FILE:noisepipe>)
-set_tests_properties(synth.simplex3_cheap PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 900 LABELS "synth;nosan"
-  PASS_REGULAR_EXPRESSION "\\| KT \\|.*\\| O \\|.*\\| \\*\\*total\\*\\* \\|.*largest stage deviation [0-9]\\.[0-9] %")
+np_synth_test(synth.simplex3_cheap "synth;nosan"
+  "\\| KT \\|.*\\| O \\|.*\\| \\*\\*total\\*\\* \\|.*largest stage deviation [0-9]\\.[0-9] %"
+  --unit simplex3 --per-stage --config deriv=0,out_bits=4,t_frac=9,p_frac=9,k_frac=6 --tolerance 10)
 # --rtl-param (RTL parameters that are not configuration keys): bad uses exit 2 before any
 # synthesis (an unknown name, naming the allowed ones; a value other than 0/1; without --unit;
 # with --tolerance, since the cost model declares no variant).
@@ -43,18 +47,12 @@ add_test(NAME synth.rtl_param_usage
           $<TARGET_FILE:noisepipe> ${CMAKE_CURRENT_BINARY_DIR}/synth_rtl_param.err)
 # A variant synthesised (classic3 with the table s-curve and the serial hash, at the small
 # configuration): Yosys per stage beside the as-built model, labelled as such.
-add_test(NAME synth.classic3_variant
-  COMMAND sh -c "command -v yosys > /dev/null || { echo 'yosys not installed: skipped'; exit 77; }
-                 \"$0\" report gates --synth --unit classic3 --config out_bits=8,s_frac=4,lerp_frac=6 --rtl-param S_TABLE=1,HASH_SERIAL=1"
-          $<TARGET_FILE:noisepipe>)
-set_tests_properties(synth.classic3_variant PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 900 LABELS "synth;nosan"
-  PASS_REGULAR_EXPRESSION "RTL `S_TABLE=1 HASH_SERIAL=1`.*cost model of the as-built circuit \\(not this variant\\).*\\| L \\| [0-9]+ \\| [0-9]+ \\|.*\\| \\*\\*total\\*\\* \\|.*a variant the cost model does not declare")
+np_synth_test(synth.classic3_variant "synth;nosan"
+  "RTL `S_TABLE=1 HASH_SERIAL=1`.*cost model of the as-built circuit \\(not this variant\\).*\\| L \\| [0-9]+ \\| [0-9]+ \\|.*\\| \\*\\*total\\*\\* \\|.*a variant the cost model does not declare"
+  --unit classic3 --config out_bits=8,s_frac=4,lerp_frac=6 --rtl-param S_TABLE=1,HASH_SERIAL=1)
 # Perlin's "under 10K gates" (docs/classic3.md): the fully serial classic3 (LERP_SERIAL, one lerp
 # unit, 1 result / 8 clocks) at the default configuration must synthesise to fewer than 10,000
 # NAND2 equivalents (about 8.4K; 20-60 s of Yosys). The as-built pipeline (31K) fails this pattern.
-add_test(NAME synth.classic3_under_10k
-  COMMAND sh -c "command -v yosys > /dev/null || { echo 'yosys not installed: skipped'; exit 77; }
-                 \"$0\" report gates --synth --unit classic3 --rtl-param \"$1\""
-          $<TARGET_FILE:noisepipe> LERP_SERIAL=1)
-set_tests_properties(synth.classic3_under_10k PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 900 LABELS "synth;nosan"
-  PASS_REGULAR_EXPRESSION "\\| \\*\\*total\\*\\* \\| \\*\\*[0-9]+\\*\\* \\| \\*\\*[1-9][0-9]?[0-9]?[0-9]?\\*\\* \\|")
+np_synth_test(synth.classic3_under_10k "synth;nosan"
+  "\\| \\*\\*total\\*\\* \\| \\*\\*[0-9]+\\*\\* \\| \\*\\*[1-9][0-9]?[0-9]?[0-9]?\\*\\* \\|"
+  --unit classic3 --rtl-param LERP_SERIAL=1)
