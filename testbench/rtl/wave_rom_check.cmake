@@ -1,0 +1,31 @@
+# SPDX-License-Identifier: MIT
+# rtl.wave.rom_table (cmake -P): the words of rtl_model/verilog/np_wave_rom.v
+# equal the C model's quarter-wave table rom10 in rtl_model/np_wave.c, word
+# for word (1,025 words, u18 Q1.17; wave.rom checks that table against np_math).
+#   -DC_SRC=np_wave.c -DV_SRC=np_wave_rom.v
+cmake_minimum_required(VERSION 3.18)
+file(READ "${C_SRC}" c)
+string(REGEX MATCH "rom10\\[1025\\] = {([^}]*)}" m "${c}")
+if(NOT m)
+  message(FATAL_ERROR "wave_rom_check: no table rom10[1025] in ${C_SRC}")
+endif()
+string(REGEX MATCHALL "[0-9]+" cw "${CMAKE_MATCH_1}")
+file(STRINGS "${V_SRC}" vl REGEX "11'd[0-9]+: r10 = 18'd[0-9]+;")
+list(LENGTH cw nc)
+list(LENGTH vl nv)
+if(NOT nc EQUAL 1025 OR NOT nv EQUAL 1025)
+  message(FATAL_ERROR "wave_rom_check: ${nc} words in the C table, ${nv} in the RTL (want 1025 each)")
+endif()
+set(bad 0)
+foreach(line ${vl})
+  string(REGEX MATCH "11'd([0-9]+): r10 = 18'd([0-9]+);" x "${line}")
+  list(GET cw ${CMAKE_MATCH_1} want)
+  if(NOT want EQUAL CMAKE_MATCH_2)
+    math(EXPR bad "${bad} + 1")
+    message("word ${CMAKE_MATCH_1}: RTL ${CMAKE_MATCH_2}, C ${want}")
+  endif()
+endforeach()
+if(bad GREATER 0)
+  message(FATAL_ERROR "wave_rom_check: ${bad} of 1025 ROM words differ")
+endif()
+message("wave_rom_check: 1025 ROM words, the RTL's equal the C model's")

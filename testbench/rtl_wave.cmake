@@ -1,0 +1,94 @@
+# SPDX-License-Identifier: MIT
+# Reference RTL of the wave unit (rtl_model/verilog/np_wave.v, np_wave_sin.v,
+# np_wave_rom.v) under Icarus Verilog and Verilator, with the mechanisms of
+# rtl.cmake (np_rtl_builds, np_rtl_gen, np_rtl_check, np_rtl_cosim_build,
+# np_rtl_cosim); docs/rtl.md and docs/wave.md ("Reference RTL") say what each
+# test checks. Names as there: rtl.wave.<sim>.build[.<fault>],
+# rtl.wave.<sim>.golden.<set>, rtl.wave.<sim>.l1.<cfg>, rtl.wave.verilator.l2.<cfg>,
+# rtl.wave.<sim>.fault_<f>, rtl.wave.cosim.*, rtl.wave.rom_table, rtl.wave.yosys_check.*.
+if(NOT COMMAND np_rtl_check)
+  return()
+endif()
+set(NP_RTL_WV_RTL ${NP_RTL_SRC}/np_wave.v ${NP_RTL_SRC}/np_wave_sin.v ${NP_RTL_SRC}/np_wave_rom.v ${NP_RTL_PIPE_SRC})
+set(NP_RTL_WV_SRC ${NP_RTL_TB}/rtl_wave_tb.v ${NP_RTL_WV_RTL})
+# fault_flip: bit 0 of y flipped when Y's 4 low bits are 0101; fault_stall: bank M overwrites
+# its content under a stall; fault_mirror: the one's complement ROM mirror 2^30 - 1 - x;
+# fault_fold: det J without the jxz jzx product (the fold flag and ny wrong).
+foreach(v ok fault_flip fault_stall fault_mirror fault_fold)
+  np_rtl_builds(wave ${v} rtl_wave_tb ${NP_RTL_WV_SRC})
+endforeach()
+# The bench's configurations without a checked-in set: level-1 sets generated here.
+set(NP_RTL_WV_fold "trains=1,irr=0,cap=0,fold=1")
+set(NP_RTL_WV_normals "trains=3,normals=1")
+set(NP_RTL_WV_jac "normals=1,fold=1")
+set(wv_vec ${NP_RTL_WORK}/wave/vec)
+set(wv_dir ${PROJECT_SOURCE_DIR}/vectors/wave)
+set(wv_golden ${wv_dir}/wave-l1-seed1.memh)
+set(wv_pass "In [1-9][0-9]* tests, no errors found\\.")
+# The checked-in sets: bench cfg | file (sincos=recurrence's seed3 has no RTL: refused by name).
+set(NP_RTL_WV_GOLDEN "default|wave-l1-seed1" "opts|wave-l1-seed1" "rom6|wave-l1-seed1-rom6"
+  "rom10|wave-l1-seed1-rom10" "irr0_cap0|wave-l1-seed1-irr0_cap0" "trains4|wave-l1-seed1-trains4"
+  "jac|wave-l1-seed2")
+foreach(sim icarus verilator)
+  set(lab "rtl;nosan")  # Icarus runs are seconds each; the sanitizer pass does not reach the simulators
+  foreach(gs ${NP_RTL_WV_GOLDEN})
+    string(REPLACE "|" ";" gl "${gs}")
+    list(GET gl 0 gcfg)
+    list(GET gl 1 gfile)
+    set(pat "${wv_pass}")
+    if(gcfg STREQUAL "default")
+      set(pat "3677 cycles: ${wv_pass}")  # pins throughput and latency with the bench's bubbles and stalls
+    endif()
+    np_rtl_check(rtl.wave.${sim}.golden.${gcfg} wave ${sim} ok rtl_wave_tb ${gcfg} ${wv_dir}/${gfile}.memh pass
+      "${pat}" "${lab}")
+  endforeach()
+  np_rtl_check(rtl.wave.${sim}.golden.recurrence_refused wave ${sim} ok rtl_wave_tb default
+    ${wv_dir}/wave-l1-seed3.memh fail "is for sincos=recurrence, which has no RTL" "${lab}")
+  foreach(cfg fold normals)
+    np_rtl_check(rtl.wave.${sim}.l1.${cfg} wave ${sim} ok rtl_wave_tb ${cfg} ${wv_vec}/wave-l1-${cfg}.memh pass
+      "${wv_pass}" "${lab}" rtl_wave_l1_${cfg})
+  endforeach()
+  np_rtl_check(rtl.wave.${sim}.fault_flip wave ${sim} fault_flip rtl_wave_tb default ${wv_golden} fail
+    "In 2514 tests, [1-9][0-9]* errors found" "${lab}")
+  np_rtl_check(rtl.wave.${sim}.fault_stall wave ${sim} fault_stall rtl_wave_tb default ${wv_golden} fail
+    "no output for 1000 cycles|errors found" "${lab}")
+  np_rtl_check(rtl.wave.${sim}.fault_mirror wave ${sim} fault_mirror rtl_wave_tb default ${wv_golden} fail
+    "In 2514 tests, [1-9][0-9]* errors found" "${lab}")
+  np_rtl_check(rtl.wave.${sim}.fault_fold wave ${sim} fault_fold rtl_wave_tb jac ${wv_dir}/wave-l1-seed2.memh fail
+    "In 2514 tests, [1-9][0-9]* errors found" "${lab}")
+  # A set that ends early, or has no count, cannot pass.
+  np_rtl_check(rtl.wave.${sim}.count_short wave ${sim} ok rtl_wave_tb default ${wv_vec}/wave-golden-short.memh fail
+    "the header's count is 2514 but the file holds 2513 vectors" "${lab}")
+endforeach()
+foreach(cfg fold normals)
+  np_rtl_gen(wave l1 ${cfg} "${NP_RTL_WV_${cfg}}")
+endforeach()
+foreach(cfg default jac)
+  np_rtl_gen(wave l2 ${cfg} "${NP_RTL_WV_${cfg}}")
+  np_rtl_check(rtl.wave.verilator.l2.${cfg} wave verilator ok rtl_wave_tb ${cfg} ${wv_vec}/wave-l2-${cfg}.memh pass
+    "In 1[0-9][0-9][0-9][0-9][0-9][0-9] tests, no errors found\\." "rtl;nosan" rtl_wave_l2_${cfg})
+endforeach()
+file(MAKE_DIRECTORY ${wv_vec})
+file(READ ${wv_golden} wv_text)
+string(REGEX REPLACE "[0-9a-fA-F]+\n$" "" wv_short "${wv_text}")
+file(WRITE ${wv_vec}/wave-golden-short.memh "${wv_short}")
+
+# The ROM's 1,025 words against the C model's table.
+add_test(NAME rtl.wave.rom_table COMMAND ${CMAKE_COMMAND} -DC_SRC=${PROJECT_SOURCE_DIR}/rtl_model/np_wave.c
+  -DV_SRC=${NP_RTL_SRC}/np_wave_rom.v -P ${NP_RTL_TB}/wave_rom_check.cmake)
+set_tests_properties(rtl.wave.rom_table PROPERTIES LABELS "rtl"
+  PASS_REGULAR_EXPRESSION "1025 ROM words, the RTL's equal the C model's")
+
+# Yosys elaborates the unit: proc, opt, check -assert (default; both Jacobian outputs, 4 lanes).
+foreach(u "default;" "jac;-set TRAINS 4 -set NORMALS 1 -set FOLD 1")
+  list(GET u 0 name)
+  list(GET u 1 params)
+  string(JOIN " " wv_src ${NP_RTL_WV_RTL})
+  set(ys "read_verilog -I${NP_RTL_SRC} ${wv_src}\n")
+  if(params)
+    string(APPEND ys "chparam ${params} np_wave\n")
+  endif()
+  string(APPEND ys "hierarchy -top np_wave\nproc\nopt\ncheck -assert\n")
+  file(WRITE ${NP_RTL_WORK}/yosys-wave-${name}.ys "${ys}")
+  np_rtl_test(rtl.wave.yosys_check.${name} "${NP_YOSYS}" pass "" "rtl;nosan" ${NP_YOSYS} -q -s ${NP_RTL_WORK}/yosys-wave-${name}.ys)
+endforeach()
