@@ -231,6 +231,12 @@ function(np_rtl_cosim_build unit name top defs gparams)
   set(cflags "-I${NP_RTL_TB} -O2")
   if(unit STREQUAL "simplex3")
     string(APPEND cflags " -DNP_COSIM_SIMPLEX")
+  elseif(unit STREQUAL "wave")  # the harness sets np_wave's register inputs: it needs np_wave.h and TRAINS
+    set(trains 2)
+    if(gparams MATCHES "-GTRAINS=([0-9]+)")
+      set(trains ${CMAKE_MATCH_1})
+    endif()
+    string(APPEND cflags " -DNP_COSIM_WAVE -DNP_COSIM_TRAINS=${trains} -I${PROJECT_SOURCE_DIR}/rtl_model")
   endif()
   np_rtl_test(rtl.${unit}.cosim.build.${name} "${NP_VERILATOR}" pass "" "rtl;nosan"
     ${NP_VERILATOR} --cc --exe --build -j 1 -Wall -I${NP_RTL_SRC} ${defs} ${gparams} --top-module ${top} --prefix Vcosim

@@ -92,3 +92,28 @@ foreach(u "default;" "jac;-set TRAINS 4 -set NORMALS 1 -set FOLD 1")
   file(WRITE ${NP_RTL_WORK}/yosys-wave-${name}.ys "${ys}")
   np_rtl_test(rtl.wave.yosys_check.${name} "${NP_YOSYS}" pass "" "rtl;nosan" ${NP_YOSYS} -q -s ${NP_RTL_WORK}/yosys-wave-${name}.ys)
 endforeach()
+
+# Co-simulation against the wave cycle model (np_cosim.c, cosim_main.cpp): every cycle in_ready,
+# out_valid and each output word, random bubbles and stalls, the test register set regs=1.
+np_rtl_cosim_build(wave default np_wave "" "" ${NP_RTL_WV_RTL})
+np_rtl_cosim_build(wave jac np_wave "" "-GNORMALS=1;-GFOLD=1" ${NP_RTL_WV_RTL})
+np_rtl_cosim_build(wave opts np_wave "" "-GIN_REG=1;-GOUT_SKID=1" ${NP_RTL_WV_RTL})
+np_rtl_cosim_build(wave fold1 np_wave "" "-GTRAINS=1;-GIRR=0;-GCAP=0;-GFOLD=1;-GROM_LOG2=6" ${NP_RTL_WV_RTL})
+foreach(f flip stall mirror)
+  string(TOUPPER ${f} F)
+  np_rtl_cosim_build(wave fault_${f} np_wave "-DNP_FAULT_${F}" "" ${NP_RTL_WV_RTL})
+endforeach()
+np_rtl_cosim_build(wave fault_fold np_wave "-DNP_FAULT_FOLD" "-GNORMALS=1;-GFOLD=1" ${NP_RTL_WV_RTL})
+np_rtl_cosim(rtl.wave.cosim.default wave default pass "1000000 cycles, .* 0 mismatches"
+  --cfg 2,1,1,8,0,0 --cycles 1000000 --bench)
+np_rtl_cosim(rtl.wave.cosim.jac wave jac pass "1000000 cycles, .* 0 mismatches" --cfg 2,1,1,8,1,1 --cycles 1000000)
+np_rtl_cosim(rtl.wave.cosim.opts wave opts pass "300000 cycles, .* 0 mismatches"
+  --cfg 2,1,1,8,0,0 --in-reg --out-skid --cycles 300000)
+np_rtl_cosim(rtl.wave.cosim.fold1 wave fold1 pass "300000 cycles, .* 0 mismatches" --cfg 1,0,0,6,0,1 --cycles 300000)
+np_rtl_cosim(rtl.wave.cosim.trace wave default pass "trace: 2000 cycles written to"
+  --cfg 2,1,1,8,0,0 --cycles 2000 --trace ${NP_RTL_WORK}/wave/cosim-trace.txt)
+np_rtl_cosim(rtl.wave.cosim.wrong_cfg wave default fail "this binary is np_wave with TRAINS=2" --cfg 4,1,1,8,0,0 --cycles 10)
+foreach(f flip stall mirror)
+  np_rtl_cosim(rtl.wave.cosim.fault_${f} wave fault_${f} fail "[1-9][0-9]* mismatches" --cfg 2,1,1,8,0,0 --cycles 100000)
+endforeach()
+np_rtl_cosim(rtl.wave.cosim.fault_fold wave fault_fold fail "[1-9][0-9]* mismatches" --cfg 2,1,1,8,1,1 --cycles 100000)

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// cosim_main - drives a Verilated unit (top renamed Vcosim: np_classic3, or
-// np_simplex3 with NP_COSIM_SIMPLEX) clock by clock beside the C cycle model
+// cosim_main - drives a Verilated unit (top renamed Vcosim: np_classic3,
+// np_simplex3 with NP_COSIM_SIMPLEX, or np_wave with NP_COSIM_WAVE, whose
+// register inputs get np_cosim's test register set) clock by clock beside the C cycle model
 // (np_pipe, through np_cosim.h) with the same stimulus, and compares in_ready,
 // out_valid and, when valid, every output word, every cycle.
 //
@@ -28,12 +29,59 @@
 #include "Vcosim.h"
 #include "np_cosim.h"
 #include "verilated.h"
+#ifdef NP_COSIM_WAVE
+#include "np_wave.h"
+#endif
 
 namespace {
+
+#ifdef NP_COSIM_WAVE
+// Bits [bit, bit + w) of a Verilated port (CData .. QData, or VlWide for > 64 bits).
+template <typename T> void put_bits(T &p, unsigned bit, unsigned w, uint64_t v)
+{
+    const uint64_t m = (w >= 64 ? ~0ull : ((1ull << w) - 1)) << bit;
+    p = (T)(((uint64_t)p & ~m) | ((v << bit) & m));
+}
+template <std::size_t N> void put_bits(VlWide<N> &p, unsigned bit, unsigned w, uint64_t v)
+{
+    for (unsigned b = 0; b < w; b++) {
+        EData &word = p[(bit + b) / 32];
+        const EData m = (EData)1 << ((bit + b) % 32);
+        word = ((v >> b) & 1u) ? (word | m) : (word & ~m);
+    }
+}
+#endif
 
 struct Rtl {
     std::unique_ptr<VerilatedContext> ctx{new VerilatedContext};
     std::unique_ptr<Vcosim> top{new Vcosim{ctx.get()}};
+#ifdef NP_COSIM_WAVE
+    // The box's registers on the register inputs (lane k at [W*k +: W]), held for the run.
+    void regs(const np_wave_regs &r)
+    {
+        top->n = r.n;
+        for (unsigned k = 0; k < NP_COSIM_TRAINS; k++) {  // the RTL's TRAINS lanes
+            const np_wave_train &t = r.tr[k];
+            put_bits(top->kx, 32 * k, 32, (uint32_t)t.kx);
+            put_bits(top->kz, 32 * k, 32, (uint32_t)t.kz);
+            put_bits(top->phi, 32 * k, 32, t.phi);
+            put_bits(top->om, 32 * k, 32, t.om);
+            put_bits(top->amp, 15 * k, 15, t.amp);
+            put_bits(top->airr, 15 * k, 15, t.airr);
+            put_bits(top->cx, 16 * k, 16, (uint16_t)t.cx);
+            put_bits(top->cz, 16 * k, 16, (uint16_t)t.cz);
+            put_bits(top->kmx, 16 * k, 16, (uint16_t)t.kmx);
+            put_bits(top->kmz, 16 * k, 16, (uint16_t)t.kmz);
+        }
+        top->width = r.width;
+        top->pu = r.pu;
+        top->pv = r.pv;
+        top->pt = r.pt;
+        top->omc = r.omc;
+        top->b = r.b;
+        top->gcap = r.gcap;
+    }
+#endif
     void reset()
     {
         top->clk = 0;
@@ -55,21 +103,47 @@ struct Rtl {
     void drive(const np_cosim_cycle &c)
     {
         top->in_valid = c.in_valid;
+#ifdef NP_COSIM_WAVE
+        top->i = (uint16_t)c.win[0];
+        top->j = (uint16_t)c.win[1];
+        top->t = c.win[2];
+        top->ph = c.win[3];
+        top->u = (uint16_t)c.win[4];
+        top->v = (uint16_t)c.win[5];
+        top->r = (uint8_t)c.win[6];
+        top->g = (uint16_t)c.win[7];
+#else
         top->x = c.x;
         top->y = c.y;
         top->z = c.z;
+#endif
         top->out_ready = c.out_ready;
         top->eval();
     }
-    void outs(uint32_t o[NP_COSIM_OUTS]) const
+    // The outputs in np_cosim's order; the first nout of them are compared.
+    void outs(uint32_t o[NP_COSIM_OUTS], unsigned normals) const
     {
+        for (unsigned k = 0; k < NP_COSIM_OUTS; k++) o[k] = 0;
+#if defined(NP_COSIM_WAVE)
+        unsigned k = 0;
+        o[k++] = top->y;
+        o[k++] = top->dx;
+        o[k++] = top->dz;
+        if (normals) {
+            o[k++] = top->nx;
+            o[k++] = top->ny;
+            o[k++] = top->nz;
+        }
+        o[k] = top->fold;  // compared only with fold (nout says)
+#elif defined(NP_COSIM_SIMPLEX)
+        (void)normals;
         o[0] = top->f;
-#ifdef NP_COSIM_SIMPLEX
         o[1] = top->dfdx;
         o[2] = top->dfdy;
         o[3] = top->dfdz;
 #else
-        o[1] = o[2] = o[3] = 0;
+        (void)normals;
+        o[0] = top->f;
 #endif
     }
 };
@@ -122,7 +196,25 @@ int main(int argc, char **argv)
         return 2;
     }
     const unsigned nout = np_cosim_outputs(m);
+#ifdef NP_COSIM_WAVE
+    // --cfg is what the RTL was Verilated with: trains must be its TRAINS.
+    if (!np_cosim_is_wave(m) || p[0] != NP_COSIM_TRAINS) {
+        std::fprintf(stderr, "cosim: this binary is np_wave with TRAINS=%d: --unit wave --cfg %d,...\n",
+                     NP_COSIM_TRAINS, NP_COSIM_TRAINS);
+        return 2;
+    }
+    const unsigned wave_normals = p[4];
+#else
+    if (np_cosim_is_wave(m)) {
+        std::fprintf(stderr, "cosim: this binary is not np_wave\n");
+        return 2;
+    }
+    const unsigned wave_normals = 0;
+#endif
     Rtl rtl;
+#ifdef NP_COSIM_WAVE
+    rtl.regs(*np_cosim_wave_regs(m));
+#endif
     rtl.reset();
 
     FILE *trace = nullptr;
@@ -134,7 +226,8 @@ int main(int argc, char **argv)
         }
         std::fprintf(trace, "# noisepipe cycle trace 1\n# unit %s\n# config %s%s%s\n# seed %llu\n", unit, cfg,
                      in_reg ? " in_reg" : "", out_skid ? " out_skid" : "", seed);
-        std::fprintf(trace, "# columns cycle in_valid in_ready x y z out_valid out_ready");
+        std::fprintf(trace, "# columns cycle in_valid in_ready %s out_valid out_ready",
+                     np_cosim_is_wave(m) ? "i j t ph u v r g" : "x y z");
         for (unsigned k = 0; k < nout; k++) std::fprintf(trace, " out%u(%u bits)", k, np_cosim_out_bits(m, k));
         std::fprintf(trace, "\n");
     }
@@ -146,7 +239,7 @@ int main(int argc, char **argv)
         np_cosim_drive(m, &c, traffic);
         np_cosim_eval(m, &c);
         rtl.drive(c);
-        rtl.outs(ro);
+        rtl.outs(ro, wave_normals);
         int bad = rtl.top->in_ready != c.in_ready || rtl.top->out_valid != c.out_valid;
         if (c.out_valid && rtl.top->out_valid) {
             compared++;
@@ -163,8 +256,13 @@ int main(int argc, char **argv)
             }
         }
         if (trace) {
-            std::fprintf(trace, "%llu %d %d %04x %04x %04x %d %d", cy, c.in_valid, c.in_ready, c.x, c.y, c.z,
-                         c.out_valid, c.out_ready);
+            if (np_cosim_is_wave(m))  // i j t ph u v r g
+                std::fprintf(trace, "%llu %d %d %04x %04x %08x %08x %04x %04x %02x %04x %d %d", cy, c.in_valid,
+                             c.in_ready, c.win[0], c.win[1], c.win[2], c.win[3], c.win[4], c.win[5], c.win[6],
+                             c.win[7], c.out_valid, c.out_ready);
+            else
+                std::fprintf(trace, "%llu %d %d %04x %04x %04x %d %d", cy, c.in_valid, c.in_ready, c.x, c.y, c.z,
+                             c.out_valid, c.out_ready);
             for (unsigned k = 0; k < nout; k++) {
                 if (c.out_valid)
                     std::fprintf(trace, " %0*x", (int)((np_cosim_out_bits(m, k) + 3) / 4), c.out[k]);
@@ -205,6 +303,9 @@ int main(int argc, char **argv)
         // own in_ready (equal to the model's, as the lock-step run showed).
         np_cosim *g = np_cosim_open(unit, p.data(), (unsigned)p.size(), in_reg, out_skid, seed, err, sizeof err);
         Rtl r2;
+#ifdef NP_COSIM_WAVE
+        r2.regs(*np_cosim_wave_regs(g));
+#endif
         r2.reset();
         np_cosim_cycle e{};
         auto t2 = std::chrono::steady_clock::now();

@@ -20,12 +20,16 @@
 extern "C" {
 #endif
 
-enum { NP_COSIM_OUTS = 4 };
+/* Outputs of a cycle: 1 (classic3), 4 (simplex3) or 3..7 (wave: y, dx, dz, [nx, ny, nz], [fold]). */
+enum { NP_COSIM_OUTS = 7, NP_COSIM_WAVE_INS = 8 };
+
+struct np_wave_regs;
 
 typedef struct np_cosim_cycle {
     /* stimulus, from np_cosim_drive */
     int in_valid;
     uint16_t x, y, z;
+    uint32_t win[NP_COSIM_WAVE_INS]; /* wave: i, j, t, ph, u, v, r, g (x, y, z unused) */
     int out_ready;
     /* the cycle model's outputs, from np_cosim_eval (out: outputs' words masked to their widths) */
     int in_ready;
@@ -38,13 +42,20 @@ typedef struct np_cosim np_cosim;
 /*
  * unit "classic3": p[0..2] = out_bits, s_frac, lerp_frac.
  * unit "simplex3": p[0..5] = out_bits, dout_bits, deriv, t_frac, p_frac, k_frac.
+ * unit "wave": p[0..5] = trains, irr, cap, rom_log2, normals, fold; the
+ * register set is the test set regs=1 (np_wave_regs_test, or _jac with
+ * normals or fold: what `noisepipe vectors` uses), np_cosim_wave_regs gives it.
  * in_reg, out_skid: the pipe options (np_pipe.h). Returns NULL with a message
  * in err (size errn) on a bad unit or configuration.
  */
 np_cosim *np_cosim_open(const char *unit, const unsigned *p, unsigned np, int in_reg, int out_skid,
                         uint64_t seed, char *err, unsigned errn);
 void np_cosim_close(np_cosim *c);
-/* Number of outputs of the unit (1 or 4) and the width of output k. */
+/* The wave unit's register set (NULL for another unit): the RTL's register inputs. */
+const struct np_wave_regs *np_cosim_wave_regs(const np_cosim *c);
+/* 1 when the unit is wave (its inputs are win[], not x, y, z). */
+int np_cosim_is_wave(const np_cosim *c);
+/* Number of outputs of the unit (1, 4 or 3..7) and the width of output k. */
 unsigned np_cosim_outputs(const np_cosim *c);
 unsigned np_cosim_out_bits(const np_cosim *c, unsigned k);
 /* Stimulus of this cycle; traffic 0 streams without bubbles or stalls. */
