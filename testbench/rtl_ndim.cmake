@@ -1,0 +1,67 @@
+# SPDX-License-Identifier: MIT
+# Reference RTL of the n-D units (rtl_model/verilog/np_simplexn.v, np_classicn.v)
+# under Icarus Verilog and Verilator, through rtl.cmake's functions (np_rtl_builds,
+# np_rtl_check, np_rtl_gen, np_rtl_cosim_build, np_rtl_cosim); docs/rtl.md and
+# docs/noise-nd.md say what each test checks. Names:
+#   rtl.simplexn.<sim>.build[.<fault>]          the bench (one DUT per configuration, fixture)
+#   rtl.simplexn.<sim>.golden.<unit>[.<set>]    a checked-in set: every simplex2/4/5 set and
+#                                               simplex3's three (f only: DIMS = 3 is simplex3's f)
+#   rtl.simplexn.<sim>.fault_{flip,stall}       the fault copies must fail
+#   rtl.simplexn.verilator.l2.simplex4          the level-2 set at one representative n
+# Verilator tests are labelled "nosan", as in rtl.cmake.
+if(NOT COMMAND np_rtl_check)
+  return()
+endif()
+
+# ------------------------------------------------------------------ simplexn
+set(NP_RTL_SN_RTL ${NP_RTL_SRC}/np_simplexn.v ${NP_RTL_PIPE_SRC})
+set(NP_RTL_SN_SRC ${NP_RTL_TB}/rtl_simplexn_tb.v ${NP_RTL_SN_RTL})
+foreach(v ok fault_flip fault_stall)
+  np_rtl_builds(simplexn ${v} rtl_simplexn_tb ${NP_RTL_SN_SRC})
+endforeach()
+# The checked-in sets: unit | set suffix ("" = the default set) | the bench's +cfg and the
+# cycles the bench takes with its bubbles and stalls (pins the latency and the throughput).
+set(NP_RTL_SN_SETS
+  "simplex2||s2|1926" "simplex2|coarse|s2_coarse|1926" "simplex2|narrow|s2_narrow|1926"
+  "simplex3||s3|2191" "simplex3|t1|s3_t1|2191" "simplex3|coarse|s3_coarse|2191"
+  "simplex4||s4|2393" "simplex4|coarse|s4_coarse|2393" "simplex4|narrow|s4_narrow|2393"
+  "simplex5||s5|2631" "simplex5|coarse|s5_coarse|2631" "simplex5|narrow|s5_narrow|2631")
+set(sn_pass_re "In [1-9][0-9]* tests, no errors found\\.")
+set(sn_golden4 ${PROJECT_SOURCE_DIR}/vectors/simplex4/simplex4-l1-seed1.memh)
+foreach(sim icarus verilator)
+  set(lab "rtl")
+  if(sim STREQUAL "verilator")
+    set(lab "rtl;nosan")
+  endif()
+  foreach(s ${NP_RTL_SN_SETS})
+    string(REPLACE "|" ";" sl "${s}")
+    list(GET sl 0 unit)
+    list(GET sl 1 set)
+    list(GET sl 2 cfg)
+    list(GET sl 3 cycles)
+    set(file ${unit}-l1-seed1)
+    set(tname rtl.simplexn.${sim}.golden.${unit})
+    if(set)
+      string(APPEND file "-${set}")
+      string(APPEND tname ".${set}")
+    endif()
+    np_rtl_check(${tname} simplexn ${sim} ok rtl_simplexn_tb ${cfg}
+      ${PROJECT_SOURCE_DIR}/vectors/${unit}/${file}.memh pass "${cycles} cycles: ${sn_pass_re}" "${lab}")
+  endforeach()
+  # The pipe options (IN_REG, OUT_SKID: one clock more) on simplex4's default set.
+  np_rtl_check(rtl.simplexn.${sim}.golden.simplex4.opts simplexn ${sim} ok rtl_simplexn_tb s4_opts
+    ${sn_golden4} pass "${sn_pass_re}" "${lab}")
+  # A set for another configuration is refused (the header's config is checked).
+  np_rtl_check(rtl.simplexn.${sim}.wrong_config simplexn ${sim} ok rtl_simplexn_tb s2
+    ${sn_golden4} fail "is for dims=4 out_bits=16 t_frac=25 p_frac=25 k_frac=0, not for cfg s2" "${lab}")
+  # Faults: a flipped bit of f and a broken stall path must each be caught.
+  np_rtl_check(rtl.simplexn.${sim}.fault_flip simplexn ${sim} fault_flip rtl_simplexn_tb s4
+    ${sn_golden4} fail "In 1661 tests, [1-9][0-9]* errors found" "${lab}")
+  np_rtl_check(rtl.simplexn.${sim}.fault_stall simplexn ${sim} fault_stall rtl_simplexn_tb s4
+    ${sn_golden4} fail "no output for 1000 cycles|errors found" "${lab}")
+endforeach()
+# Level 2 (about 10^6 vectors) at one representative n, under Verilator.
+np_rtl_gen(simplex4 l2 default "")
+np_rtl_check(rtl.simplexn.verilator.l2.simplex4 simplexn verilator ok rtl_simplexn_tb s4
+  ${NP_RTL_WORK}/simplex4/vec/simplex4-l2-default.memh pass "In [1-9][0-9][0-9][0-9][0-9][0-9][0-9] tests, no errors found\\."
+  "rtl;nosan" rtl_simplex4_l2_default)
