@@ -349,6 +349,51 @@ np_rtl_cosim(rtl.simplex3.cosim.opts simplex3 opts pass "1000000 cycles, .* 0 mi
 np_rtl_cosim(rtl.simplex3.cosim.fault_stall simplex3 fault_stall fail "[1-9][0-9]* mismatches"
   --cfg 16,16,1,24,22,22 --cycles 100000)
 
+# ------------------------------------------------------------------ aacount
+# The parallel variant (np_aacount.v, docs/aacount.md "Reference RTL"): the checked-in golden set
+# (default configuration) under both simulators, with the options; level-1 sets at the other
+# configurations of rtl_aacount_tb.v's table under Verilator (Icarus: m2 and m4); level 2 at the
+# default under Verilator (2,552,496 windows, about 40 s); the fault copies on the golden set.
+set(NP_RTL_AAC_RTL ${NP_RTL_SRC}/np_aacount.v ${NP_RTL_PIPE_SRC})
+set(NP_RTL_AAC_SRC ${NP_RTL_TB}/rtl_aacount_tb.v ${NP_RTL_AAC_RTL})
+foreach(v ok fault_flip fault_stall)
+  np_rtl_builds(aacount ${v} rtl_aacount_tb ${NP_RTL_AAC_SRC})
+endforeach()
+set(NP_RTL_AAC_CFGS m2 m4 m1 taps5 strict)
+set(NP_RTL_AAC_m2 "m=2")
+set(NP_RTL_AAC_m4 "m=4,normal=0,luma_taps=5")  # m = 4 with normals is 808 bits: over a vector line
+set(NP_RTL_AAC_m1 "m=1")
+set(NP_RTL_AAC_taps5 "depth=0,luma_taps=5,c_n=60,c_s=40,t_min=8,t_edge=64")
+set(NP_RTL_AAC_strict "luma=0,c_d=4000000000,c_n=255")
+set(aac_vec ${NP_RTL_WORK}/aacount/vec)
+set(aac_golden ${PROJECT_SOURCE_DIR}/vectors/aacount/aacount-l1-seed1.memh)
+foreach(cfg ${NP_RTL_AAC_CFGS})
+  np_rtl_gen(aacount l1 ${cfg} "${NP_RTL_AAC_${cfg}}")
+endforeach()
+np_rtl_gen(aacount l2 default "")
+foreach(sim icarus verilator)
+  set(lab "rtl")
+  if(sim STREQUAL "verilator")
+    set(lab "rtl;nosan")
+  endif()
+  np_rtl_check(rtl.aacount.${sim}.golden.default aacount ${sim} ok rtl_aacount_tb default
+    ${aac_golden} pass "7563 cycles: ${pass_re}" "${lab}")
+  np_rtl_check(rtl.aacount.${sim}.golden.opts aacount ${sim} ok rtl_aacount_tb opts
+    ${aac_golden} pass "${pass_re}" "${lab}")
+  foreach(cfg ${NP_RTL_AAC_CFGS})
+    if(sim STREQUAL "verilator" OR cfg STREQUAL "m2" OR cfg STREQUAL "m4")
+      np_rtl_check(rtl.aacount.${sim}.l1.${cfg} aacount ${sim} ok rtl_aacount_tb ${cfg}
+        ${aac_vec}/aacount-l1-${cfg}.memh pass "${pass_re}" "${lab}" rtl_aacount_l1_${cfg})
+    endif()
+  endforeach()
+  np_rtl_check(rtl.aacount.${sim}.fault_flip aacount ${sim} fault_flip rtl_aacount_tb default
+    ${aac_golden} fail "In 5040 tests, [1-9][0-9]* errors found" "${lab}")
+  np_rtl_check(rtl.aacount.${sim}.fault_stall aacount ${sim} fault_stall rtl_aacount_tb default
+    ${aac_golden} fail "no output for 1000 cycles|errors found" "${lab}")
+endforeach()
+np_rtl_check(rtl.aacount.verilator.l2.default aacount verilator ok rtl_aacount_tb default
+  ${aac_vec}/aacount-l2-default.memh pass "In 2552496 tests, no errors found\\." "rtl;nosan" rtl_aacount_l2_default)
+
 # ------------------------------------------------------------------ DPI-C
 # The models as DPI-C functions (rtl_model/verilog/dpi), built as C with the
 # project's flags; the example SV bench links them (and the fault copy must fail).
@@ -385,7 +430,8 @@ foreach(u "classic3;np_classic3;;default" "classic3;np_classic3;-set IN_REG 1 -s
           "classic3;np_classic3;-set S_TABLE 1;s_table" "classic3;np_classic3;-set HASH_SERIAL 1;hash_serial"
           "classic3;np_classic3;-set S_TABLE 1 -set HASH_SERIAL 1;both"
           "classic3;np_classic3;-set LERP_SERIAL 1;l_serial" "classic3;np_classic3;-set S_TABLE 1 -set LERP_SERIAL 1;ls_table"
-          "simplex3;np_simplex3;;default" "simplex3;np_simplex3;-set DERIV 0 -set T_FRAC 23 -set P_FRAC 20;f_only")
+          "simplex3;np_simplex3;;default" "simplex3;np_simplex3;-set DERIV 0 -set T_FRAC 23 -set P_FRAC 20;f_only"
+          "aacount;np_aacount;;default" "aacount;np_aacount;-set M 4 -set NORMAL 0 -set LUMA_TAPS 5;m4")
   list(GET u 0 unit)
   list(GET u 1 top)
   list(GET u 2 params)
@@ -406,9 +452,11 @@ endforeach()
 # not where a simulator's unwritten memory happens to stop the bench. Each
 # bench is given the checked-in golden set with its last vector cut off, and
 # the set without its count line: both must fail, naming the count.
-foreach(unit classic3 simplex3)
+foreach(unit classic3 simplex3 aacount)
   if(unit STREQUAL "classic3")
     set(golden ${c3_golden})
+  elseif(unit STREQUAL "aacount")
+    set(golden ${aac_golden})
   else()
     set(golden ${s3_golden})
   endif()
