@@ -510,3 +510,58 @@ int np_report_gates_synth(const np_unit *only, const char *spec, const char *rtl
     }
     return rc;
 }
+
+/* ---- what report fpga (report_fpga.c) shares with --synth: the same RTL table and head ---- */
+
+const char *np_synth_rtl_top(const np_unit *u)
+{
+    const rtl_desc *d = rtl_of(u);
+    return d ? d->top : NULL;
+}
+
+int np_synth_write_rtl(FILE *f, const np_unit *u, const void *cfg, const char *rtl_dir, char *err, size_t errlen)
+{
+    const rtl_desc *d = rtl_of(u);
+    if (!d) {
+        snprintf(err, errlen, "unit %s has no reference RTL", u->name);
+        return -1;
+    }
+    for (unsigned i = 0; i < 4 && d->files[i]; i++) {
+        char path[4096];
+        snprintf(path, sizeof path, "%s/%s", rtl_dir, d->files[i]);
+        if (access(path, R_OK) != 0) {
+            snprintf(err, errlen, "%s: cannot read the RTL (--rtl DIR names rtl_model/verilog)", path);
+            return -1;
+        }
+    }
+    write_read(f, d, u, cfg, rtl_dir);
+    return 0;
+}
+
+const char *np_synth_stage_of(const np_unit *u, const char *reg)
+{
+    const rtl_desc *d = rtl_of(u);
+    if (!d || !reg)
+        return NULL;
+    for (unsigned i = 0; i < 12 && d->bank[i].stage; i++) {
+        size_t n = strlen(d->bank[i].prefix);
+        if (strncmp(reg, d->bank[i].prefix, n) == 0 && reg[n] == '_')
+            return d->bank[i].stage;
+    }
+    return NULL;
+}
+
+const char *np_synth_rtl_param_spec(void)
+{
+    return g_rtl_params_spec;
+}
+
+unsigned np_synth_rtl_clocks_per_result(const np_unit *u)
+{
+    /* docs/rtl.md, "classic3 circuit variants": the serial hash (and the serial lerp engine, which
+       implies it) take one point every 8 clocks. */
+    if (u && strcmp(u->name, "classic3") == 0 &&
+        (strstr(g_rtl_params_spec, "HASH_SERIAL=1") || strstr(g_rtl_params_spec, "LERP_SERIAL=1")))
+        return 8;
+    return 0;
+}
