@@ -28,7 +28,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_stream.h"
 #include "np_sweep.h"
 #include "np_unit.h"

@@ -12,7 +12,7 @@
 #include <time.h>
 
 #include "np_classic.h"
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_cmd.h"
 #include "np_ref.h"
 #include "np_simplex.h"

@@ -46,9 +46,6 @@ int np_render_bench(const char *path, unsigned repeat, np_render_spec_fn spec, c
 int np_report_runtime(const char *dir, const char *const *scenes, unsigned n_scenes, unsigned repeat,
                       np_render_spec_fn spec, const void *ctx);
 
-/* mkdir -p. 0, or -1. */
-int np_mkdir_p(const char *dir);
-
 /*
  * A scene with a "hatch" section: the hatched image through the unit hatch
  * (render_hatch.c, docs/hatch.md "Scenes") into out, its hash appended;

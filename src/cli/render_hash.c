@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_outfile.h"
 #include "render_cli.h"
 

@@ -11,7 +11,7 @@
 
 #include <unistd.h>
 
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_hatch_render.h"
 #include "np_image.h"
 #include "render_cli.h"

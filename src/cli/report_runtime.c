@@ -12,7 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_outfile.h"
 #include "np_cmd.h"
 #include "np_image.h"

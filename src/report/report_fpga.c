@@ -24,7 +24,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_fpga.h"
 #include "np_outfile.h"
 #include "np_report.h"

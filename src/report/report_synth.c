@@ -32,7 +32,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_synth.h"
 
 #ifndef NP_RTL_DIR

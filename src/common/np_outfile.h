@@ -82,6 +82,9 @@ void np_interrupt_untrack(int slot);
  */
 int np_stdout_check(const char *cmd);
 
+/* mkdir -p: dir and the folders above it that are missing. 0, or -1 with errno set. */
+int np_mkdir_p(const char *dir);
+
 #ifdef __cplusplus
 } /* extern "C" */
 #endif

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* Output files and interruption (np_outfile.h). */
 #include "np_outfile.h"
-#include "np_cli.h"
+#include "np_common.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -238,4 +238,20 @@ int np_stdout_check(const char *cmd)
         return 0;
     np_err(cmd, "standard output: write error: %s", strerror(errno));
     return -1;
+}
+
+int np_mkdir_p(const char *dir)
+{
+    char buf[4096];
+    snprintf(buf, sizeof buf, "%s", dir);
+    for (char *p = buf + 1; *p; p++)
+        if (*p == '/') {
+            *p = '\0';
+            if (mkdir(buf, 0777) != 0 && errno != EEXIST)
+                return -1;
+            *p = '/';
+        }
+    if (mkdir(buf, 0777) != 0 && errno != EEXIST)
+        return -1;
+    return 0;
 }
