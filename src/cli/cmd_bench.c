@@ -19,7 +19,7 @@
 #include "np_sweep.h"
 #include "np_unit.h"
 
-#include "bench_units.h"
+#include "np_bench_units.h"
 
 static const char usage_text[] =
     "usage: noisepipe bench [--seconds S] [--unit U|all [--config K=V,...]]\n"

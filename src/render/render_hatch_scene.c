@@ -14,7 +14,7 @@
 #include "np_common.h"
 #include "np_hatch_render.h"
 #include "np_image.h"
-#include "render_cli.h"
+#include "np_render_tools.h"
 
 static const char *const CMD = "render";
 

@@ -21,7 +21,7 @@
  * of consecutive pixels of random spans.
  */
 #define _DEFAULT_SOURCE /* getloadavg (glibc) */
-#include "bench_units.h"
+#include "np_bench_units.h"
 
 #include <stdio.h>
 #include <stdlib.h>
