@@ -145,7 +145,7 @@ module np_classicn #(
 `include "np_hashn.vh"
     reg [7:0] r0_u[0:NN-1];
     reg [15:0] r0_sq[0:NN-1];
-    reg [5:0] r0_h[0:NC-1];
+    reg [6*NC-1:0] r0_h;  // h_c at [6 c +: 6]
     integer c_l, a_l;
     reg [39:0] kc;
     reg [7:0] fr;
@@ -154,7 +154,7 @@ module np_classicn #(
             kc = 40'd0;
             for (a_l = 0; a_l < NN; a_l = a_l + 1)
                 kc[8*a_l+:8] = cx[16*(NN-1-a_l)+8+:8] + {7'd0, c_l[a_l]};
-            r0_h[c_l] <= hashn(NN, kc);
+            r0_h[6*c_l+:6] <= hashn(NN, kc);
         end
         for (a_l = 0; a_l < NN; a_l = a_l + 1) begin
             fr = cx[16*(NN-1-a_l)+:8];
@@ -166,20 +166,20 @@ module np_classicn #(
     // ---------------------------------------------------------------- H
     // g_c = sum_a G_ca d_ca: per axis the s9 offset u_a or u_a - 256, added,
     // subtracted or skipped as gradn's coefficient says (exact in s(GB)).
-    reg signed [GB-1:0] r1_g[0:NC-1];
+    reg [GB*NC-1:0] r1_g;  // g_c at [GB c +: GB]
     integer c_h, a_h;
     reg [9:0] gg;
     reg signed [XW-1:0] gsum, dd;
     always @(posedge clk) if (en[1] && v[0]) begin
         for (c_h = 0; c_h < NC; c_h = c_h + 1) begin
-            gg = gradn(NN, r0_h[c_h]);
+            gg = gradn(NN, r0_h[6*c_h+:6]);
             gsum = 0;
             for (a_h = 0; a_h < NN; a_h = a_h + 1) begin
                 dd = {{(XW-9){c_h[a_h]}}, c_h[a_h], r0_u[a_h]};  // u_a, or u_a - 256 (s9)
                 if (gg[2*a_h+:2] == 2'b01) gsum = gsum + dd;
                 else if (gg[2*a_h+:2] == 2'b11) gsum = gsum - dd;
             end
-            r1_g[c_h] <= gsum[GB-1:0];
+            r1_g[GB*c_h+:GB] <= gsum[GB-1:0];
         end
     end
     // s-curve: round(u^2 (768 - 2u) / 2^(24 - WS)), u(WS+1). The numerator is
@@ -213,11 +213,11 @@ module np_classicn #(
     // ---------------------------------------------------------------- I1m .. Ina
     // lval: level m's entries (m = 0: g), sign-extended to LX bits, entry p at
     // [LX (NC m + p) +: LX]; entries p >= 2^(n-m) are 0 (not read).
-    wire [LX*NC*(NN+1)-1:0] lval;
+    wire [LX-1:0] lval[0:NC*(NN+1)-1];
     genvar gc;
     generate
         for (gc = 0; gc < NC; gc = gc + 1) begin : g_l0
-            assign lval[LX*gc+:LX] = {{(LX-GB){r1_g[gc][GB-1]}}, r1_g[gc]};
+            assign lval[gc] = {{(LX-GB){r1_g[GB*gc+GB-1]}}, r1_g[GB*gc+:GB]};
         end
     endgenerate
     genvar gl;
@@ -231,35 +231,35 @@ module np_classicn #(
             localparam integer PW = DW + WS;                     // s (b_p - a_p), s <= 1.0
             localparam integer VW = WL + 1 + ib2(2 * NN - gl - 1);  // l_(gl+1)
             localparam integer BM = 2 + 2 * gl;                  // the multiply's bank
-            reg signed [AW-1:0] ra[0:CNT-1];
-            reg signed [PW-1:0] rp[0:CNT-1];
-            reg signed [VW-1:0] rl[0:CNT-1];
+            reg [AW*CNT-1:0] ra;  // a_p at [AW p +: AW]
+            reg [PW*CNT-1:0] rp;  // the product of lerp p at [PW p +: PW]
+            reg [VW*CNT-1:0] rl;  // l_(gl+1)[p] at [VW p +: VW]
             integer p;
             reg signed [XW-1:0] ta, tb, tp;
             always @(posedge clk) if (en[BM] && v[BM-1]) begin
                 for (p = 0; p < CNT; p = p + 1) begin
-                    ta = lval[LX*(NC*gl+2*p)+:LX];
-                    tb = lval[LX*(NC*gl+2*p+1)+:LX];
+                    ta = lval[NC*gl+2*p];
+                    tb = lval[NC*gl+2*p+1];
                     tp = $signed({{(XW-SW){1'b0}}, s_use[SW*gl+:SW]}) * (tb - ta);
-                    ra[p] <= ta[AW-1:0];
-                    rp[p] <= tp[PW-1:0];
+                    ra[AW*p+:AW] <= ta[AW-1:0];
+                    rp[PW*p+:PW] <= tp[PW-1:0];
                 end
             end
             integer q;
             reg signed [XW-1:0] ua, up, us;
             always @(posedge clk) if (en[BM+1] && v[BM]) begin
                 for (q = 0; q < CNT; q = q + 1) begin
-                    ua = {{(XW-AW){ra[q][AW-1]}}, ra[q]};
-                    up = {{(XW-PW){rp[q][PW-1]}}, rp[q]};
+                    ua = {{(XW-AW){ra[AW*q+AW-1]}}, ra[AW*q+:AW]};
+                    up = {{(XW-PW){rp[PW*q+PW-1]}}, rp[PW*q+:PW]};
                     us = requant((ua <<< WS) + up, AF + WS, WL);
-                    rl[q] <= us[VW-1:0];
+                    rl[VW*q+:VW] <= us[VW-1:0];
                 end
             end
             for (gc = 0; gc < NC; gc = gc + 1) begin : g_out
                 if (gc < CNT) begin : g_val
-                    assign lval[LX*(NC*(gl+1)+gc)+:LX] = {{(LX-VW){rl[gc][VW-1]}}, rl[gc]};
+                    assign lval[NC*(gl+1)+gc] = {{(LX-VW){rl[VW*gc+VW-1]}}, rl[VW*gc+:VW]};
                 end else begin : g_zero
-                    assign lval[LX*(NC*(gl+1)+gc)+:LX] = {LX{1'b0}};
+                    assign lval[NC*(gl+1)+gc] = {LX{1'b0}};
                 end
             end
         end
@@ -267,10 +267,11 @@ module np_classicn #(
 
     // ---------------------------------------------------------------- O
     // f = sat(rescale(l_n, WL -> F)): round half up, clamp to [-2^(N-1), 2^(N-1) - 1].
+    wire [LX-1:0] l_last = lval[NC*NN];  // l_n
     reg signed [XW-1:0] ol, orq, hi_, lo_;
     reg [N-1:0] o_w;
     always @(*) begin
-        ol = lval[LX*NC*NN+:LX];
+        ol = l_last;
         orq = requant(ol, WL, F);
         hi_ = (64'sd1 <<< (N - 1)) - 64'sd1;
         lo_ = -(64'sd1 <<< (N - 1));
