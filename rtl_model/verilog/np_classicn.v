@@ -59,6 +59,9 @@
 // bit 0 of f when l_n[3:0] == 4'h5 (a datapath fault, about 1 input in 16);
 // `define NP_FAULT_STALL makes bank I2a (bank 5) load while its successor
 // stalls (a handshake fault: a transaction is overwritten and lost).
+// The per-corner and per-lerp registers are packed vectors ([w c +: w]):
+// Verilator 5.006 refuses a non-blocking assignment to an unpacked array in
+// a loop it does not unroll (BLKLOOPINIT; the 2^n-corner hash loop).
 // Lint waivers (Verilator -Wall), each for the whole file:
 //   BLKSEQ       the clocked processes compute per-corner temporaries with
 //                blocking assignments (written before read, local to one
@@ -212,7 +215,9 @@ module np_classicn #(
 
     // ---------------------------------------------------------------- I1m .. Ina
     // lval: level m's entries (m = 0: g), sign-extended to LX bits, entry p at
-    // [LX (NC m + p) +: LX]; entries p >= 2^(n-m) are 0 (not read).
+    // lval[NC m + p]; entries p >= 2^(n-m) are 0 (not read). A net array, not
+    // one wide bus: Icarus re-evaluates a bus of NC (n + 1) words (12,288 bits
+    // at n = 5) on every change of any of its parts.
     wire [LX-1:0] lval[0:NC*(NN+1)-1];
     genvar gc;
     generate
