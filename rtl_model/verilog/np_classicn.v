@@ -59,9 +59,9 @@
 // bit 0 of f when l_n[3:0] == 4'h5 (a datapath fault, about 1 input in 16);
 // `define NP_FAULT_STALL makes bank I2a (bank 5) load while its successor
 // stalls (a handshake fault: a transaction is overwritten and lost).
-// The per-corner and per-lerp registers are packed vectors ([w c +: w]):
-// Verilator 5.006 refuses a non-blocking assignment to an unpacked array in
-// a loop it does not unroll (BLKLOOPINIT; the 2^n-corner hash loop).
+// The per-corner and per-lerp registers are packed vectors ([w c +: w]), as
+// the lint tool (5.006) refuses a non-blocking assignment to an unpacked
+// array in a loop it does not unroll (BLKLOOPINIT; the 2^n-corner hash loop).
 // Lint waivers (Verilator -Wall), each for the whole file:
 //   BLKSEQ       the clocked processes compute per-corner temporaries with
 //                blocking assignments (written before read, local to one
