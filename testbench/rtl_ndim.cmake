@@ -65,3 +65,58 @@ np_rtl_gen(simplex4 l2 default "")
 np_rtl_check(rtl.simplexn.verilator.l2.simplex4 simplexn verilator ok rtl_simplexn_tb s4
   ${NP_RTL_WORK}/simplex4/vec/simplex4-l2-default.memh pass "In [1-9][0-9][0-9][0-9][0-9][0-9][0-9] tests, no errors found\\."
   "rtl;nosan" rtl_simplex4_l2_default)
+
+# ------------------------------------------------------------------ classicn
+#   rtl.classicn.<sim>.build[.<fault>]          the bench (one DUT per configuration, fixture)
+#   rtl.classicn.<sim>.golden.<unit>[.<set>]    a checked-in set: every classic2/4/5 set and all
+#                                               three of classic3's (DIMS = 3 is classic3 bit for bit)
+#   rtl.classicn.<sim>.golden.classic4.opts     IN_REG and OUT_SKID on classic4's default set
+#   rtl.classicn.<sim>.wrong_config             a set for another configuration is refused
+#   rtl.classicn.<sim>.fault_{flip,stall}       the fault copies must fail
+set(NP_RTL_CN_RTL ${NP_RTL_SRC}/np_classicn.v ${NP_RTL_PIPE_SRC})
+set(NP_RTL_CN_SRC ${NP_RTL_TB}/rtl_classicn_tb.v ${NP_RTL_CN_RTL})
+foreach(v ok fault_flip fault_stall)
+  np_rtl_builds(classicn ${v} rtl_classicn_tb ${NP_RTL_CN_SRC})
+endforeach()
+# unit | set suffix ("" = the default set) | the bench's +cfg | the cycles the bench takes with its
+# bubbles and stalls (pins the latency 2n + 3 and the throughput; classic3's default set takes
+# np_classic3.v's 6084 cycles).
+set(NP_RTL_CN_SETS
+  "classic2||c2|1944" "classic2|wide_l|c2_wide_l|1944"
+  "classic3||c3|6084" "classic3|cheap|c3_cheap|6084" "classic3|wide_l|c3_wide_l|6084"
+  "classic4||c4|2390" "classic4|wide_l|c4_wide_l|2390"
+  "classic5||c5|2608" "classic5|wide_l|c5_wide_l|2608")
+set(cn_pass_re "In [1-9][0-9]* tests, no errors found\\.")
+set(cn_golden4 ${PROJECT_SOURCE_DIR}/vectors/classic4/classic4-l1-seed1.memh)
+foreach(sim icarus verilator)
+  set(lab "rtl")
+  if(sim STREQUAL "verilator")
+    set(lab "rtl;nosan")
+  endif()
+  foreach(s ${NP_RTL_CN_SETS})
+    string(REPLACE "|" ";" sl "${s}")
+    list(GET sl 0 unit)
+    list(GET sl 1 set)
+    list(GET sl 2 cfg)
+    list(GET sl 3 cycles)
+    set(file ${unit}-l1-seed1)
+    set(tname rtl.classicn.${sim}.golden.${unit})
+    if(set)
+      string(APPEND file "-${set}")
+      string(APPEND tname ".${set}")
+    endif()
+    np_rtl_check(${tname} classicn ${sim} ok rtl_classicn_tb ${cfg}
+      ${PROJECT_SOURCE_DIR}/vectors/${unit}/${file}.memh pass "${cycles} cycles: ${cn_pass_re}" "${lab}")
+  endforeach()
+  # The pipe options (IN_REG, OUT_SKID: one clock more) on classic4's default set.
+  np_rtl_check(rtl.classicn.${sim}.golden.classic4.opts classicn ${sim} ok rtl_classicn_tb c4_opts
+    ${cn_golden4} pass "${cn_pass_re}" "${lab}")
+  # A set for another configuration is refused (the header's config is checked).
+  np_rtl_check(rtl.classicn.${sim}.wrong_config classicn ${sim} ok rtl_classicn_tb c2
+    ${cn_golden4} fail "is for dims=4 out_bits=8 s_frac=12 lerp_frac=10, not for cfg c2" "${lab}")
+  # Faults: a flipped bit of f and a broken stall path must each be caught.
+  np_rtl_check(rtl.classicn.${sim}.fault_flip classicn ${sim} fault_flip rtl_classicn_tb c4
+    ${cn_golden4} fail "In 1661 tests, [1-9][0-9]* errors found" "${lab}")
+  np_rtl_check(rtl.classicn.${sim}.fault_stall classicn ${sim} fault_stall rtl_classicn_tb c4
+    ${cn_golden4} fail "no output for 1000 cycles|errors found" "${lab}")
+endforeach()
