@@ -51,3 +51,16 @@ add_test(NAME rtl.board.uart.lint
   COMMAND sh -c "command -v verilator > /dev/null || { echo 'verilator not installed: skipped'; exit 77; }
                  for m in tx rx; do for c in 4 104; do verilator --lint-only -Wall -GCLKS_PER_BIT=$c \"$0/np_uart_$m.v\" || exit 1; done; done; echo 'lint clean'" ${NP_BOARD_SRC})
 set_tests_properties(rtl.board.uart.lint PROPERTIES SKIP_RETURN_CODE 77 LABELS "rtl;board;nosan" PASS_REGULAR_EXPRESSION "lint clean")
+
+# The protocol engine (np_link_engine.v; np_board_core.v: the engine with classic3 LERP_SERIAL behind it):
+#   rtl.board.engine.lint             verilator --lint-only -Wall: the core, and the engine alone at
+#                                     the largest max_payload (65532, a 128 KiB buffer)
+set(NP_BOARD_CORE_SRC ${NP_BOARD_SRC}/np_board_core.v ${NP_BOARD_SRC}/np_link_engine.v ${NP_BOARD_SRC}/np_crc32.v
+  ${PROJECT_SOURCE_DIR}/rtl_model/verilog/np_classic3.v ${PROJECT_SOURCE_DIR}/rtl_model/verilog/np_pipe_in_reg.v
+  ${PROJECT_SOURCE_DIR}/rtl_model/verilog/np_pipe_skid.v)
+add_test(NAME rtl.board.engine.lint
+  COMMAND sh -c "command -v verilator > /dev/null || { echo 'verilator not installed: skipped'; exit 77; }
+                 verilator --lint-only -Wall -I\"$0/..\" --top-module np_board_core \"$0/np_board_core.v\" \"$0/np_link_engine.v\" \"$0/np_crc32.v\" \"$0/../np_classic3.v\" \"$0/../np_pipe_in_reg.v\" \"$0/../np_pipe_skid.v\" || exit 1
+                 verilator --lint-only -Wall -GMAX_PAYLOAD=65532 -GRXB_AW=17 \"$0/np_link_engine.v\" \"$0/np_crc32.v\" || exit 1
+                 echo 'lint clean'" ${NP_BOARD_SRC})
+set_tests_properties(rtl.board.engine.lint PROPERTIES SKIP_RETURN_CODE 77 LABELS "rtl;board;nosan" PASS_REGULAR_EXPRESSION "lint clean")
