@@ -107,3 +107,29 @@ np_board_run(rtl.board.diff.seed2 diff pass "In 26 streams, [0-9]+ frames \\([0-
 set(np_diff_caught "compared, [1-9][0-9]* mismatches\\.")
 np_board_run(rtl.board.diff.fault_seq diff_fault_seq fail "Streams that differ:.* wrong_seq[ .].*${np_diff_caught}" --seed 1 --frames 40)
 np_board_run(rtl.board.diff.fault_pcrc diff_fault_pcrc fail "Streams that differ:.* pcrc[ .].*${np_diff_caught}" --seed 1 --frames 40)
+
+# The whole board (np_board_top.v: UART in, engine, classic3, UART out) driven by the real host
+# engine (np_host_*, src/link/link_engine.c) through a UART line model (board_e2e.cpp):
+#   rtl.board.top.lint               verilator --lint-only -Wall
+#   rtl.board.e2e                    2,000 random vectors, one session, every one verified
+#   rtl.board.e2e.faults             3,000 vectors with a dropped OUT byte, two flipped OUT bits and a
+#                                    flipped IN bit on the line: the host's link faults, new sessions
+#                                    on the same journal, every vector verified exactly once
+#   rtl.board.e2e.fault_flip         classic3 with NP_FAULT_FLIP behind the engine: the host must
+#                                    report failing vectors
+set(NP_BOARD_TOP_SRC ${NP_BOARD_SRC}/np_board_top.v ${NP_BOARD_SRC}/np_uart_rx.v ${NP_BOARD_SRC}/np_uart_tx.v
+  ${NP_BOARD_CORE_SRC})
+add_test(NAME rtl.board.top.lint
+  COMMAND sh -c "command -v verilator > /dev/null || { echo 'verilator not installed: skipped'; exit 77; }
+                 verilator --lint-only -Wall -I\"$0/..\" --top-module np_board_top \"$0/np_board_top.v\" \"$0/np_uart_rx.v\" \"$0/np_uart_tx.v\" \"$0/np_board_core.v\" \"$0/np_link_engine.v\" \"$0/np_crc32.v\" \"$0/../np_classic3.v\" \"$0/../np_pipe_in_reg.v\" \"$0/../np_pipe_skid.v\" && echo 'lint clean'" ${NP_BOARD_SRC})
+set_tests_properties(rtl.board.top.lint PROPERTIES SKIP_RETURN_CODE 77 LABELS "rtl;board;nosan" PASS_REGULAR_EXPRESSION "lint clean")
+np_board_verilate(e2e np_board_top board_e2e.cpp "" ${NP_BOARD_TOP_SRC})
+np_board_verilate(e2e_fault_flip np_board_top board_e2e.cpp "-DNP_FAULT_FLIP" ${NP_BOARD_TOP_SRC})
+np_board_run(rtl.board.e2e e2e pass
+  "In 2000 records, 2000 verified in 1 sessions \\(2000 counted by the sessions\\), 0 failed: every record verified exactly once\\."
+  --records 2000 --seed 1)
+np_board_run(rtl.board.e2e.faults e2e pass
+  "4 faults injected.*In 3000 records, 3000 verified in [2-8] sessions \\(3000 counted by the sessions\\), 0 failed: every record verified exactly once\\."
+  --records 3000 --seed 1 --fault drop-out:4000 --fault flip-in:6000 --fault flip-out:15000 --fault drop-out:20000)
+np_board_run(rtl.board.e2e.fault_flip e2e_fault_flip fail "In 2000 records, 2000 verified in 1 sessions .*, [1-9][0-9]* failed: NOT verified\\."
+  --records 2000 --seed 1)
