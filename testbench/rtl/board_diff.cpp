@@ -17,7 +17,8 @@
 // Streams: a normal session (HELLO, CONFIG, DATA frames of random record counts, BYE), and the
 // faults: a dropped byte, a corrupted hcrc, a corrupted pcrc, a wrong seq, a duplicated frame,
 // garbage before HELLO, a HELLO mid-stream, DATA before CONFIG, a CONFIG the board does not
-// have, a HELLO of version 2, a bad len, an unknown type; each fault is followed by a new
+// have, a HELLO of version 2, a bad len, an unknown type, and the edges of the rules (a HELLO
+// with a payload, a CONFIG with more padding, another layout, a host ERROR frame); each fault is followed by a new
 // session (HELLO ...) that must work. Every stream also runs with the IN side stalled at
 // random (out_ready low for random runs of clocks).
 //
@@ -449,6 +450,39 @@ std::vector<Stream> make_streams(Ctx &c)
         put_frame(s.out, NP_LINK_BYE, 1, 0, 0, nullptr, 0);
         put_frame(s.out, NP_LINK_DATA, 2, 0, 1, c.job.in, c.job.lay.in_stride);  // BYE unconfigures
         put_session(c, s.out, 4, ++nonce);
+        v.push_back(s);
+    }
+    {  // frames at the edges of the rules, each followed by a new session where it halts the board
+        Stream s{"edges", {}};
+        uint8_t eight[8] = {1, 2, 3, 4, 5, 6, 7, 8};
+        put_frame(s.out, NP_LINK_HELLO, 7, ++nonce, 3, eight, 8);  // a HELLO's seq, count, payload: not checked
+        put_config(c, s.out, 1);
+        put_data(c, s.out, 2, 5);
+        np_link_config k;  // the same CONFIG with 8 more NULs of padding: accepted
+        memset(&k, 0, sizeof k);
+        snprintf(k.unit, sizeof k.unit, "%s", kUnit);
+        k.lay = c.job.lay;
+        snprintf(k.cfg, sizeof k.cfg, "%s", kCfg);
+        uint8_t p[NP_LINK_CONFIG_FIXED + NP_LINK_CFG_BYTES];
+        memset(p, 0, sizeof p);
+        size_t n = np_link_config_encode(p, &k);
+        put_frame(s.out, NP_LINK_CONFIG, 3, 0, 0, p, (unsigned)n + 8);
+        // DATA whose len is not count x in_stride: BAD_LENGTH
+        put_frame(s.out, NP_LINK_DATA, 4, 0, 2, c.job.in, c.job.lay.in_stride);
+        put_hello(s.out, ++nonce);
+        p[28] = 10;  // out_bits[0] 10: a consistent layout (lane 2, stride 4) but not the slot's
+        put_frame(s.out, NP_LINK_CONFIG, 1, 0, 0, p, (unsigned)n);
+        put_hello(s.out, ++nonce);
+        put_frame(s.out, NP_LINK_ERROR, 1, 0, 0, eight, 8, 2);  // a host ERROR of version 2: read, BAD_TYPE
+        put_hello(s.out, ++nonce);
+        put_frame(s.out, NP_LINK_RESULT, 1, 0, 0, nullptr, 0);  // a board-to-host type: BAD_TYPE
+        put_hello(s.out, ++nonce);
+        p[28] = 8;
+        p[0] = 'C';  // another unit: NO_SUCH_CONFIG
+        put_frame(s.out, NP_LINK_CONFIG, 1, 0, 0, p, (unsigned)n);
+        put_hello(s.out, ++nonce);
+        put_frame(s.out, NP_LINK_CONFIG, 1, 0, 0, p, 36);  // too short: BAD_LENGTH
+        put_session(c, s.out, 3, ++nonce);
         v.push_back(s);
     }
     return v;

@@ -171,12 +171,13 @@ module np_link_engine #(
     reg [63:0] c_records, c_cycles, c_stalls;
     reg [31:0] c_frames, c_errors;
 
-    // CRCs: OUT header (bytes 0..19), OUT payload, IN header, IN payload.
-    reg rh_init, rp_init;
-    wire rh_en, rp_en;
+    // One CRC each way: OUT, the header's bytes 0..19 up to the check (M_HCHK), then the
+    // payload; IN, the header's bytes 0..19 (held while hcrc goes out), then the payload.
+    reg rc_init;
+    wire rc_en;
     wire [31:0] rh_crc, rp_crc;
-    np_crc32 u_rh(.clk(clk), .rst(rst), .init(rh_init), .en(rh_en), .d(b), .crc(rh_crc));
-    np_crc32 u_rp(.clk(clk), .rst(rst), .init(rp_init), .en(rp_en), .d(b), .crc(rp_crc));
+    np_crc32 u_rc(.clk(clk), .rst(rst), .init(rc_init), .en(rc_en), .d(b), .crc(rh_crc));
+    assign rp_crc = rh_crc;
 
     // ---------------------------------------------------------------- the sender
     // Started by the parser with s_go and the frame's type, tag, count, len (seq is tx_seq);
@@ -200,11 +201,10 @@ module np_link_engine #(
     reg [7:0] ob;
     assign u_out_ready = !have_orec && s == S_PAY && s_type == T_RESULT;
     wire [159:0] s_hdr = {s_len, s_count, s_tag, s_seq, s_type, 8'd1, 8'h50, 8'h4E};
-    wire th_en, tp_en;
+    wire tc_en, tc_init;
     wire [31:0] th_crc, tp_crc;
-    wire s_init = s_go;
-    np_crc32 u_th(.clk(clk), .rst(rst), .init(s_init), .en(th_en), .d(out_data), .crc(th_crc));
-    np_crc32 u_tp(.clk(clk), .rst(rst), .init(s_init), .en(tp_en), .d(out_data), .crc(tp_crc));
+    np_crc32 u_tc(.clk(clk), .rst(rst), .init(tc_init), .en(tc_en), .d(out_data), .crc(th_crc));
+    assign tp_crc = th_crc;
 
     // Payload byte k of the frame being sent (RESULT: from orec).
     function [7:0] b32;  // byte i of a little-endian 32-bit field
@@ -217,23 +217,58 @@ module np_link_engine #(
         input [2:0] i;
         b64 = v[8*i +: 8];
     endfunction
+    // The constant bytes in one ROM (LUTs, read asynchronously), shared by the sender (INFO,
+    // CONFIG_ACK) and the parser (the CONFIG it expects), which never use it at once:
+    //   0..175    INFO's payload; its bytes 48..63 (unit) and 64..175 (text) are also what a
+    //             CONFIG must carry in its bytes 0..15 and 36..147
+    //   176..195  the slot's CONFIG bytes 16..35 (the field layout)
+    //   196..211  CONFIG_ACK's payload
+    //   212..255  zero (a CONFIG's bytes 148.. must be NULs)
+    reg [7:0] rom[0:255];
+    integer ri;
+    initial begin
+        for (ri = 0; ri < 256; ri = ri + 1)
+            rom[ri] = 8'd0;
+        for (ri = 0; ri < 4; ri = ri + 1) begin
+            rom[ri] = b32(32'd1, ri[1:0]);  // version
+            rom[4 + ri] = b32(MAX_PAYLOAD, ri[1:0]);
+            rom[8 + ri] = b32(WINDOW, ri[1:0]);
+            rom[12 + ri] = b32(32'd1, ri[1:0]);  // n_slots
+            rom[196 + ri] = b32(LATENCY, ri[1:0]);
+            rom[200 + ri] = b32(CLOCK_HZ, ri[1:0]);
+        end
+        rom[204] = IN_STRIDE8;
+        rom[205] = OUT_STRIDE8;
+        for (ri = 0; ri < 32; ri = ri + 1)
+            rom[16 + ri] = sbyte({{(8*80){1'b0}}, BOARD_ID}, ID_LEN, ri[15:0]);
+        for (ri = 0; ri < 16; ri = ri + 1)
+            rom[48 + ri] = sbyte({{(8*96){1'b0}}, SLOT_UNIT}, UNIT_LEN, ri[15:0]);
+        for (ri = 0; ri < 112; ri = ri + 1)
+            rom[64 + ri] = sbyte(SLOT_CFG, CFG_LEN, ri[15:0]);
+        for (ri = 0; ri < 20; ri = ri + 1)
+            rom[176 + ri] = SLOT_LAYOUT[8*ri +: 8];
+    end
+    reg [7:0] rom_a;
+    wire [7:0] rom_d = rom[rom_a];
+    wire [15:0] pk = pcnt[15:0];  // the CONFIG payload byte being read
+    always @(*)
+        if (s != S_IDLE)
+            rom_a = s_type == T_ACK ? 8'd196 + s_pc[7:0] : s_pc[7:0];
+        else if (pk < 16'd16)
+            rom_a = 8'd48 + pk[7:0];
+        else if (pk < 16'd36)
+            rom_a = 8'd160 + pk[7:0];  // 176 + (pk - 16)
+        else if (pk < 16'd148)
+            rom_a = 8'd28 + pk[7:0];  // 64 + (pk - 36)
+        else
+            rom_a = 8'd255;
+
     reg [7:0] pay;
     always @(*) begin
         pay = 8'd0;
         case (s_type)
-        T_INFO:
-            if (s_pc < 16'd4) pay = b32(32'd1, s_pc[1:0]);
-            else if (s_pc < 16'd8) pay = b32(MAX_PAYLOAD, s_pc[1:0]);
-            else if (s_pc < 16'd12) pay = b32(WINDOW, s_pc[1:0]);
-            else if (s_pc < 16'd16) pay = b32(32'd1, s_pc[1:0]);
-            else if (s_pc < 16'd48) pay = sbyte({{(8*80){1'b0}}, BOARD_ID}, ID_LEN, s_pc - 16'd16);
-            else if (s_pc < 16'd64) pay = sbyte({{(8*96){1'b0}}, SLOT_UNIT}, UNIT_LEN, s_pc - 16'd48);
-            else pay = sbyte(SLOT_CFG, CFG_LEN, s_pc - 16'd64);
-        T_ACK:
-            if (s_pc < 16'd4) pay = b32(LATENCY, s_pc[1:0]);
-            else if (s_pc < 16'd8) pay = b32(CLOCK_HZ, s_pc[1:0]);
-            else if (s_pc == 16'd8) pay = IN_STRIDE8;
-            else if (s_pc == 16'd9) pay = OUT_STRIDE8;
+        T_INFO, T_ACK:
+            pay = rom_d;
         T_BYE_ACK:
             if (s_pc < 16'd8) pay = b64(c_records, s_pc[2:0]);
             else if (s_pc < 16'd16) pay = b64(c_cycles, s_pc[2:0]);
@@ -259,8 +294,8 @@ module np_link_engine #(
     assign out_valid = s == S_HDR || s == S_PCRC || (s == S_PAY && (s_type != T_RESULT || have_orec));
     assign out_last = s == S_PCRC && s_cc == 2'd3;
     wire o_take = out_valid && out_ready;
-    assign th_en = o_take && s == S_HDR && s_hc < 5'd20;
-    assign tp_en = o_take && s == S_PAY;
+    assign tc_en = o_take && ((s == S_HDR && s_hc < 5'd20) || s == S_PAY);
+    assign tc_init = s_go || (o_take && s == S_HDR && s_hc == 5'd23);
 
     always @(posedge clk)
         if (rst) begin
@@ -334,8 +369,7 @@ module np_link_engine #(
     assign busy = m != M_HDR || hcnt != 5'd0;
 
     wire consume = b_valid && (m == M_HDR || m == M_PAY || (m == M_FEED && !irec_full && fbytes != {1'b0, h_len}));
-    assign rh_en = consume && m == M_HDR && hcnt < 5'd20;
-    assign rp_en = consume && m == M_PAY && pcnt < {1'b0, h_len};
+    assign rc_en = consume && ((m == M_HDR && hcnt < 5'd20) || (m == M_PAY && pcnt < {1'b0, h_len}));
 
     wire hdr_ok = h_sync0 == 8'h4E && h_sync1 == 8'h50 && rh_crc == h_hcrc;
     /* verilator lint_off UNUSEDSIGNAL */
@@ -352,11 +386,6 @@ module np_link_engine #(
 `else
     wire seq_ok = h_seq == rx_expect;
 `endif
-    // CONFIG payload byte k expected for the slot.
-    wire [15:0] pk = pcnt[15:0];
-    wire [7:0] exp_name = sbyte({{(8*96){1'b0}}, SLOT_UNIT}, UNIT_LEN, pk);
-    wire [7:0] exp_lay = SLOT_LAYOUT[8*(pk - 16'd16) +: 8];
-    wire [7:0] exp_text = sbyte(SLOT_CFG, CFG_LEN, pk - 16'd36);
     wire [31:0] data_in_bytes = {16'd0, h_count} * IN_STRIDE;
     wire [31:0] data_out_bytes = {16'd0, h_count} * OUT_STRIDE;
 
@@ -471,8 +500,7 @@ module np_link_engine #(
                      ((hcnt == 5'd0 && b != 8'h4E) || (hcnt == 5'd1 && b != 8'h50));
 
     always @(*) begin
-        rh_init = rst || hunt_skip || g_reject || g_commit || feed_done;
-        rp_init = m == M_HCHK;
+        rc_init = rst || hunt_skip || g_reject || g_commit || feed_done || m == M_HCHK;
     end
 
     always @(posedge clk)
@@ -534,9 +562,9 @@ module np_link_engine #(
             M_PAY:
                 if (consume) begin
                     if (pcnt < {1'b0, h_len}) begin
-                        if (pk < 16'd16 && b != exp_name) name_bad <= 1'b1;
-                        if (pk >= 16'd16 && pk < 16'd36 && b != exp_lay) lay_bad <= 1'b1;
-                        if (pk >= 16'd36 && b != exp_text) text_bad <= 1'b1;
+                        if (pk < 16'd16 && b != rom_d) name_bad <= 1'b1;
+                        if (pk >= 16'd16 && pk < 16'd36 && b != rom_d) lay_bad <= 1'b1;
+                        if (pk >= 16'd36 && b != rom_d) text_bad <= 1'b1;
                     end else
                         h_pcrc <= {b, h_pcrc[31:8]};
                     pcnt <= pcnt + 17'd1;
