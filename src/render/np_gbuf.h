@@ -82,9 +82,10 @@
  *   - an engine with a seek (texel) places pixel k0 directly: u0 + k0 du and
  *     s + k0 ds, one more dependency level of the set-up engine after du:
  *     the run is timed as a span of its own k1 - k0 pixels, plus
- *     seek = (octaves + 1) (ceil(3 / P) + Lm - 1) clocks for texel (P, Lm
- *     its setup_mults, mult_lat), added serially (not hidden behind the
- *     previous run: an upper bound); 0 for an engine the model does not know;
+ *     seek = the unit's np_unit_span.seek_cycles (texel: (octaves + 1)
+ *     (ceil(3 / P) + Lm - 1) clocks, P, Lm its setup_mults, mult_lat), added
+ *     serially (not hidden behind the previous run: an upper bound); 0 for a
+ *     unit that declares none;
  *   - an engine without (fdiff: forward differences cannot skip) steps
  *     from k = 0: the run is timed as the span's first k1 pixels, so the
  *     k0 skipped pixels cost a clock each (and any cell set-ups they need),

@@ -9,7 +9,6 @@
 
 #include "np_aacount.h"
 #include "np_common.h"
-#include "np_texel.h"
 #include "np_texreg.h"
 #include "render_view.h"
 
@@ -457,16 +456,6 @@ void np_gbuf_uv_f(const np_gbuf *g, size_t i, double uv[2])
 
 /* --- Deferred shading --- */
 
-/* The seek's clocks on the engines the cost model knows (np_gbuf.h); 0 for the others. */
-static unsigned seek_cycles(const np_span_engine *e, const void *ecfg, const np_tex_regs *r)
-{
-    if (e == &np_texel_engine) {
-        const np_texel_cfg *c = ecfg;
-        return (r->n_oct + 1u) * ((3u + c->setup_mults - 1u) / c->setup_mults + c->mult_lat - 1u);
-    }
-    return 0;
-}
-
 static int selected(const np_gbuf *g, const uint16_t *mask, uint32_t si, size_t i)
 {
     if (g->span[i] != si)
@@ -492,7 +481,7 @@ int np_gbuf_shade(const np_gbuf *g, const np_unit *u, const void *cfg, const uin
     np_gbuf_lightq lq;
     np_gbuf_light_setup(g->sc, &lq);
     e->init(core, ecfg, &g->regs);
-    const unsigned seek = e->seek ? seek_cycles(e, ecfg, &g->regs) : 0;
+    const unsigned seek = e->seek && u->span->seek_cycles ? u->span->seek_cycles(ecfg, &g->regs) : 0;
     /* The runs as the sequencer sees them (timing only; cycles below). */
     size_t n_tim = 0, cap_tim = 0;
     np_span *tim = NULL;

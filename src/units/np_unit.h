@@ -74,6 +74,14 @@ typedef struct np_unit_span {
      * model that does not hold what the declaration keeps.
      */
     const char *(*trace)(const void *ecfg, const struct np_tex_regs *r, struct np_rng *g, np_trace *t, size_t n);
+    /*
+     * Optional (NULL: 0, the cost model does not know the engine's seek):
+     * the clocks the engine's seek (np_span_engine.seek) takes to place a
+     * pixel directly, for its configuration ecfg and registers r: the
+     * G-buffer's cost model adds them to a run that starts inside its
+     * sub-span (np_gbuf.h, "Deferred shading").
+     */
+    unsigned (*seek_cycles)(const void *ecfg, const struct np_tex_regs *r);
 } np_unit_span;
 
 /* The engine's configuration inside a unit's configuration block cfg. */
