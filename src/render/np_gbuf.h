@@ -132,8 +132,8 @@
 
 #include "np_render.h"
 #include "np_scene.h"
-#include "np_span.h"
 #include "np_unit.h"
+#include "np_unit_span.h"
 
 enum {
     NP_GBUF_M_MAX = 4,
