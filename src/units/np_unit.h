@@ -26,7 +26,9 @@
 extern "C" {
 #endif
 
-struct np_scene;
+struct np_ref_texture;
+struct np_aacount_scene;
+struct np_hatch_scene;
 struct np_rng;
 struct np_unit_timing;
 struct np_span_engine;
@@ -89,6 +91,26 @@ static inline const void *np_unit_span_cfg(const np_unit_span *s, const void *cf
 {
     return (const char *)cfg + s->engine_cfg_offset;
 }
+
+/*
+ * A scene as the units see it (np_unit.cfg_scene): what a unit may read of a
+ * scene, in the registry's and the units' own types. A client that has a
+ * scene adapts it to this (the renderer: np_scene_for_units, src/render/), so
+ * the registry and the units know nothing of the scene file or the renderer.
+ * A unit whose scene section is its own declares the section's type with the
+ * unit (np_aacount_scene in unit_aacount.h, np_hatch_scene in unit_hatch.h).
+ */
+typedef struct np_unit_scene {
+    const char *name;                   /* for messages and the names of register sets */
+    unsigned width;                     /* image width in pixels: the longest span */
+    const struct np_ref_texture *tex;   /* the scene's texture (np_ref.h) */
+    /* The box of the texture coordinates over the scene's explicit polygons (all 0 when it has none). */
+    double tex_lo[3], tex_hi[3];
+    int size_registers;                 /* a tool asks for registers sized to the scene (np_su_cfg_scene) */
+    const char *noise_unit;             /* the unit the texture's octaves read ("simplex4"); NULL: value noise */
+    const struct np_aacount_scene *aa;  /* the "aa" section; NULL: none */
+    const struct np_hatch_scene *hatch; /* the "hatch" section; NULL: none */
+} np_unit_scene;
 
 enum { NP_UNIT_MAX_FIELDS = 8, NP_UNIT_CFG_MAX = 256 };
 
@@ -263,7 +285,7 @@ typedef struct np_unit {
      * defaults) for what scene sc needs. 1: the scene uses the unit and cfg
      * is set; 0: it does not; -1 with a message in err.
      */
-    int (*cfg_scene)(void *cfg, const struct np_scene *sc, char *err, size_t errlen);
+    int (*cfg_scene)(void *cfg, const np_unit_scene *sc, char *err, size_t errlen);
     /*
      * Optional (NULL: not a span unit): the span engine. A unit with one and
      * a cfg_scene that accepts a scene is rendered by `noisepipe render`.
