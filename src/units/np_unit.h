@@ -227,7 +227,8 @@ typedef struct np_unit {
     size_t (*boundary)(const void *cfg, uint64_t (*in)[NP_UNIT_MAX_FIELDS], size_t max);
     /*
      * Optional (NULL: the sweep calls eval and ref per input): the exhaustive
-     * sweep's fast path (np_sweep.h) for a unit with inputs x, y, z (u16 each).
+     * sweep's fast path (its constants: np_unit_sweep.h; np_sweep.h runs it)
+     * for a unit with inputs x, y, z (u16 each).
      * For the 256 * rows inputs (x0 + t, y0 + r, z), 0 <= t < 256,
      * 0 <= r < rows, where x0 is a multiple of 256, rows a power of two <= 256
      * and y0 a multiple of rows, writes at index i = (f * rows + r) * 256 + t
