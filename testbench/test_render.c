@@ -15,7 +15,7 @@
 #include "np_fdiff.h"
 #include "np_render.h"
 #include "np_report_scan.h"
-#include "np_stream.h"
+#include "np_vec_stream.h"
 #include "np_test.h"
 #include "np_texel.h"
 #include "np_texreg.h"
