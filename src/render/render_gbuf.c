@@ -7,14 +7,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "np_aacount.h"
 #include "np_common.h"
 #include "np_texreg.h"
 #include "render_view.h"
 
 /*
- * The paper's index matrices and the resolve's reciprocal ROM are the unit's
- * (rtl_model/np_aacount.h: np_aacount_mask, np_aacount_resolve): one
+ * The paper's index matrices and the resolve's reciprocal ROM are the unit's,
+ * through the registry (np_unit.samples, kept in np_gbuf.samples): one
  * definition, the hardware's.
  */
 
@@ -274,6 +273,12 @@ int np_gbuf_build(const np_scene *sc, unsigned m, np_gbuf *g, char *err, size_t 
     memset(g, 0, sizeof *g);
     if (m < 1 || m > NP_GBUF_M_MAX) {
         snprintf(err, errlen, "G-buffer: m = %u samples per pixel side: expected 1..%d", m, NP_GBUF_M_MAX);
+        return -1;
+    }
+    for (size_t i = 0; !g->samples && np_unit_at(i); i++)
+        g->samples = np_unit_at(i)->samples;
+    if (!g->samples) {
+        snprintf(err, errlen, "G-buffer: no unit of the registry gives a sample order and resolve (np_unit.samples)");
         return -1;
     }
     g->sc = sc;
@@ -596,7 +601,7 @@ int np_gbuf_shade_first(const np_gbuf *g, const np_unit *u, const void *cfg, uin
         free(all);
         return -1;
     }
-    const uint16_t first = np_aacount_mask(g->m, 1);
+    const uint16_t first = g->samples->mask(g->m, 1);
     unsigned j0 = 0;
     while (!((first >> j0) & 1u))
         j0++;
@@ -625,7 +630,7 @@ void np_gbuf_resolve(const np_gbuf *g, const uint16_t *mask, const uint8_t *rgb,
                 s++;
             }
         for (int ch = 0; ch < 3; ch++)
-            out[3 * p + (size_t)ch] = s ? np_aacount_resolve(sum[ch], s) : round8(g->sc->background[ch]);
+            out[3 * p + (size_t)ch] = s ? g->samples->resolve(sum[ch], s) : round8(g->sc->background[ch]);
     }
 }
 

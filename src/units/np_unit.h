@@ -86,6 +86,19 @@ typedef struct np_unit_span {
     unsigned (*seek_cycles)(const void *ecfg, const struct np_tex_regs *r);
 } np_unit_span;
 
+/*
+ * A supersampling unit's sample order and resolve (np_unit.samples): what a
+ * G-buffer renderer needs of a unit that chooses how many of a pixel's m x m
+ * samples to shade, so that the image it resolves is the unit's, bit for bit
+ * (src/render/np_gbuf.h takes the first unit of the registry that has one).
+ */
+typedef struct np_unit_samples {
+    /* The first s samples of an m x m pixel (1 <= m <= 4) as a mask: bit b m + a is sample (a, b); s >= m^2 gives all. */
+    uint16_t (*mask)(unsigned m, unsigned s);
+    /* One 8-bit channel of s shaded samples (1 <= s <= 16) that sum to sum (<= 255 s), as the unit resolves it. */
+    uint8_t (*resolve)(uint32_t sum, unsigned s);
+} np_unit_samples;
+
 /* The engine's configuration inside a unit's configuration block cfg. */
 static inline const void *np_unit_span_cfg(const np_unit_span *s, const void *cfg)
 {
@@ -326,6 +339,11 @@ typedef struct np_unit {
      * cases, in runs and shuffled). Call it through np_unit_eval_n.
      */
     void (*eval_n)(const void *cfg, const uint64_t *in, uint64_t *out, size_t n);
+    /*
+     * Optional (NULL: the unit does not choose samples): its sample order and
+     * resolve, for the G-buffer renderer (np_unit_samples).
+     */
+    const np_unit_samples *samples;
 } np_unit;
 
 /*

@@ -331,6 +331,9 @@ static int cfg_scene(void *cfg, const np_unit_scene *sc, char *err, size_t errle
     return 1;
 }
 
+/* The sample order (the paper's B_m) and the resolve, one definition for the G-buffer renderer too. */
+static const np_unit_samples samples = { np_aacount_mask, np_aacount_resolve };
+
 const np_unit np_unit_aacount = {
     .name = "aacount",
     .summary = "adaptive supersampling sample count: depth variance, normal cone, luma range (Hollaender et al.)",
@@ -351,4 +354,5 @@ const np_unit np_unit_aacount = {
     .trace = trace,
     .conformance_configs = conformance_configs,
     .eval_n = eval_n,
+    .samples = &samples,
 };
