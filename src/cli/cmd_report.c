@@ -654,7 +654,7 @@ static int write_scene(const char *dir, const char *path)
     for (size_t i = 0; (u = np_unit_at(i)) != NULL && rc == NP_EXIT_OK && n < MAXU; i++) {
         if (!u->datapath)
             continue;
-        int used = u->cfg_scene ? u->cfg_scene(&su[n].cfg, &sc, err, sizeof err) : 0;
+        int used = np_scene_cfg_unit(u, &su[n].cfg, &sc, err, sizeof err);
         if (used < 0) {
             np_err("report", "%s: %s: %s", path, u->name, err);
             rc = NP_EXIT_USAGE;
