@@ -279,6 +279,11 @@ function(np_rtl_cosim_build unit name top defs gparams)
     endforeach()
     string(JOIN "," keys ${keys})
     string(APPEND cflags " -DNP_COSIM_NDIM=${model} -DNP_COSIM_KEYS=${keys}")
+    # A fault copy runs only until its mismatches show (20,000 cycles): its Verilated C++ at -O0,
+    # as np_rtl_builds' fault benches (simplexn n = 4: 17.5 s -> 10.2 s to build, 0.5 s to run).
+    if(name MATCHES "^fault_")
+      set(vopt -MAKEFLAGS OPT_FAST=-O0 -MAKEFLAGS OPT_SLOW=-O0 -MAKEFLAGS OPT_GLOBAL=-O0)
+    endif()
     set_property(GLOBAL PROPERTY np_cosim_unit_${unit}_${name} "${model}")
     set_property(GLOBAL PROPERTY np_cosim_keys_${unit}_${name} "${keys}")
   endif()
