@@ -383,11 +383,12 @@ int main(int argc, char **argv)
     double t_both = seconds_since(t0);
     uint64_t n[5];
     np_cosim_counts(m, n);
-    std::printf("cosim %s cfg %s%s%s: %llu cycles, %llu inputs, %llu out_valid cycles compared, %llu input bubbles, "
-                "%llu output stalls: %llu mismatches (%.2f s)\n",
+    // Results delivered: each compared at its transfer (and on every stalled cycle before it: out_valid cycles).
+    std::printf("cosim %s cfg %s%s%s: %llu cycles, %llu inputs, %llu results delivered, %llu out_valid cycles compared, "
+                "%llu input bubbles, %llu output stalls: %llu mismatches (%.2f s)\n",
                 unit, cfg, in_reg ? " in_reg" : "", out_skid ? " out_skid" : "", (unsigned long long)n[0],
-                (unsigned long long)n[1], compared, (unsigned long long)n[3], (unsigned long long)n[4], mismatches,
-                t_both);
+                (unsigned long long)n[1], (unsigned long long)n[2], compared, (unsigned long long)n[3],
+                (unsigned long long)n[4], mismatches, t_both);
     if (aac_bits) {
         // How the compared windows spread over the counts: each value 0..16 with its number of cycles.
         static const char *const name[4] = {"s", "sd", "sn", "ss"};
