@@ -21,3 +21,8 @@ endforeach()
 add_test(NAME aa_render.cli_no_scene COMMAND ${CMAKE_COMMAND}
   -DCMD=$<TARGET_FILE:noisepipe> -DARGS=render\;--aa\;m=3 -DWANT_RC=2 "-DWANT=no scene"
   -P ${CMAKE_CURRENT_SOURCE_DIR}/render_expect.cmake)
+# The command's normal output, byte for byte: stdout and every PNG, SVG and Markdown file against
+# vectors/images/aa_hashes.txt (aa_golden.cmake, which also proves a flipped byte is caught).
+add_test(NAME aa_render.golden COMMAND ${CMAKE_COMMAND} -DNOISEPIPE=$<TARGET_FILE:noisepipe>
+  -DOUT=${CMAKE_CURRENT_BINARY_DIR}/aa-golden -DLIST=${PROJECT_SOURCE_DIR}/vectors/images/aa_hashes.txt
+  -P ${CMAKE_CURRENT_SOURCE_DIR}/aa_golden.cmake)
