@@ -43,3 +43,17 @@ add_test(NAME fpga.bad_usage
                  chk 'is not an RTL parameter' fpga --unit classic3 --rtl-param FOO=1"
           $<TARGET_FILE:noisepipe>)
 set_tests_properties(fpga.bad_usage PROPERTIES WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+
+# The board's bitstream (docs/board.md): np_board_hx8k with hx8k_breakout.pcf through the flow by
+# rtl_model/verilog/board/hx8k_bitstream.sh (no noisepipe needed): 12 MHz met by nextpnr and by
+# icetime, every port on its pin, iceunpack reads board.bin back. About 1.5 min of one core.
+# `cmake --build build --target board_bitstream` makes build/board/board.bin the same way.
+set(np_board_bit_script ${PROJECT_SOURCE_DIR}/rtl_model/verilog/board/hx8k_bitstream.sh)
+add_test(NAME fpga.board.bitstream
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/board_bitstream_check.sh ${np_board_bit_script} ${CMAKE_CURRENT_BINARY_DIR}/fpga_board)
+set_tests_properties(fpga.board.bitstream PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 900 LABELS "fpga;board;nosan"
+  PASS_REGULAR_EXPRESSION "logic cells: [0-9]+/ *7680.*PASS at 12\\.00 MHz.*12 MHz met.*pins: 12 ports on their \\.pcf pins, 0 wrong.*reads back as an 8k device")
+add_custom_target(board_bitstream
+  COMMAND ${np_board_bit_script} ${CMAKE_BINARY_DIR}/board
+  COMMENT "iCE40-HX8K breakout bitstream: ${CMAKE_BINARY_DIR}/board/board.bin"
+  USES_TERMINAL VERBATIM)

@@ -123,6 +123,11 @@ add_test(NAME rtl.board.top.lint
   COMMAND sh -c "command -v verilator > /dev/null || { echo 'verilator not installed: skipped'; exit 77; }
                  verilator --lint-only -Wall -I\"$0/..\" --top-module np_board_top \"$0/np_board_top.v\" \"$0/np_uart_rx.v\" \"$0/np_uart_tx.v\" \"$0/np_board_core.v\" \"$0/np_link_engine.v\" \"$0/np_crc32.v\" \"$0/../np_classic3.v\" \"$0/../np_pipe_in_reg.v\" \"$0/../np_pipe_skid.v\" && echo 'lint clean'" ${NP_BOARD_SRC})
 set_tests_properties(rtl.board.top.lint PROPERTIES SKIP_RETURN_CODE 77 LABELS "rtl;board;nosan" PASS_REGULAR_EXPRESSION "lint clean")
+# The board's top (np_board_hx8k.v: np_board_top with the HX8K breakout's clock, power-on reset and LEDs)
+add_test(NAME rtl.board.hx8k.lint
+  COMMAND sh -c "command -v verilator > /dev/null || { echo 'verilator not installed: skipped'; exit 77; }
+                 verilator --lint-only -Wall -I\"$0/..\" --top-module np_board_hx8k \"$0/np_board_hx8k.v\" \"$0/np_board_led_hold.v\" \"$0/np_board_top.v\" \"$0/np_uart_rx.v\" \"$0/np_uart_tx.v\" \"$0/np_board_core.v\" \"$0/np_link_engine.v\" \"$0/np_crc32.v\" \"$0/../np_classic3.v\" \"$0/../np_pipe_in_reg.v\" \"$0/../np_pipe_skid.v\" && echo 'lint clean'" ${NP_BOARD_SRC})
+set_tests_properties(rtl.board.hx8k.lint PROPERTIES SKIP_RETURN_CODE 77 LABELS "rtl;board;nosan" PASS_REGULAR_EXPRESSION "lint clean")
 np_board_verilate(e2e np_board_top board_e2e.cpp "" ${NP_BOARD_TOP_SRC})
 np_board_verilate(e2e_fault_flip np_board_top board_e2e.cpp "-DNP_FAULT_FLIP" ${NP_BOARD_TOP_SRC})
 np_board_run(rtl.board.e2e e2e pass

@@ -57,3 +57,21 @@ if(NP_HAVE_USB)
     message(STATUS "noisepipe: umockdev not found: the usb.* tests of the libusb path are not built")
   endif()
 endif()
+
+if(NP_HAVE_FTDI)
+# noisepipe stream --ftdi (src/link/link_ftdi.c, libftdi1) without a board: the refusals, each
+# exit 2 naming its option, and no FT2232H on the bus (exit 2, "no such USB device").
+add_test(NAME link.ftdi_refusals
+  COMMAND sh -c "chk() { want=\"$1\"; shift; \"$0\" stream \"$@\" > /dev/null 2> ftdi_err.txt; s=$?;
+                   test $s -eq 2 || { echo \"$*: exit $s\"; exit 1; }; grep -q -- \"$want\" ftdi_err.txt || { echo \"$*:\"; cat ftdi_err.txt; exit 1; }; }
+                 chk '--ftdi 0403:zz: expected VID:PID' --ftdi 0403:zz --unit classic3 --random 10
+                 chk '--ftdi-interface E: expected A, B, C or D' --ftdi --ftdi-interface E --unit classic3 --random 10
+                 chk '--baud 100: expected a decimal number in 300..12000000' --ftdi --baud 100 --unit classic3 --random 10
+                 chk '--baud goes with --ftdi' --emulate --baud 9600 --unit classic3 --random 10
+                 chk 'give one of --device' --ftdi --emulate --unit classic3 --random 10
+                 chk '--ftdi 0403:6010: no such USB device' --ftdi --unit classic3 --random 10
+                 echo 'refusals ok'"
+          $<TARGET_FILE:noisepipe>)
+set_tests_properties(link.ftdi_refusals PROPERTIES WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR} LABELS "link"
+  PASS_REGULAR_EXPRESSION "refusals ok")
+endif()

@@ -18,7 +18,8 @@
 #include "np_vec.h"
 
 static const char usage_text[] =
-    "usage: noisepipe stream (--device VID:PID | --emulate) [options] (VECTORS | --random N)\n"
+    "usage: noisepipe stream (--device VID:PID | --ftdi [VID:PID] | --emulate)\n"
+    "                        [options] (VECTORS | --random N)\n"
     "\n"
     "Stream the vectors to a board running the unit, verify every result bit for\n"
     "bit against the expected outputs, report TestFloat style.\n"
@@ -34,6 +35,13 @@ static const char usage_text[] =
     "  --ep-out 0xA        bulk OUT endpoint address (default: the interface's first)\n"
     "  --ep-in 0xB         bulk IN endpoint address (default: the interface's first)\n"
     "  --in-flight N       USB transfers in flight each way (default 8)\n"
+    "  --ftdi [VID:PID]    the board behind an FTDI FT2232H's UART channel (the\n"
+    "                      iCE40-HX8K breakout, docs/board.md), through libftdi1;\n"
+    "                      default 0403:6010\n"
+    "  --ftdi-interface C  the FT2232H's channel A..D (default B: the FPGA's UART)\n"
+    "  --ftdi-serial S     the FTDI chip with this serial number (default: the first)\n"
+    "  --baud N            the UART's rate (default 3000000: the gateware's); 8N1,\n"
+    "                      RTS/CTS flow control\n"
     "  --emulate           no USB: the board emulator (cycle-accurate models) in process\n"
     "  --inject F:INDEX[:BIT]  with --emulate: make the emulated board fail at vector\n"
     "                      INDEX; F = wrong-bit, corrupt, short, drop, silent\n"
@@ -60,7 +68,9 @@ static const char usage_text[] =
 
 typedef struct stream_args {
     const char *vectors, *unit, *config, *device, *journal, *inject;
-    uint64_t random_n, seed, max_errors, frame, window, in_flight;
+    const char *ftdi, *ftdi_serial; /* ftdi: "" for the default VID:PID */
+    uint64_t random_n, seed, max_errors, frame, window, in_flight, baud;
+    int ftdi_interface, have_baud;
     int have_random, emulate, resume, force, quiet;
     int interface, ep_out, ep_in;
     double timeout;
@@ -92,6 +102,21 @@ static int ep_num(const char *name, const char *v, uint64_t lo, uint64_t hi, uin
     return -1;
 }
 
+static int parse_device(const char *s, uint16_t *vid, uint16_t *pid)
+{
+    char *end;
+    unsigned long v = strtoul(s, &end, 16);
+    if (end == s || *end != ':' || v > 0xffff)
+        return -1;
+    const char *p = end + 1;
+    unsigned long q = strtoul(p, &end, 16);
+    if (end == p || *end || q > 0xffff)
+        return -1;
+    *vid = (uint16_t)v;
+    *pid = (uint16_t)q;
+    return 0;
+}
+
 static int parse_args(int argc, char **argv, stream_args *a)
 {
     memset(a, 0, sizeof *a);
@@ -99,6 +124,8 @@ static int parse_args(int argc, char **argv, stream_args *a)
     a->max_errors = 20;
     a->interface = a->ep_out = a->ep_in = -1;
     a->timeout = 2.0;
+    a->ftdi_interface = -1;
+    a->baud = 3000000;
     for (int i = 1; i < argc; i++) {
         const char *v = NULL;
         uint64_t x;
@@ -106,6 +133,33 @@ static int parse_args(int argc, char **argv, stream_args *a)
         const char *arg = argv[i];
         if (strcmp(arg, "--emulate") == 0) {
             a->emulate = 1;
+        } else if (strcmp(arg, "--ftdi") == 0) {
+            /* VID:PID is optional: the next word is taken when it has a ':' (checked later) */
+            a->ftdi = "";
+            if (i + 1 < argc && argv[i + 1][0] != '-' && strchr(argv[i + 1], ':'))
+                a->ftdi = argv[++i];
+        } else if (strncmp(arg, "--ftdi=", 7) == 0) {
+            a->ftdi = arg + 7;
+        } else if ((r = opt(argc, argv, &i, "--ftdi-interface", &v)) != 0) {
+            if (r < 0)
+                return -1;
+            if (!((v[0] >= 'A' && v[0] <= 'D') || (v[0] >= 'a' && v[0] <= 'd')) || v[1]) {
+                np_err("stream", "--ftdi-interface %s: expected A, B, C or D (the FT2232H has A and B)", v);
+                return -1;
+            }
+            a->ftdi_interface = (v[0] | 0x20) - 'a';
+        } else if ((r = opt(argc, argv, &i, "--ftdi-serial", &v)) != 0) {
+            if (r < 0)
+                return -1;
+            if (!v[0] || strlen(v) >= 128) {
+                np_err("stream", "--ftdi-serial '%s': expected the chip's serial number, 1..127 characters", v);
+                return -1;
+            }
+            a->ftdi_serial = v;
+        } else if ((r = opt(argc, argv, &i, "--baud", &v)) != 0) {
+            if (r < 0 || num("--baud", v, 300, 12000000, &a->baud) != 0)
+                return -1;
+            a->have_baud = 1;
         } else if (strcmp(arg, "--resume") == 0) {
             a->resume = 1;
         } else if (strcmp(arg, "--force") == 0) {
@@ -186,8 +240,8 @@ static int parse_args(int argc, char **argv, stream_args *a)
         np_err("stream", "give a vector file or --random N (noisepipe stream --help)");
         return -1;
     }
-    if (!a->device == !a->emulate) {
-        np_err("stream", "give --device VID:PID or --emulate (noisepipe stream --help)");
+    if (!!a->device + !!a->emulate + !!a->ftdi != 1) {
+        np_err("stream", "give one of --device VID:PID, --ftdi [VID:PID] or --emulate (noisepipe stream --help)");
         return -1;
     }
     if (a->inject && !a->emulate) {
@@ -198,25 +252,14 @@ static int parse_args(int argc, char **argv, stream_args *a)
         np_err("stream", "--random needs --unit");
         return -1;
     }
+    if (!a->ftdi && (a->ftdi_interface >= 0 || a->ftdi_serial || a->have_baud)) {
+        np_err("stream", "%s goes with --ftdi", a->ftdi_serial ? "--ftdi-serial" : a->have_baud ? "--baud" : "--ftdi-interface");
+        return -1;
+    }
     if (a->resume && a->force) {
         np_err("stream", "--resume continues a journal, --force replaces it: give one of them");
         return -1;
     }
-    return 0;
-}
-
-static int parse_device(const char *s, uint16_t *vid, uint16_t *pid)
-{
-    char *end;
-    unsigned long v = strtoul(s, &end, 16);
-    if (end == s || *end != ':' || v > 0xffff)
-        return -1;
-    const char *p = end + 1;
-    unsigned long q = strtoul(p, &end, 16);
-    if (end == p || *end || q > 0xffff)
-        return -1;
-    *vid = (uint16_t)v;
-    *pid = (uint16_t)q;
     return 0;
 }
 
@@ -443,6 +486,16 @@ static void close_target(np_board *board, np_usb_board *ub)
 #endif
 }
 
+static void close_all(np_board *board, np_usb_board *ub, np_ftdi_board *fb)
+{
+    close_target(board, ub);
+#ifdef NOISEPIPE_HAVE_FTDI
+    np_link_ftdi_close(fb);
+#else
+    (void)fb;
+#endif
+}
+
 static double cpu_seconds(void)
 {
     struct rusage ru;
@@ -474,6 +527,20 @@ int np_cmd_stream(int argc, char **argv)
             return NP_EXIT_USAGE;
         }
     }
+    uint16_t fvid = 0x0403, fpid = 0x6010;
+    int ftdi_baud = 0;
+    if (a.ftdi) {
+#ifndef NOISEPIPE_HAVE_FTDI
+        np_err("stream", "this noisepipe was built without the FTDI transport (libftdi1 was not found when it "
+                         "was configured): install libftdi1-dev and rebuild");
+        return NP_EXIT_USAGE;
+#endif
+        if (a.ftdi[0] && parse_device(a.ftdi, &fvid, &fpid) != 0) {
+            np_err("stream", "--ftdi %s: expected VID:PID in hex, e.g. 0403:6010", a.ftdi);
+            return NP_EXIT_USAGE;
+        }
+    }
+    (void)ftdi_baud;
     np_board_opts bo;
     memset(&bo, 0, sizeof bo);
     if (a.inject && parse_inject(a.inject, &bo.fault) != 0) {
@@ -528,6 +595,8 @@ int np_cmd_stream(int argc, char **argv)
     snprintf(tg.size, sizeof tg.size, "%s", size);
     np_board *board = NULL;
     np_usb_board *ub = NULL;
+    np_ftdi_board *fb = NULL;
+    (void)fb;
     np_usb_info ui;
     memset(&ui, 0, sizeof ui);
     char err[1024];
@@ -538,6 +607,27 @@ int np_cmd_stream(int argc, char **argv)
             return NP_EXIT_USAGE;
         }
         snprintf(tg.target, sizeof tg.target, "emulator");
+    } else if (a.ftdi) {
+#ifdef NOISEPIPE_HAVE_FTDI
+        np_ftdi_opts fo;
+        np_ftdi_info fi;
+        memset(&fo, 0, sizeof fo);
+        fo.vid = fvid;
+        fo.pid = fpid;
+        fo.interface = a.ftdi_interface >= 0 ? a.ftdi_interface : 1;
+        fo.baud = (unsigned)a.baud;
+        fo.timeout = a.timeout;
+        if (a.ftdi_serial)
+            snprintf(fo.serial, sizeof fo.serial, "%s", a.ftdi_serial);
+        if (np_link_ftdi_open(&fb, &fo, &fi, err, sizeof err) != 0) {
+            np_err("stream", "%s", err);
+            np_link_job_free(&j);
+            return NP_EXIT_USAGE;
+        }
+        snprintf(tg.target, sizeof tg.target, "ftdi %04x:%04x interface %c serial %s", fvid, fpid,
+                 'A' + fo.interface, fi.serial[0] ? fi.serial : "none");
+        ftdi_baud = fi.baud;
+#endif
     } else {
 #ifdef NOISEPIPE_HAVE_USB
         uo.interface = a.interface;
@@ -560,7 +650,7 @@ int np_cmd_stream(int argc, char **argv)
     if (np_journal_open_bound(&jn, journal, &j, &tg, a.resume, a.force, err, sizeof err) != 0) {
         np_err("stream", "%s", err);
         np_journal_close(&jn);
-        close_target(board, ub);
+        close_all(board, ub, fb);
         np_link_job_free(&j);
         return NP_EXIT_USAGE;
     }
@@ -576,7 +666,7 @@ int np_cmd_stream(int argc, char **argv)
     rp.todo = j.n - jn.prior_checked;
     printf("stream: %s %s, %llu vectors (%s, %016llx) to %s\n", j.unit->name, j.cfg_text,
            (unsigned long long)j.n, source, (unsigned long long)j.hash,
-           a.emulate ? "the board emulator" : a.device);
+           a.emulate ? "the board emulator" : a.ftdi ? "the FT2232H" : a.device);
     if (!a.emulate)
         printf("target: %s\n", tg.target);
     if (journal)
@@ -604,7 +694,7 @@ int np_cmd_stream(int argc, char **argv)
         np_err("stream", "out of memory");
         np_interrupt_note(NULL);
         np_journal_close(&jn);
-        close_target(board, ub);
+        close_all(board, ub, fb);
         np_link_job_free(&j);
         return NP_EXIT_USAGE;
     }
@@ -624,7 +714,11 @@ int np_cmd_stream(int argc, char **argv)
     if (ub)
         np_link_usb_stream(ub, h);
 #endif
-    close_target(board, ub);
+#ifdef NOISEPIPE_HAVE_FTDI
+    if (fb)
+        np_link_ftdi_stream(fb, h);
+#endif
+    close_all(board, ub, fb);
     double cpu = cpu_seconds() - cpu0 - board_cpu;
     char jerr[512];
     int jsync = np_journal_sync(&jn, jerr, sizeof jerr);
@@ -649,6 +743,8 @@ int np_cmd_stream(int argc, char **argv)
                 printf("emulator CPU: %.3f s, %.0f ns per vector (cycle-accurate model)\n", board_cpu,
                        board_cpu / (double)s->verified * 1e9);
         }
+        if (ftdi_baud)
+            printf("ftdi: %d baud, 8N1, RTS/CTS, latency timer 1 ms\n", ftdi_baud);
         if (!a.emulate && ui.max_packet)
             printf("usb: endpoints 0x%02x/0x%02x, wMaxPacketSize %u, %u transfers in flight each way, IN transfers of %zu bytes\n",
                    ui.ep_out, ui.ep_in, ui.max_packet, ui.in_flight, ui.in_transfer);

@@ -568,4 +568,26 @@ void np_link_usb_stream(np_usb_board *b, np_host *h);
 /* Release the interface and close (NULL is fine). */
 void np_link_usb_close(np_usb_board *b);
 
+/* The FTDI FT2232H's UART channel through libftdi1 (link_ftdi.c; only with NOISEPIPE_HAVE_FTDI). */
+typedef struct np_ftdi_opts {
+    uint16_t vid, pid;     /* 0403:6010 for the FT2232H */
+    int interface;         /* 0..3 = A..D; the HX8K breakout's FPGA UART is B (1) */
+    unsigned baud;         /* 3000000 for the board's gateware */
+    char serial[128];      /* "" any */
+    double timeout;        /* seconds */
+} np_ftdi_opts;
+
+typedef struct np_ftdi_info {
+    char serial[128];      /* iSerialNumber, "" when none */
+    int baud;              /* the rate libftdi set (the chip's nearest) */
+} np_ftdi_info;
+
+typedef struct np_ftdi_board np_ftdi_board;
+
+/* Open, set the baud rate, 8N1, RTS/CTS, latency timer 1 ms, purge. 0, or -1 with err (usage). */
+int np_link_ftdi_open(np_ftdi_board **out, const np_ftdi_opts *o, np_ftdi_info *info, char *err,
+                      size_t errlen);
+void np_link_ftdi_stream(np_ftdi_board *b, np_host *h);
+void np_link_ftdi_close(np_ftdi_board *b);
+
 #endif /* NP_LINK_H */
