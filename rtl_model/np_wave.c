@@ -704,11 +704,22 @@ static unsigned ubits(int64_t m) { return np_bits_for_range(0, m, 0); }
  * the normal's six products (ny's two with fold only) and the fold compare.
  * The widths follow the register set's bounds (as the trains' do).
  */
-static void jac_datapath(np_dp *dp, const np_wave_unit *u, unsigned n, unsigned wsa, unsigned wgm)
+void np_wave_datapath_widths(const np_wave_unit *u, np_wave_dp_widths *w)
 {
-    np_dp d = *dp;
-    const unsigned nrm = u->c.normals, nt = nrm ? 6u : 4u;
+    const wave_bounds b = bounds_of(u);
+    const unsigned nt = u->c.normals ? 6u : 4u;
     int64_t mlj = 0, mly = 0, sum[NP_WAVE_NJ] = { 0 }, jb[NP_WAVE_NJ];
+    memset(w, 0, sizeof *w);
+    w->ap = ubits(b.ap);
+    w->yc = sbits(b.yc);
+    w->sa = sbits(b.sa);
+    w->xp = sbits(b.xp);
+    w->ys = sbits(b.ys);
+    w->xs = sbits(b.xs);
+    w->gm = ubits(b.gm);
+    w->bc = u->c.cap ? sbits(b.bc) : 0u;
+    if (!np_wave_has_jac(&u->c))
+        return;
     for (unsigned k = 0; k < u->r.n; k++) {
         const np_wave_train *t = &u->r.tr[k];
         int64_t e[4], ap = ((int64_t)t->amp + (u->c.irr ? t->airr : 0)) << (NP_WAVE_SIN_FRAC - NP_WAVE_AMP_FRAC);
@@ -725,11 +736,19 @@ static void jac_datapath(np_dp *dp, const np_wave_unit *u, unsigned n, unsigned 
         sum[5] += vz;
     }
     np_wave_jac_range_lsb(&u->r, jb);
-    unsigned wlj = sbits(mlj), wly = sbits(mly), wjs = 0, wj = 0;
+    w->lj = sbits(mlj);
+    w->ly = sbits(mly);
     for (unsigned m = 0; m < nt; m++) {
-        wjs = sbits(sum[m]) > wjs ? sbits(sum[m]) : wjs;
-        wj = sbits(jb[m]) > wj ? sbits(jb[m]) : wj;
+        w->js = sbits(sum[m]) > w->js ? sbits(sum[m]) : w->js;
+        w->j = sbits(jb[m]) > w->j ? sbits(jb[m]) : w->j;
     }
+}
+
+static void jac_datapath(np_dp *dp, const np_wave_unit *u, unsigned n, const np_wave_dp_widths *w)
+{
+    np_dp d = *dp;
+    const unsigned nrm = u->c.normals, nt = nrm ? 6u : 4u;
+    const unsigned wsa = w->sa, wgm = w->gm, wlj = w->lj, wly = w->ly, wjs = w->js, wj = w->j;
     OP("M", NULL, NP_OP_MUL, 4u * n, 16, 16, 0, 0, 0); /* e: cx kmx, cx kmz, cz kmx, cz kmz */
     OP("M", "yq", NP_OP_ADD, n, wsa, 0, wsa, 1, 1);    /* round(ap c / 2^17) from the product yc rounds */
     OP("M", "lj", NP_OP_MUL, 4u * n, wsa, 31, wlj, 1, 2);
@@ -765,9 +784,9 @@ size_t np_wave_datapath(const np_wave_unit *u, np_op *ops, size_t max)
      */
     const unsigned rec = u->c.sincos == NP_WAVE_SINCOS_RECURRENCE, nl = rec ? 1u : n;
     const unsigned nfx = (u->c.irr ? 2u : 0u) + (u->c.cap ? 1u : 0u), nsin = 2u * nl + nfx;
-    wave_bounds b = bounds_of(u);
-    unsigned wap = ubits(b.ap), wyc = sbits(b.yc), wsa = sbits(b.sa), wxp = sbits(b.xp);
-    unsigned wys = sbits(b.ys), wxs = sbits(b.xs), wgm = ubits(b.gm), wbc = u->c.cap ? sbits(b.bc) : 0u;
+    np_wave_dp_widths w;
+    np_wave_datapath_widths(u, &w);
+    const unsigned wap = w.ap, wyc = w.yc, wsa = w.sa, wxp = w.xp, wys = w.ys, wxs = w.xs, wgm = w.gm, wbc = w.bc;
     /* P: per train a train lane's phase: kx i, kz j (32 x 16, low 32 bits), om t (32 x 32, low 32), three adds. */
     OP("P", NULL, NP_OP_MUL, 2u * nl, 32, 16, 0, 0, 0);
     OP("P", NULL, NP_OP_MUL, nl, 32, 32, 0, 0, 0);
@@ -836,7 +855,7 @@ size_t np_wave_datapath(const np_wave_unit *u, np_op *ops, size_t max)
         OP("G", NULL, NP_OP_ADD, 1, wys + wgm, 0, 0, 0, 1);
     OP("G", "out", NP_OP_ADD, 3, 16, 0, 16, 1, 2);
     if (np_wave_has_jac(&u->c))
-        jac_datapath(&d, u, n, wsa, wgm);
+        jac_datapath(&d, u, n, &w);
     else
         OP("G", NULL, NP_OP_REG, 1, 3u * 16u + 1u, 0, 0, 0, 0);
     return d.n;
