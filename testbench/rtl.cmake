@@ -237,6 +237,19 @@ function(np_rtl_cosim_build unit name top defs gparams)
       set(trains ${CMAKE_MATCH_1})
     endif()
     string(APPEND cflags " -DNP_COSIM_WAVE -DNP_COSIM_TRAINS=${trains} -I${PROJECT_SOURCE_DIR}/rtl_model")
+  elseif(unit STREQUAL "aacount")  # the harness checks --cfg against the RTL's parameters (np_aacount.v's defaults)
+    set(acfg)
+    foreach(kv M=3 DEPTH=1 NORMAL=1 LUMA=1 LUMA_TAPS=4 C_D=1000000 C_N=32 C_S=128 T_MIN=16 T_EDGE=32)
+      string(REPLACE "=" ";" kv "${kv}")
+      list(GET kv 0 key)
+      list(GET kv 1 val)
+      if(gparams MATCHES "(^|;)-G${key}=([0-9]+'d)?([0-9]+)")  # 8'd255 or 255
+        set(val ${CMAKE_MATCH_3})
+      endif()
+      list(APPEND acfg ${val})
+    endforeach()
+    string(JOIN "," acfg ${acfg})
+    string(APPEND cflags " -DNP_COSIM_AACOUNT -DNP_COSIM_AAC_CFG=${acfg}")
   endif()
   np_rtl_test(rtl.${unit}.cosim.build.${name} "${NP_VERILATOR}" pass "" "rtl;nosan"
     ${NP_VERILATOR} --cc --exe --build -j 1 -Wall -I${NP_RTL_SRC} ${defs} ${gparams} --top-module ${top} --prefix Vcosim
@@ -393,6 +406,36 @@ foreach(sim icarus verilator)
 endforeach()
 np_rtl_check(rtl.aacount.verilator.l2.default aacount verilator ok rtl_aacount_tb default
   ${aac_vec}/aacount-l2-default.memh pass "In 2552496 tests, no errors found\\." "rtl;nosan" rtl_aacount_l2_default)
+
+# Co-simulation against the parallel cycle model (np_cosim.c, cosim_main.cpp): every cycle in_ready,
+# out_valid, s, mask, sd, sn, ss; random windows with edges (np_cosim.c random_window), random
+# bubbles and stalls. --cfg: m,depth,normal,luma,luma_taps,c_d,c_n,c_s,t_min,t_edge.
+np_rtl_cosim_build(aacount default np_aacount "" "" ${NP_RTL_AAC_RTL})
+np_rtl_cosim_build(aacount opts np_aacount "" "-GIN_REG=1;-GOUT_SKID=1" ${NP_RTL_AAC_RTL})
+np_rtl_cosim_build(aacount m4 np_aacount "" "-GM=4;-GNORMAL=0;-GLUMA_TAPS=5" ${NP_RTL_AAC_RTL})
+np_rtl_cosim_build(aacount m2 np_aacount "" "-GM=2;-GC_D=32'd4000000000;-GC_N=8'd255;-GC_S=16'd40;-GT_MIN=8'd8;-GT_EDGE=8'd64" ${NP_RTL_AAC_RTL})
+foreach(f flip stall)
+  string(TOUPPER ${f} F)
+  np_rtl_cosim_build(aacount fault_${f} np_aacount "-DNP_FAULT_${F}" "" ${NP_RTL_AAC_RTL})
+endforeach()
+set(aac_def 3,1,1,1,4,1000000,32,128,16,32)
+np_rtl_cosim(rtl.aacount.cosim.default aacount default pass "1000000 cycles, .* 0 mismatches"
+  --cfg ${aac_def} --cycles 1000000 --bench)
+np_rtl_cosim(rtl.aacount.cosim.opts aacount opts pass "300000 cycles, .* 0 mismatches"
+  --cfg ${aac_def} --in-reg --out-skid --cycles 300000)
+np_rtl_cosim(rtl.aacount.cosim.m4 aacount m4 pass "300000 cycles, .* 0 mismatches"
+  --cfg 4,1,0,1,5,1000000,32,128,16,32 --cycles 300000)
+np_rtl_cosim(rtl.aacount.cosim.m2 aacount m2 pass "300000 cycles, .* 0 mismatches"
+  --cfg 2,1,1,1,4,4000000000,255,40,8,64 --cycles 300000)
+np_rtl_cosim(rtl.aacount.cosim.trace aacount default pass "trace: 2000 cycles written to"
+  --cfg ${aac_def} --cycles 2000 --trace ${NP_RTL_WORK}/aacount/cosim-trace.txt)
+np_rtl_cosim(rtl.aacount.cosim.wrong_cfg aacount default fail "this binary is np_aacount with --cfg 3,1,1,1,4,"
+  --cfg 3,1,1,1,4,1000000,32,128,16,33 --cycles 10)
+np_rtl_cosim(rtl.aacount.cosim.opts_differ aacount opts fail "[1-9][0-9]* mismatches" --cfg ${aac_def} --cycles 10000)
+foreach(f flip stall)
+  np_rtl_cosim(rtl.aacount.cosim.fault_${f} aacount fault_${f} fail "[1-9][0-9]* mismatches"
+    --cfg ${aac_def} --cycles 100000)
+endforeach()
 
 # ------------------------------------------------------------------ DPI-C
 # The models as DPI-C functions (rtl_model/verilog/dpi), built as C with the

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 // cosim_main - drives a Verilated unit (top renamed Vcosim: np_classic3,
-// np_simplex3 with NP_COSIM_SIMPLEX, or np_wave with NP_COSIM_WAVE, whose
-// register inputs get np_cosim's test register set) clock by clock beside the C cycle model
+// np_simplex3 with NP_COSIM_SIMPLEX, np_wave with NP_COSIM_WAVE, whose
+// register inputs get np_cosim's test register set, or np_aacount with
+// NP_COSIM_AACOUNT and NP_COSIM_AAC_CFG, the ten values of its -G parameters
+// that --cfg must repeat) clock by clock beside the C cycle model
 // (np_pipe, through np_cosim.h) with the same stimulus, and compares in_ready,
 // out_valid and, when valid, every output word, every cycle.
 //
@@ -18,9 +20,12 @@
 //   cycle in_valid in_ready x y z out_valid out_ready out...
 // decimal cycle, 0/1 handshake bits, hex x y z (4 digits) and, when
 // out_valid, each output word in hex (ceil(bits/4) digits), else '-'.
+// (wave: i j t ph u v r g in place of x y z; aacount: the bus as one hex
+// number, ceil(bits/4) digits, most significant first.)
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <algorithm>
 #include <cstring>
 #include <memory>
 #include <string>
@@ -34,6 +39,24 @@
 #endif
 
 namespace {
+
+#ifdef NP_COSIM_AACOUNT
+// The ten -G values the RTL was Verilated with (m, depth, normal, luma, luma_taps, c_d, c_n, c_s, t_min, t_edge).
+const unsigned aac_cfg[10] = {NP_COSIM_AAC_CFG};
+// The window bus words (np_aacount_bus_pack's, 64 bits each) onto the port bus[bits-1:0].
+template <typename T> void put_bus(T &p, const uint64_t *w, unsigned bits)
+{
+    p = (T)(bits >= 64 ? w[0] : (w[0] & ((1ull << bits) - 1)));
+}
+template <std::size_t N> void put_bus(VlWide<N> &p, const uint64_t *w, unsigned bits)
+{
+    for (unsigned k = 0; k < N; k++) {
+        EData v = (EData)(w[k / 2] >> (32 * (k % 2)));
+        if (32 * (k + 1) > bits) v &= (EData)((1ull << (bits - 32 * k)) - 1);
+        p[k] = v;
+    }
+}
+#endif
 
 #ifdef NP_COSIM_WAVE
 // Bits [bit, bit + w) of a Verilated port (CData .. QData, or VlWide for > 64 bits).
@@ -100,6 +123,7 @@ struct Rtl {
         top->clk = 0;
         top->eval();
     }
+    unsigned bus_bits = 0;  // aacount: the width of the port bus
     void drive(const np_cosim_cycle &c)
     {
         top->in_valid = c.in_valid;
@@ -112,6 +136,8 @@ struct Rtl {
         top->v = (uint16_t)c.win[5];
         top->r = (uint8_t)c.win[6];
         top->g = (uint16_t)c.win[7];
+#elif defined(NP_COSIM_AACOUNT)
+        put_bus(top->bus, c.bus, bus_bits);
 #else
         top->x = c.x;
         top->y = c.y;
@@ -135,6 +161,13 @@ struct Rtl {
             o[k++] = top->nz;
         }
         o[k] = top->fold;  // compared only with fold (nout says)
+#elif defined(NP_COSIM_AACOUNT)
+        (void)normals;
+        o[0] = top->s;
+        o[1] = top->mask;
+        o[2] = top->sd;
+        o[3] = top->sn;
+        o[4] = top->ss;
 #elif defined(NP_COSIM_SIMPLEX)
         (void)normals;
         o[0] = top->f;
@@ -211,7 +244,23 @@ int main(int argc, char **argv)
     }
     const unsigned wave_normals = 0;
 #endif
+#ifdef NP_COSIM_AACOUNT
+    // --cfg is what the RTL was Verilated with: all ten values must be its parameters.
+    if (!np_cosim_is_aacount(m) || p.size() != 10 || !std::equal(p.begin(), p.end(), aac_cfg)) {
+        std::fprintf(stderr, "cosim: this binary is np_aacount with --cfg");
+        for (unsigned k = 0; k < 10; k++) std::fprintf(stderr, "%c%u", k ? ',' : ' ', aac_cfg[k]);
+        std::fprintf(stderr, " (m,depth,normal,luma,luma_taps,c_d,c_n,c_s,t_min,t_edge)\n");
+        return 2;
+    }
+#else
+    if (np_cosim_is_aacount(m)) {
+        std::fprintf(stderr, "cosim: this binary is not np_aacount\n");
+        return 2;
+    }
+#endif
+    const unsigned aac_bits = np_cosim_aac_bus_bits(m);
     Rtl rtl;
+    rtl.bus_bits = aac_bits;
 #ifdef NP_COSIM_WAVE
     rtl.regs(*np_cosim_wave_regs(m));
 #endif
@@ -227,11 +276,12 @@ int main(int argc, char **argv)
         std::fprintf(trace, "# noisepipe cycle trace 1\n# unit %s\n# config %s%s%s\n# seed %llu\n", unit, cfg,
                      in_reg ? " in_reg" : "", out_skid ? " out_skid" : "", seed);
         std::fprintf(trace, "# columns cycle in_valid in_ready %s out_valid out_ready",
-                     np_cosim_is_wave(m) ? "i j t ph u v r g" : "x y z");
+                     np_cosim_is_wave(m) ? "i j t ph u v r g" : np_cosim_is_aacount(m) ? "bus" : "x y z");
         for (unsigned k = 0; k < nout; k++) std::fprintf(trace, " out%u(%u bits)", k, np_cosim_out_bits(m, k));
         std::fprintf(trace, "\n");
     }
     unsigned long long mismatches = 0, compared = 0;
+    unsigned long long hist[4][17] = {};  // aacount: compared cycles by the value (0..16) of s, sd, sn, ss
     np_cosim_cycle c{};
     uint32_t ro[NP_COSIM_OUTS];
     auto t0 = std::chrono::steady_clock::now();
@@ -244,6 +294,8 @@ int main(int argc, char **argv)
         if (c.out_valid && rtl.top->out_valid) {
             compared++;
             for (unsigned k = 0; k < nout; k++) bad |= ro[k] != c.out[k];
+            if (aac_bits)
+                for (unsigned k = 0; k < 4; k++) hist[k][c.out[k == 0 ? 0 : k + 1] & 31u]++;
         }
         if (bad) {
             if (++mismatches <= 10) {
@@ -260,7 +312,12 @@ int main(int argc, char **argv)
                 std::fprintf(trace, "%llu %d %d %04x %04x %08x %08x %04x %04x %02x %04x %d %d", cy, c.in_valid,
                              c.in_ready, c.win[0], c.win[1], c.win[2], c.win[3], c.win[4], c.win[5], c.win[6],
                              c.win[7], c.out_valid, c.out_ready);
-            else
+            else if (aac_bits) {
+                std::fprintf(trace, "%llu %d %d ", cy, c.in_valid, c.in_ready);
+                for (int d = (int)((aac_bits + 3) / 4) - 1; d >= 0; d--)
+                    std::fprintf(trace, "%x", (unsigned)(c.bus[d / 16] >> (4 * (d % 16))) & 15u);
+                std::fprintf(trace, " %d %d", c.out_valid, c.out_ready);
+            } else
                 std::fprintf(trace, "%llu %d %d %04x %04x %04x %d %d", cy, c.in_valid, c.in_ready, c.x, c.y, c.z,
                              c.out_valid, c.out_ready);
             for (unsigned k = 0; k < nout; k++) {
@@ -283,6 +340,22 @@ int main(int argc, char **argv)
                 unit, cfg, in_reg ? " in_reg" : "", out_skid ? " out_skid" : "", (unsigned long long)n[0],
                 (unsigned long long)n[1], compared, (unsigned long long)n[3], (unsigned long long)n[4], mismatches,
                 t_both);
+    if (aac_bits) {
+        // How the compared windows spread over the counts: each value 0..16 with its number of cycles.
+        static const char *const name[4] = {"s", "sd", "sn", "ss"};
+        std::printf("counts over the compared cycles:");
+        for (unsigned k = 0; k < 4; k++) {
+            unsigned distinct = 0;
+            std::printf("%s %s", k ? ";" : "", name[k]);
+            for (unsigned v = 0; v <= 16; v++)
+                if (hist[k][v]) {
+                    distinct++;
+                    std::printf(" %u:%llu", v, hist[k][v]);
+                }
+            std::printf(" (%u values)", distinct);
+        }
+        std::printf("\n");
+    }
     np_cosim_close(m);
 
     if (bench && mismatches == 0) {
@@ -303,6 +376,7 @@ int main(int argc, char **argv)
         // own in_ready (equal to the model's, as the lock-step run showed).
         np_cosim *g = np_cosim_open(unit, p.data(), (unsigned)p.size(), in_reg, out_skid, seed, err, sizeof err);
         Rtl r2;
+        r2.bus_bits = aac_bits;
 #ifdef NP_COSIM_WAVE
         r2.regs(*np_cosim_wave_regs(g));
 #endif

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "np_aacount.h"
 #include "np_classic.h"
 #include "np_pipe.h"
 #include "np_rng.h"
@@ -16,8 +17,10 @@ static const unsigned density[4] = { 0, 32, 128, 224 };
 enum { PHASE_MIN = 16, PHASE_SPAN = 256 };
 
 struct np_cosim {
-    int simplex, wave;
+    int simplex, wave, aacount;
     np_classic_cfg ccfg;
+    np_aacount_cfg acfg;
+    np_aacount_regs aregs; /* the host's registers of acfg: the stimulus aims lumas at them */
     np_wave_unit wu;
     np_simplex_cfg scfg;
     np_pipe pipe;
@@ -30,6 +33,7 @@ struct np_cosim {
         np_classic_sig c;
         np_simplex_sig s;
         np_wave_sig w;
+        np_aacount_sig a;
     } in;
     uint64_t bubbles, stalls;
 };
@@ -81,6 +85,27 @@ np_cosim *np_cosim_open(const char *unit, const unsigned *p, unsigned np, int in
         }
         if (!bad)
             rc = np_wave_pipe_init(&c->pipe, &c->wu);
+    } else if (strcmp(unit, "aacount") == 0 && np == 10) {
+        c->aacount = 1;
+        c->acfg = np_aacount_cfg_default();
+        c->acfg.m = (uint8_t)p[0];
+        c->acfg.depth = (uint8_t)p[1];
+        c->acfg.normal = (uint8_t)p[2];
+        c->acfg.luma = (uint8_t)p[3];
+        c->acfg.luma_taps = (uint8_t)p[4];
+        c->acfg.c_d = p[5];
+        c->acfg.c_n = (uint8_t)p[6];
+        c->acfg.c_s = (uint16_t)p[7];
+        c->acfg.t_min = (uint8_t)p[8];
+        c->acfg.t_edge = (uint8_t)p[9];
+        if (p[0] > 255 || p[1] > 1 || p[2] > 1 || p[3] > 1 || p[6] > 255 || p[7] > 65535 || p[8] > 255 || p[9] > 255)
+            bad = "aacount: a value out of its key's range (depth, normal, luma 0/1; c_n, t_min, t_edge u8; c_s u16)";
+        else
+            bad = np_aacount_cfg_check(&c->acfg);
+        if (!bad) {
+            np_aacount_regs_compute(&c->acfg, &c->aregs);
+            rc = np_aacount_pipe_init(&c->pipe, &c->acfg);
+        }
     } else {
         bad = "unknown unit or wrong number of configuration values";
     }
@@ -108,10 +133,16 @@ const struct np_wave_regs *np_cosim_wave_regs(const np_cosim *c) { return c->wav
 
 int np_cosim_is_wave(const np_cosim *c) { return c->wave; }
 
+int np_cosim_is_aacount(const np_cosim *c) { return c->aacount; }
+
+unsigned np_cosim_aac_bus_bits(const np_cosim *c) { return c->aacount ? np_aacount_bus_bits(&c->acfg) : 0u; }
+
 unsigned np_cosim_outputs(const np_cosim *c)
 {
     if (c->wave)
         return 3u + 3u * c->wu.c.normals + c->wu.c.fold;
+    if (c->aacount)
+        return 5u;
     return c->simplex ? 4u : 1u;
 }
 
@@ -119,6 +150,8 @@ unsigned np_cosim_out_bits(const np_cosim *c, unsigned k)
 {
     if (c->wave)
         return k < 3 ? 16u : (c->wu.c.normals && k < 6) ? 20u : 1u;
+    if (c->aacount)
+        return k == 1 ? (unsigned)NP_AAC_MASK_BITS : (unsigned)NP_AAC_S_BITS;
     if (!c->simplex)
         return c->ccfg.out_bits;
     return k == 0 ? c->scfg.out_bits : c->scfg.dout_bits;
@@ -164,6 +197,130 @@ static void random_wave(np_rng *r, const np_wave_regs *w, uint32_t in[NP_COSIM_W
         in[3] = (uint32_t)((e >> 43) & 3u) << 30;
 }
 
+/* A uniform value in [0, 2^k), k <= 32. */
+static uint32_t random_bits(np_rng *r, unsigned k) { return k ? (uint32_t)(np_rng_next(r) >> (64u - k)) : 0u; }
+
+static int clamp_int(int v, int lo, int hi) { return v < lo ? lo : v > hi ? hi : v; }
+
+/*
+ * A random aacount window, each of its three parts drawn in one of eight
+ * modes (a fresh choice per part and window):
+ *   depth   uniform; all equal (v = 0); each 0 or 2^24 - 1 (v up to its
+ *           maximum); near 0 or near 2^24 - 1; and, half the windows, a base
+ *           plus noise in [0, 2^k), k = 0..24, which walks v across every
+ *           threshold vd[j] of any c_d
+ *   normals uniform s8 (-128 included); all (0,0,0) (no surface); all equal;
+ *           cancelling pairs (nbar = 0, odd n: the last one (0,0,0)); and,
+ *           half, a base plus noise of 2^k, k = 0..8 (the cone from 0 to
+ *           wide), with some samples (1/8, or 1/2) background
+ *   lumas   uniform; all equal; each 0 or 255; aimed at a threshold: the
+ *           range r at t_min - 1 or t_min, at rs[j] - 1 or rs[j], or lmax at
+ *           the edge of the gate 256 r >= t_edge lmax; and, half, a base plus
+ *           noise of 2^k, k = 0..8
+ */
+static void random_window(np_cosim *c, uint64_t bus[NP_COSIM_AAC_WORDS])
+{
+    const np_aacount_cfg *a = &c->acfg;
+    np_rng *r = &c->rng;
+    const unsigned n = (unsigned)a->m * a->m;
+    const uint32_t dmax = (1u << NP_AAC_DEPTH_BITS) - 1u;
+    np_aacount_win w;
+    memset(&w, 0, sizeof w);
+    const uint64_t e = np_rng_next(r);
+    const unsigned dm = (unsigned)(e & 7u), nm = (unsigned)((e >> 3) & 7u), lm = (unsigned)((e >> 6) & 7u);
+
+    /* depth */
+    unsigned k = (unsigned)((e >> 9) % 25u);
+    uint32_t base = random_bits(r, 24);
+    if (dm == 3) /* near an end of the range */
+        base = (e >> 14) & 1u ? dmax - random_bits(r, 8) : random_bits(r, 8);
+    for (unsigned i = 0; i < n; i++) {
+        uint32_t d;
+        switch (dm) {
+        case 0: d = random_bits(r, 24); break;
+        case 1: d = base; break;
+        case 2: d = random_bits(r, 1) ? dmax : 0u; break;
+        case 3: d = (uint32_t)clamp_int((int)base + (int)random_bits(r, 4) - 8, 0, (int)dmax); break;
+        default: {
+            uint64_t v = (uint64_t)base + random_bits(r, k);
+            d = v > dmax ? dmax : (uint32_t)v;
+        }
+        }
+        w.d[i] = d;
+    }
+
+    /* normals */
+    int nb[3];
+    do {
+        for (unsigned q = 0; q < 3; q++)
+            nb[q] = (int)random_bits(r, 8) - 128;
+    } while (nb[0] == 0 && nb[1] == 0 && nb[2] == 0);
+    k = (unsigned)((e >> 15) % 9u);
+    for (unsigned i = 0; i < n; i++)
+        for (unsigned q = 0; q < 3; q++) {
+            int v;
+            switch (nm) {
+            case 0: v = (int)random_bits(r, 8) - 128; break;
+            case 1: v = 0; break;
+            case 2: v = nb[q]; break;
+            case 3: v = i + 1 == n && (n & 1u) ? 0 : (i & 1u) ? -(int)w.nrm[i - 1][q] : clamp_int(nb[q], -127, 127); break;
+            default: v = clamp_int(nb[q] + (int)random_bits(r, k) - (k ? (1 << (k - 1)) : 0), -128, 127);
+            }
+            w.nrm[i][q] = (int8_t)v;
+        }
+    if (nm >= 4) /* background samples */
+        for (unsigned i = 0; i < n; i++)
+            if (random_bits(r, nm == 7 ? 1 : 3) == 0)
+                w.nrm[i][0] = w.nrm[i][1] = w.nrm[i][2] = 0;
+
+    /* lumas: index 0 the centre, 1..4 the neighbours */
+    k = (unsigned)((e >> 19) % 9u);
+    unsigned lb = random_bits(r, 8);
+    for (unsigned q = 0; q < NP_AAC_LUMAS; q++) {
+        int v;
+        switch (lm) {
+        case 0: v = (int)random_bits(r, 8); break;
+        case 1: v = (int)lb; break;
+        case 2: v = random_bits(r, 1) ? 255 : 0; break;
+        case 3: v = (int)lb; break; /* set below */
+        default: v = clamp_int((int)lb + (int)random_bits(r, k) - (k ? (1 << (k - 1)) : 0), 0, 255);
+        }
+        w.luma[q] = (uint8_t)v;
+    }
+    if (lm == 3) {
+        /* aim the range r = lmax - lmin of the compared taps at a threshold */
+        unsigned sel = (unsigned)((e >> 23) % 3u), lo_tap = a->luma_taps == 5 ? 0u : 1u;
+        int rr, lmax;
+        if (sel == 0) {
+            rr = (int)a->t_min - (int)((e >> 25) & 1u);
+        } else if (sel == 1 && n > 1) {
+            unsigned j = 1u + (unsigned)((e >> 26) % (n - 1u));
+            rr = (int)c->aregs.rs[j] - (int)((e >> 25) & 1u);
+        } else {
+            rr = (int)random_bits(r, 8);
+        }
+        rr = clamp_int(rr, 0, 255);
+        if (sel == 2 && a->t_edge) /* lmax at the gate's edge: 256 rr against t_edge lmax */
+            lmax = 256 * rr / a->t_edge + (int)((e >> 25) & 1u);
+        else
+            lmax = rr + (int)random_bits(r, 8);
+        lmax = clamp_int(lmax, rr, 255);
+        const int lmin = lmax - rr;
+        for (unsigned q = 0; q < NP_AAC_LUMAS; q++)
+            w.luma[q] = (uint8_t)(lmin + (int)(random_bits(r, 8) % (unsigned)(rr + 1)));
+        /* two distinct compared taps carry the extremes */
+        unsigned t0 = lo_tap + (unsigned)((e >> 30) % (NP_AAC_LUMAS - lo_tap));
+        unsigned t1 = lo_tap + (t0 - lo_tap + 1u + (unsigned)((e >> 33) % (NP_AAC_LUMAS - lo_tap - 1u))) % (NP_AAC_LUMAS - lo_tap);
+        w.luma[t0] = (uint8_t)lmin;
+        w.luma[t1] = (uint8_t)lmax;
+        if (lo_tap == 1)
+            w.luma[0] = (uint8_t)random_bits(r, 8); /* the centre is not compared */
+    }
+
+    memset(bus, 0, NP_COSIM_AAC_WORDS * sizeof bus[0]);
+    np_aacount_bus_pack(a, &w, bus);
+}
+
 void np_cosim_drive(np_cosim *c, np_cosim_cycle *cy, int traffic)
 {
     int bubble = 0, stall = 0;
@@ -186,6 +343,8 @@ void np_cosim_drive(np_cosim *c, np_cosim_cycle *cy, int traffic)
             cy->in_valid = 1;
             if (c->wave) {
                 random_wave(&c->rng, &c->wu.r, cy->win);
+            } else if (c->aacount) {
+                random_window(c, cy->bus);
             } else {
                 cy->x = random_word(&c->rng);
                 cy->y = random_word(&c->rng);
@@ -200,7 +359,11 @@ void np_cosim_drive(np_cosim *c, np_cosim_cycle *cy, int traffic)
 void np_cosim_eval(np_cosim *c, np_cosim_cycle *cy)
 {
     /* Only the inputs change: the rest of the bundle stays as calloc left it (the stages write banks, never in_sig). */
-    if (c->wave) {
+    if (c->aacount) {
+        /* np_aacount_sig_in_bus without its memset of the whole bundle: stage A unpacks the bus, as the RTL's bank A reads it */
+        memcpy(c->in.a.bus, cy->bus, sizeof c->in.a.bus);
+        c->in.a.from_bus = 1;
+    } else if (c->wave) {
         np_wave_in *w = &c->in.w.in;
         w->i = (uint16_t)cy->win[0];
         w->j = (uint16_t)cy->win[1];
@@ -228,7 +391,14 @@ void np_cosim_eval(np_cosim *c, np_cosim_cycle *cy)
     memset(cy->out, 0, sizeof cy->out);
     if (!cy->out_valid)
         return;
-    if (c->wave) {
+    if (c->aacount) {
+        const np_aacount_sig *s = c->port.out_sig;
+        cy->out[0] = s->s;
+        cy->out[1] = s->mask;
+        cy->out[2] = s->sd;
+        cy->out[3] = s->sn;
+        cy->out[4] = s->ss;
+    } else if (c->wave) {
         const np_wave_sig *s = c->port.out_sig;
         unsigned k = 0;
         cy->out[k++] = (uint16_t)s->out.y;

@@ -20,8 +20,9 @@
 extern "C" {
 #endif
 
-/* Outputs of a cycle: 1 (classic3), 4 (simplex3) or 3..7 (wave: y, dx, dz, [nx, ny, nz], [fold]). */
-enum { NP_COSIM_OUTS = 7, NP_COSIM_WAVE_INS = 8 };
+/* Outputs of a cycle: 1 (classic3), 4 (simplex3), 3..7 (wave: y, dx, dz, [nx, ny, nz], [fold]) or
+ * 5 (aacount: s, mask, sd, sn, ss; a metric that is not built has its count 0 on both sides). */
+enum { NP_COSIM_OUTS = 7, NP_COSIM_WAVE_INS = 8, NP_COSIM_AAC_WORDS = 8 };
 
 struct np_wave_regs;
 
@@ -30,6 +31,7 @@ typedef struct np_cosim_cycle {
     int in_valid;
     uint16_t x, y, z;
     uint32_t win[NP_COSIM_WAVE_INS]; /* wave: i, j, t, ph, u, v, r, g (x, y, z unused) */
+    uint64_t bus[NP_COSIM_AAC_WORDS]; /* aacount: the window bus, np_aacount_bus_pack's words (x, y, z unused) */
     int out_ready;
     /* the cycle model's outputs, from np_cosim_eval (out: outputs' words masked to their widths) */
     int in_ready;
@@ -45,6 +47,9 @@ typedef struct np_cosim np_cosim;
  * unit "wave": p[0..5] = trains, irr, cap, rom_log2, normals, fold; the
  * register set is the test set regs=1 (np_wave_regs_test, or _jac with
  * normals or fold: what `noisepipe vectors` uses), np_cosim_wave_regs gives it.
+ * unit "aacount": p[0..9] = m, depth, normal, luma, luma_taps, c_d, c_n, c_s,
+ * t_min, t_edge (the parallel variant, tile 0); the windows are random with
+ * edges (np_cosim.c, random_window) and travel as the window bus.
  * in_reg, out_skid: the pipe options (np_pipe.h). Returns NULL with a message
  * in err (size errn) on a bad unit or configuration.
  */
@@ -55,7 +60,10 @@ void np_cosim_close(np_cosim *c);
 const struct np_wave_regs *np_cosim_wave_regs(const np_cosim *c);
 /* 1 when the unit is wave (its inputs are win[], not x, y, z). */
 int np_cosim_is_wave(const np_cosim *c);
-/* Number of outputs of the unit (1, 4 or 3..7) and the width of output k. */
+/* 1 when the unit is aacount (its input is bus[], not x, y, z); bits of its bus (0 for another unit). */
+int np_cosim_is_aacount(const np_cosim *c);
+unsigned np_cosim_aac_bus_bits(const np_cosim *c);
+/* Number of outputs of the unit (1, 4, 3..7 or 5) and the width of output k. */
 unsigned np_cosim_outputs(const np_cosim *c);
 unsigned np_cosim_out_bits(const np_cosim *c, unsigned k);
 /* Stimulus of this cycle; traffic 0 streams without bubbles or stalls. */
