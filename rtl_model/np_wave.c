@@ -827,9 +827,9 @@ size_t np_wave_datapath(const np_wave_unit *u, np_op *ops, size_t max)
      * than an arbitrary table: they are priced at rom_eff[L] bits a word, the
      * width that puts np_wave_sin.v alone (Yosys + ABC, the --synth flow) at
      * its measured size: 2,932.5 / 3,284 / 3,896.5 / 5,063.5 / 6,790 NAND2
-     * at L = 6 .. 10 (the model: 2,921 / 3,309 / 3,908 / 4,976 / 6,897).
+     * at L = 6 .. 10 (the model: 2,921 / 3,309 / 3,909 / 5,099 / 7,135).
      */
-    static const unsigned rom_eff[NP_WAVE_ROM_MAX + 1u] = { [6] = 13, [7] = 13, [8] = 11, [9] = 9, [10] = 8 };
+    static const unsigned rom_eff[NP_WAVE_ROM_MAX + 1u] = { [6] = 13, [7] = 13, [8] = 11, [9] = 10, [10] = 8 };
     const unsigned dbits = np_bits_for_range(0, (int64_t)np_wave_rom(1u << (10u - L)) - (int64_t)np_wave_rom(0), 0);
     OP("S", NULL, NP_OP_NEG, nsin, 30, 0, 0, 0, 0);
     OP("S", NULL, NP_OP_INC, nsin, L + 1u, 0, 0, 0, 0);
