@@ -360,9 +360,7 @@ void np_cosim_eval(np_cosim *c, np_cosim_cycle *cy)
 {
     /* Only the inputs change: the rest of the bundle stays as calloc left it (the stages write banks, never in_sig). */
     if (c->aacount) {
-        /* np_aacount_sig_in_bus without its memset of the whole bundle: stage A unpacks the bus, as the RTL's bank A reads it */
-        memcpy(c->in.a.bus, cy->bus, sizeof c->in.a.bus);
-        c->in.a.from_bus = 1;
+        np_aacount_sig_in_bus(&c->in.a, cy->bus); /* stage A unpacks the bus, as the RTL's bank A reads it */
     } else if (c->wave) {
         np_wave_in *w = &c->in.w.in;
         w->i = (uint16_t)cy->win[0];
