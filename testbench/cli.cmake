@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: MIT
-# Output files, write errors and interruption (src/cli/np_outfile.h, docs/bad-input.md).
+# Output files, write errors and interruption (src/common/np_outfile.h, docs/bad-input.md).
 np_test_program(test_cli test_cli.c)
 np_add_cases(test_cli cli
   outfile_regular_atomic outfile_fifo outfile_chardev outfile_symlink outfile_refuse

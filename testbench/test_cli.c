@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * Output files and interruption (src/cli/np_outfile.h): what is at the path
+ * Output files and interruption (src/common/np_outfile.h): what is at the path
  * decides how it is written; nothing is replaced that should not be; write
  * errors and signals are reported, never lost. Cases: `cli.<name>`.
  */
@@ -16,7 +16,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_outfile.h"
 #include "np_test.h"
 

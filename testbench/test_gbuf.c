@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "np_aacount.h"
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_gbuf.h"
 #include "np_golden.h"
 #include "np_image.h"

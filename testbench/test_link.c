@@ -16,7 +16,7 @@
 #include <unistd.h>
 
 #include "np_child.h"
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_link.h"
 #include "np_rng.h"
 #include "np_test.h"

@@ -34,7 +34,7 @@
 #include <umockdev.h>
 
 #include "np_child.h"
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_link.h"
 #include "np_rng.h"
 #include "np_test.h"

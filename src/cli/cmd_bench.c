@@ -12,14 +12,14 @@
 #include <time.h>
 
 #include "np_classic.h"
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_cmd.h"
 #include "np_ref.h"
 #include "np_simplex.h"
 #include "np_sweep.h"
 #include "np_unit.h"
 
-#include "bench_units.h"
+#include "np_bench_units.h"
 
 static const char usage_text[] =
     "usage: noisepipe bench [--seconds S] [--unit U|all [--config K=V,...]]\n"

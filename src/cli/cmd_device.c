@@ -8,7 +8,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_cmd.h"
 #include "np_vec.h"
 

@@ -11,7 +11,8 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "np_cli.h"
+#include "np_common.h"
+#include "np_outfile.h"
 #include "np_cmd.h"
 #include "np_image.h"
 #include "np_noisetex.h"
@@ -108,22 +109,6 @@ static int opt_value(int argc, char **argv, int *i, const char *name, const char
     }
     *val = argv[++*i];
     return 1;
-}
-
-int np_mkdir_p(const char *dir)
-{
-    char buf[4096];
-    snprintf(buf, sizeof buf, "%s", dir);
-    for (char *p = buf + 1; *p; p++)
-        if (*p == '/') {
-            *p = '\0';
-            if (mkdir(buf, 0777) != 0 && errno != EEXIST)
-                return -1;
-            *p = '/';
-        }
-    if (mkdir(buf, 0777) != 0 && errno != EEXIST)
-        return -1;
-    return 0;
 }
 
 /* Index of unit name in the registry (np_unit_at), or -1. */

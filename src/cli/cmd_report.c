@@ -7,7 +7,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_outfile.h"
 #include "np_cmd.h"
 #include "np_pareto.h"
@@ -20,6 +20,7 @@
 #include "np_anim4d.h"
 #include "np_scene.h"
 #include "np_synth.h"
+#include "np_fpga.h"
 #include "np_stream.h"
 #include "np_wave_json.h"
 #include "np_wave_scene.h"
@@ -35,6 +36,8 @@ static const char usage_text[] =
     "       noisepipe report gates  --scene SCENE.json [--sized] [--levels N] [-o DIR]\n"
     "       noisepipe report gates  --synth [--unit U] [--config K=V,...] [--rtl DIR] [--per-stage] [--abc-full] [--tolerance PCT]\n"
     "                                [--rtl-param NAME=V,...]\n"
+    "       noisepipe report fpga   [--unit U] [--config K=V,...] [--rtl-param NAME=V,...] [--device hx8k|up5k]\n"
+    "                                [--package P] [--freq MHZ] [--seed N] [--retime] [--rtl DIR] [-o DIR]\n"
     "       noisepipe report pareto [--unit U] [--samples N] [--seed S] [-o DIR]\n"
     "       noisepipe report runtime [--scene SCENE.json] [--repeat N] -o DIR\n"
     "       noisepipe report all    -o DIR        (what docs/ holds: gates + every pareto sweep + runtime in DIR/plots)\n"
@@ -68,6 +71,15 @@ static const char usage_text[] =
     "  classic3: IN_REG, OUT_SKID, S_TABLE, HASH_SERIAL, LERP_SERIAL; simplex3, wave, aacount: IN_REG,\n"
     "  OUT_SKID; docs/rtl.md):\n"
     "  Yosys per stage beside the cost model of the as-built circuit, labelled so (no --tolerance).\n"
+    "fpga: each unit with reference RTL (or U) through the open iCE40 flow (docs/fpga.md): Yosys\n"
+    "  synth_ice40, nextpnr-ice40, icepack, icetime. Prints the unit's LUT4s, flip-flops, carries and\n"
+    "  block RAMs, the placed design's logic cells, Fmax after routing with its critical path (the\n"
+    "  registers and stages it runs between), icetime's Fmax, results per second, and the seed.\n"
+    "  The unit sits in a generated I/O harness (its ports shift in and out on two pins). --device\n"
+    "  (default hx8k, package ct256; up5k: sg48), --freq the target (default 12 MHz, the boards'\n"
+    "  oscillator), --seed nextpnr's (default 1), --retime: also with synth_ice40 -retime (what\n"
+    "  retiming gains, measured). -o DIR keeps DIR/fpga.md and DIR/fpga-UNIT.{bin,asc,json,report.json,\n"
+    "  nextpnr.log}. Exit 1 when a unit does not place and route (it does not fit: the tool's message).\n"
     "pareto: the design-space sweep of a unit's internal widths: each configuration's verdict\n"
     "  (faithful (proved), no counterexample in N adversarial inputs, not faithful with the\n"
     "  counterexample) and the adversarial search's max error against gates and latency;\n"
@@ -780,6 +792,9 @@ int np_cmd_report(int argc, char **argv)
     const char *what = argv[1], *dir = NULL, *spec = NULL, *scene = NULL, *rtl = NULL, *rtl_param = NULL;
     const np_unit *unit = NULL;
     int synth = 0, per_stage = 0;
+    np_fpga_opts fpga;
+    np_fpga_opts_init(&fpga);
+    int seed_set = 0;
     double tolerance = -1.0;
     uint64_t samples = 262144, seed = 1, repeat = 3, frames = 8;
     for (int i = 2; i < argc; i++) {
@@ -791,6 +806,10 @@ int np_cmd_report(int argc, char **argv)
         }
         if (strcmp(a, "--synth") == 0) {
             synth = 1;
+            continue;
+        }
+        if (strcmp(a, "--retime") == 0) {
+            fpga.retime = 1;
             continue;
         }
         if (strcmp(a, "--sized") == 0) {
@@ -825,6 +844,18 @@ int np_cmd_report(int argc, char **argv)
             rtl = v;
         else if (strcmp(a, "--rtl-param") == 0)
             rtl_param = v;
+        else if (strcmp(a, "--device") == 0)
+            fpga.device = v;
+        else if (strcmp(a, "--package") == 0)
+            fpga.package = v;
+        else if (strcmp(a, "--freq") == 0) {
+            char *end;
+            fpga.freq_mhz = strtod(v, &end);
+            if (end == v || *end || !(fpga.freq_mhz >= 1.0 && fpga.freq_mhz <= 1000.0)) {
+                np_err("report", "--freq %s: expected a clock in MHz, 1..1000", v);
+                return NP_EXIT_USAGE;
+            }
+        }
         else if (strcmp(a, "--tolerance") == 0) {
             char *end;
             tolerance = strtod(v, &end);
@@ -861,11 +892,17 @@ int np_cmd_report(int argc, char **argv)
                 np_err("report", "--seed %s: expected an unsigned integer", v);
                 return NP_EXIT_USAGE;
             }
+            seed_set = 1;
         } else {
             np_err("report", "unknown option '%s'", a);
             return NP_EXIT_USAGE;
         }
         i++;
+    }
+    int fpga_only = fpga.retime || fpga.package || fpga.freq_mhz != 12.0 || strcmp(fpga.device, "hx8k") != 0;
+    if (fpga_only && strcmp(what, "fpga") != 0) {
+        np_err("report", "--device, --package, --freq and --retime go with fpga");
+        return NP_EXIT_USAGE;
     }
     if (spec && !unit) {
         np_err("report", "--config needs --unit");
@@ -873,7 +910,7 @@ int np_cmd_report(int argc, char **argv)
     }
     int known = strcmp(what, "gates") == 0 || strcmp(what, "pareto") == 0 || strcmp(what, "runtime") == 0 ||
                 strcmp(what, "all") == 0 || strcmp(what, "tradeoff") == 0 || strcmp(what, "dims") == 0 ||
-                strcmp(what, "anim4d") == 0;
+                strcmp(what, "anim4d") == 0 || strcmp(what, "fpga") == 0;
     if (dir && known) { /* created as render creates its folder */
         struct stat st;
         if (stat(dir, &st) == 0 && !S_ISDIR(st.st_mode)) {
@@ -911,6 +948,27 @@ int np_cmd_report(int argc, char **argv)
         }
         printf("wrote %s/anim4d-00.png .. anim4d-%02u.png\n", dir, (unsigned)frames - 1u);
         return NP_EXIT_OK;
+    }
+    if (strcmp(what, "fpga") == 0) {
+        char err[512];
+        if (scene || synth || per_stage || tolerance >= 0.0) {
+            np_err("report", "fpga takes --unit, --config, --rtl-param, --device, --package, --freq, --seed, --retime, --rtl, -o");
+            return NP_EXIT_USAGE;
+        }
+        if (seed_set) {
+            if (seed > 999999999u) {
+                np_err("report", "fpga --seed %llu: nextpnr takes a seed up to 999999999", (unsigned long long)seed);
+                return NP_EXIT_USAGE;
+            }
+            fpga.seed = seed;
+        }
+        if (rtl_param && np_synth_set_rtl_params(unit, rtl_param, err, sizeof err) != 0) {
+            np_err("report", "%s", err);
+            return NP_EXIT_USAGE;
+        }
+        fpga.rtl_dir = rtl;
+        fpga.out_dir = dir;
+        return np_report_fpga(unit, spec, &fpga);
     }
     if (strcmp(what, "dims") == 0) {
         if (unit || spec || scene) {
@@ -956,6 +1014,6 @@ int np_cmd_report(int argc, char **argv)
         }
         return rc;
     }
-    np_err("report", "unknown report '%s' (gates, pareto, runtime, all, dims, anim4d)", what);
+    np_err("report", "unknown report '%s' (gates, pareto, runtime, all, dims, anim4d, fpga)", what);
     return NP_EXIT_USAGE;
 }

@@ -13,7 +13,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_cmd.h"
 #include "np_vec.h"
 

@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "hatch_seeds.h"
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_cmd.h"
 #include "np_rng.h"
 #include "np_vec.h"

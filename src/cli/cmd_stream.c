@@ -11,7 +11,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_cmd.h"
 #include "np_link.h"
 #include "np_outfile.h"

@@ -11,7 +11,7 @@
 #include <mpi.h>
 #endif
 
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_cmd.h"
 #include "np_sweep.h"
 #include "np_unit.h"

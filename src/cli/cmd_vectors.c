@@ -3,7 +3,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_cmd.h"
 #include "np_vec.h"
 

@@ -9,7 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "np_cli.h"
+#include "np_common.h"
+#include "np_outfile.h"
 #include "np_image.h"
 #include "np_plot.h"
 #include "np_render_aa.h"

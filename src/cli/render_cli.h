@@ -1,63 +1,14 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * render_cli.h - internal: the modules of `noisepipe render` (cmd_render.c:
- * options and one scene; render_hash.c: golden-image hash lists;
- * render_bench.c: the benchmark) and of `noisepipe report runtime`
- * (report_runtime.c: error against run time), which all render with the
- * registry's span units (np_render_units).
+ * render_cli.h - internal to the command: `noisepipe render --aa`'s entry
+ * (render_aa.c). What the render and report commands call on the renderer is
+ * in src/render/np_render_tools.h and src/report/np_report_runtime.h.
  */
 #ifndef RENDER_CLI_H
 #define RENDER_CLI_H
 
-#include <stddef.h>
-
-#include "np_render.h"
-#include "np_unit.h"
-
-/* The configuration the command line gives unit u over the scene's ("key=value,..."; NULL: none). */
-typedef const char *(*np_render_spec_fn)(const void *ctx, const np_unit *u);
-
-/* --- Golden hashes --- */
-
-typedef struct hash_rec {
-    char scene[64], image[16], hash[65], cfg[256];
-} hash_rec;
-
-typedef struct hash_list {
-    hash_rec *r;
-    size_t n, cap;
-} hash_list;
-
-int np_render_hash_add(hash_list *l, const char *scene, const char *image, const char *hash, const char *cfg);
-/* Lines "scene image sha256 configuration"; '#' comments. 0, or -1 with a message. */
-int np_render_hash_read(const char *path, hash_list *l);
-int np_render_hash_write(const char *path, const hash_list *l);
-/* Compare got with the golden list; prints each difference. Returns the number of failures. */
-unsigned np_render_hash_check(const hash_list *golden, const hash_list *got, const char *path);
-
-/* --- Benchmark and report --- */
-
-/* Time the float reference and every unit on scene path, best of repeat runs. NP_EXIT_*. */
-int np_render_bench(const char *path, unsigned repeat, np_render_spec_fn spec, const void *ctx);
-/*
- * Error against run time over each unit's sweeps (np_unit_span.sweeps) on
- * the scenes, with plots and images, into dir (docs/plots). NP_EXIT_*.
- */
-int np_report_runtime(const char *dir, const char *const *scenes, unsigned n_scenes, unsigned repeat,
-                      np_render_spec_fn spec, const void *ctx);
-
-/* mkdir -p. 0, or -1. */
-int np_mkdir_p(const char *dir);
-
-/*
- * A scene with a "hatch" section: the hatched image through the unit hatch
- * (render_hatch.c, docs/hatch.md "Scenes") into out, its hash appended;
- * table: B16/C16/B64/C64 beside the paper's Table 1; frames > 0: a zoom
- * sequence over levels levels. NP_EXIT_*.
- */
-struct np_scene;
-int np_render_hatch_scene(const struct np_scene *sc, const char *out, int ppm, int cycles, unsigned table,
-                          unsigned frames, double levels, hash_list *hashes);
+#include "np_render_tools.h"
+#include "np_report_runtime.h"
 
 /* noisepipe render --aa: the adaptive supersampling report (render_aa.c). */
 int np_render_aa_main(int argc, char **argv);

@@ -12,7 +12,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_crc32.h"
 
 enum { CRC_SUFFIX = 11 }; /* " *" + 8 hex digits + newline */

@@ -13,7 +13,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_rng.h"
 
 typedef enum host_state {

@@ -11,7 +11,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "np_cli.h"
+#include "np_common.h"
 
 static const char journal_magic[] = "# noisepipe stream journal 2";
 enum { MAX_BINDINGS = 6 };

@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <time.h>
 
-#include "np_cli.h"
+#include "np_common.h"
 
 static double thread_cpu(void)
 {

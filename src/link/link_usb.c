@@ -21,7 +21,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "np_cli.h"
+#include "np_common.h"
 
 enum { IN_BYTES = 16384, MAX_IN_FLIGHT = 64 };
 

@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "np_aacount.h"
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_texel.h"
 #include "np_texreg.h"
 #include "render_view.h"

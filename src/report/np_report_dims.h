@@ -5,7 +5,7 @@
 
 /*
  * Markdown on stdout (dir NULL), or dir/dims.md and dir/dims.svg. Returns
- * an exit status (np_cli.h: 0, or 2 with a message on stderr).
+ * an exit status (np_common.h: 0, or 2 with a message on stderr).
  */
 int np_report_dims(const char *dir);
 

@@ -74,6 +74,21 @@ int np_report_gates_synth(const np_unit *only, const char *spec, const char *rtl
  */
 int np_synth_set_rtl_params(const np_unit *u, const char *spec, char *err, size_t errlen);
 
+/*
+ * What `report fpga` (np_fpga.h) shares with --synth: u's top module (NULL
+ * without RTL); the Yosys script's head for u at cfg (read_verilog of its
+ * files in rtl_dir, chparam of every key and of --rtl-param): 0, or -1 with a
+ * message in err (no RTL, a file unreadable); the stage whose bank holds
+ * register reg ("r1_k" -> "H"; NULL when no bank does); the --rtl-param set
+ * ("" when none); the clocks per result the --rtl-param variant takes (0: the
+ * as-built circuit's, the cost model's throughput).
+ */
+const char *np_synth_rtl_top(const np_unit *u);
+int np_synth_write_rtl(FILE *f, const np_unit *u, const void *cfg, const char *rtl_dir, char *err, size_t errlen);
+const char *np_synth_stage_of(const np_unit *u, const char *reg);
+const char *np_synth_rtl_param_spec(void);
+unsigned np_synth_rtl_clocks_per_result(const np_unit *u);
+
 /* The RTL folder compiled in (the source tree's rtl_model/verilog). */
 const char *np_synth_default_rtl_dir(void);
 

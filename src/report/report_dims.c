@@ -15,7 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_hashn.h"
 #include "np_outfile.h"
 #include "np_plot.h"

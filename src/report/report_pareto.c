@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_pareto.h"
 #include "np_plot.h"
 #include "np_search.h"

@@ -33,7 +33,8 @@
 #include <unistd.h>
 
 #include "np_aacount.h"
-#include "np_cli.h"
+#include "np_common.h"
+#include "np_outfile.h"
 #include "np_synth.h"
 #include "np_wave.h"
 
@@ -241,6 +242,20 @@ static int not_param(const rtl_desc *d, const char *key)
     return 0;
 }
 
+/* Every file of the unit's RTL is readable in dir (else a message naming it). */
+static int rtl_readable(const rtl_desc *d, const char *dir, char *err, size_t errlen)
+{
+    for (unsigned i = 0; i < 6 && d->files[i]; i++) {
+        char path[4096];
+        snprintf(path, sizeof path, "%s/%s", dir, d->files[i]);
+        if (access(path, R_OK) != 0) {
+            snprintf(err, errlen, "%s: cannot read the RTL (--rtl DIR names rtl_model/verilog)", path);
+            return -1;
+        }
+    }
+    return 0;
+}
+
 /*
  * The script's head: the RTL at the configuration (every key, upper case, is
  * a parameter, but the unit's not_params; then its derived ones).
@@ -412,21 +427,11 @@ int np_synth_run(const np_unit *u, const void *cfg, const np_unit_cost *c, const
         snprintf(err, errlen, "--synth needs yosys (and berkeley-abc) on PATH: apt-get install yosys berkeley-abc");
         return -2;
     }
-    for (unsigned i = 0; i < 6 && d->files[i]; i++) {
-        char path[4096];
-        snprintf(path, sizeof path, "%s/%s", rtl_dir, d->files[i]);
-        if (access(path, R_OK) != 0) {
-            snprintf(err, errlen, "%s: cannot read the RTL (--rtl DIR names rtl_model/verilog)", path);
-            return -1;
-        }
-    }
-    const char *tmpdir = getenv("TMPDIR");
-    char dir[4096], script[4200], out[4200], log[4200], abc[4200];
-    snprintf(dir, sizeof dir, "%s/noisepipe-synth-XXXXXX", tmpdir && *tmpdir ? tmpdir : "/tmp");
-    if (!mkdtemp(dir)) {
-        snprintf(err, errlen, "cannot create a temporary folder in %s", tmpdir && *tmpdir ? tmpdir : "/tmp");
+    if (rtl_readable(d, rtl_dir, err, errlen) != 0)
         return -1;
-    }
+    char dir[4096], script[4200], out[4200], log[4200], abc[4200];
+    if (np_tempdir(dir, sizeof dir, "noisepipe-synth", err, errlen) != 0)
+        return -1;
     snprintf(script, sizeof script, "%s/synth.ys", dir);
     snprintf(out, sizeof out, "%s/stat.txt", dir);
     snprintf(log, sizeof log, "%s/yosys.log", dir);
@@ -599,4 +604,52 @@ int np_report_gates_synth(const np_unit *only, const char *spec, const char *rtl
         return NP_EXIT_USAGE;
     }
     return rc;
+}
+
+/* ---- what report fpga (report_fpga.c) shares with --synth: the same RTL table and head ---- */
+
+const char *np_synth_rtl_top(const np_unit *u)
+{
+    const rtl_desc *d = rtl_of(u);
+    return d ? d->top : NULL;
+}
+
+int np_synth_write_rtl(FILE *f, const np_unit *u, const void *cfg, const char *rtl_dir, char *err, size_t errlen)
+{
+    const rtl_desc *d = rtl_of(u);
+    if (!d) {
+        snprintf(err, errlen, "unit %s has no reference RTL", u->name);
+        return -1;
+    }
+    if (rtl_readable(d, rtl_dir, err, errlen) != 0)
+        return -1;
+    return write_read(f, d, u, cfg, rtl_dir, err, errlen);
+}
+
+const char *np_synth_stage_of(const np_unit *u, const char *reg)
+{
+    const rtl_desc *d = rtl_of(u);
+    if (!d || !reg)
+        return NULL;
+    for (unsigned i = 0; i < 12 && d->bank[i].stage; i++) {
+        size_t n = strlen(d->bank[i].prefix);
+        if (strncmp(reg, d->bank[i].prefix, n) == 0 && reg[n] == '_')
+            return d->bank[i].stage;
+    }
+    return NULL;
+}
+
+const char *np_synth_rtl_param_spec(void)
+{
+    return g_rtl_params_spec;
+}
+
+unsigned np_synth_rtl_clocks_per_result(const np_unit *u)
+{
+    /* docs/rtl.md, "classic3 circuit variants": the serial hash (and the serial lerp engine, which
+       implies it) take one point every 8 clocks. */
+    if (u && strcmp(u->name, "classic3") == 0 &&
+        (strstr(g_rtl_params_spec, "HASH_SERIAL=1") || strstr(g_rtl_params_spec, "LERP_SERIAL=1")))
+        return 8;
+    return 0;
 }

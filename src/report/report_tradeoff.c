@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_fdiff.h"
 #include "np_texreg.h"
 #include "unit_span.h"

@@ -10,7 +10,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_fixed.h"
 #include "np_jfile.h"
 #include "np_rng.h"

@@ -11,7 +11,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_fixed.h"
 #include "np_jfile.h"
 #include "sweep_internal.h"

@@ -12,7 +12,7 @@
 #include <string.h>
 #include <sys/types.h>
 
-#include "np_cli.h"
+#include "np_common.h"
 #include "vec_internal.h"
 
 /* np_vec_header_init; all: spec gives every key exactly once (a '# config' line, np_unit_configure_all). */

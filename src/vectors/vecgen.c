@@ -27,7 +27,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "np_cli.h"
+#include "np_common.h"
 
 enum { N_UNIFORM = 4 };
 

@@ -21,7 +21,7 @@
 #include <stdarg.h>
 #include <string.h>
 
-#include "np_cli.h"
+#include "np_common.h"
 
 typedef struct verifier {
     const np_verify_opts *o;

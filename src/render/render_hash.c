@@ -5,9 +5,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_outfile.h"
-#include "render_cli.h"
+#include "np_render_tools.h"
 
 int np_render_hash_add(hash_list *l, const char *scene, const char *image, const char *hash, const char *cfg)
 {

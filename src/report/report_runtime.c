@@ -12,12 +12,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_outfile.h"
-#include "np_cmd.h"
 #include "np_image.h"
 #include "np_plot.h"
-#include "render_cli.h"
+#include "np_report_runtime.h"
 
 /*
  * The table's configuration columns: every key a registered unit's sweeps

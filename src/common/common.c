@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-#include "np_cli.h"
+#include "np_common.h"
 
 #include <errno.h>
 #include <stdarg.h>

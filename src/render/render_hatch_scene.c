@@ -11,10 +11,10 @@
 
 #include <unistd.h>
 
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_hatch_render.h"
 #include "np_image.h"
-#include "render_cli.h"
+#include "np_render_tools.h"
 
 static const char *const CMD = "render";
 

@@ -4,9 +4,8 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "np_cli.h"
-#include "np_cmd.h"
-#include "render_cli.h"
+#include "np_common.h"
+#include "np_render_tools.h"
 
 /* Best time of n calls of unit i's bit-exact render (i < 0: the float reference); NAN on failure. */
 static double best_of(unsigned n, np_render_frame *fr, const np_render_unit_cfg *uc)

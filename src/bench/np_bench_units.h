@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
-/* bench_units.h - internal: `noisepipe bench`'s table of every registered unit (bench_units.c). */
-#ifndef BENCH_UNITS_H
-#define BENCH_UNITS_H
+/* np_bench_units.h - `noisepipe bench`'s table of every registered unit (src/bench/bench_units.c; the command, cmd_bench.c, parses the options). */
+#ifndef NP_BENCH_UNITS_H
+#define NP_BENCH_UNITS_H
 
 /*
  * Print the table: stb_perlin_noise3 on 65,536 points, then every unit (only
@@ -13,4 +13,4 @@
  */
 int np_bench_units(double secs, const char *only, const char *spec);
 
-#endif /* BENCH_UNITS_H */
+#endif /* NP_BENCH_UNITS_H */

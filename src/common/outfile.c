@@ -1,12 +1,13 @@
 /* SPDX-License-Identifier: MIT */
 /* Output files and interruption (np_outfile.h). */
 #include "np_outfile.h"
-#include "np_cli.h"
+#include "np_common.h"
 
 #include <errno.h>
 #include <fcntl.h>
 #include <signal.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -238,4 +239,32 @@ int np_stdout_check(const char *cmd)
         return 0;
     np_err(cmd, "standard output: write error: %s", strerror(errno));
     return -1;
+}
+
+int np_mkdir_p(const char *dir)
+{
+    char buf[4096];
+    snprintf(buf, sizeof buf, "%s", dir);
+    for (char *p = buf + 1; *p; p++)
+        if (*p == '/') {
+            *p = '\0';
+            if (mkdir(buf, 0777) != 0 && errno != EEXIST)
+                return -1;
+            *p = '/';
+        }
+    if (mkdir(buf, 0777) != 0 && errno != EEXIST)
+        return -1;
+    return 0;
+}
+
+int np_tempdir(char *dir, size_t size, const char *stem, char *err, size_t errlen)
+{
+    const char *tmp = getenv("TMPDIR");
+    if (!tmp || !*tmp)
+        tmp = "/tmp";
+    if ((size_t)snprintf(dir, size, "%s/%s-XXXXXX", tmp, stem) >= size || !mkdtemp(dir)) {
+        snprintf(err, errlen, "cannot create a temporary folder in %s: %s", tmp, strerror(errno));
+        return -1;
+    }
+    return 0;
 }

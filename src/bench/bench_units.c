@@ -21,14 +21,14 @@
  * of consecutive pixels of random spans.
  */
 #define _DEFAULT_SOURCE /* getloadavg (glibc) */
-#include "bench_units.h"
+#include "np_bench_units.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
-#include "np_cli.h"
+#include "np_common.h"
 #include "np_stream.h"
 #include "np_sweep.h"
 #include "np_unit.h"

@@ -1,7 +1,12 @@
 /* SPDX-License-Identifier: MIT */
-/* np_cli.h - what every noisepipe command shares: exit codes, messages, progress. */
-#ifndef NP_CLI_H
-#define NP_CLI_H
+/*
+ * np_common.h - the common layer (src/common/, under every other src/ folder
+ * and depending on none: docs/architecture.md): exit codes, messages, numbers
+ * typed by people, progress, time. Output files and folders: np_outfile.h;
+ * the seeded generator: np_rng.h.
+ */
+#ifndef NP_COMMON_H
+#define NP_COMMON_H
 
 #include <stddef.h>
 #include <stdint.h>
@@ -63,4 +68,4 @@ double np_now(void);
 } /* extern "C" */
 #endif
 
-#endif /* NP_CLI_H */
+#endif /* NP_COMMON_H */
