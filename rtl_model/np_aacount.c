@@ -595,15 +595,22 @@ size_t np_aacount_datapath(const np_aacount_cfg *c, np_op *ops, size_t max)
         regs += w.v;
     }
     if (c->normal) {
-        np_dp_op(&d, "V", NULL, NP_OP_SQR, 3, w.nbar, 0, 0, 0, 0);
-        lv = np_dp_add_tree(&d, "V", "nb2", 3, w.nb2, 0, 1);
+        /* |nbar|^2: each component's magnitude (a conditional negation; |nbar_k| <= 128 n fits
+         * w.nbar - 1 bits), squared unsigned */
+        np_dp_op(&d, "V", NULL, NP_OP_NEG, 3, w.nbar - 1u, 0, 0, 0, 0);
+        np_dp_op(&d, "V", NULL, NP_OP_SQR, 3, w.nbar - 1u, 0, 0, 0, 1);
+        lv = np_dp_add_tree(&d, "V", "nb2", 3, w.nb2, 0, 2);
         (void)lv;
-        np_dp_op(&d, "V", NULL, NP_OP_MUL, 3u * lanes, w.nbar, 8, 0, 1, 0);
+        /* per sample: dot = nbar . n, three signed x signed products (s(w.nbar) x s8) */
+        np_dp_op(&d, "V", NULL, NP_OP_SMUL, 3u * lanes, w.nbar, 8, 0, 1, 0);
         np_dp_op(&d, "V", NULL, NP_OP_ADD, 2u * lanes, w.dot, 0, 0, 1, 1);
         np_dp_op(&d, "V", "dot", NP_OP_REG, 0, 0, 0, w.dot, 1, 2); /* wiring: the second adder's output */
-        np_dp_op(&d, "V", NULL, NP_OP_SQR, 3u * lanes, 8, 0, 0, 0, 0);
-        np_dp_op(&d, "V", NULL, NP_OP_ADD, 2u * lanes, w.nn2, 0, 0, 0, 1);
-        np_dp_op(&d, "V", "nn2", NP_OP_REG, 0, 0, 0, w.nn2, 0, 2);
+        /* nn2 = |n|^2: each s8's magnitude (0..128) squared; bit 7 of a magnitude is set only at 128,
+         * whose square is a single bit (2^14), so the squarer is 7 bits wide */
+        np_dp_op(&d, "V", NULL, NP_OP_NEG, 3u * lanes, 8, 0, 0, 0, 0);
+        np_dp_op(&d, "V", NULL, NP_OP_SQR, 3u * lanes, 7, 0, 0, 0, 1);
+        np_dp_op(&d, "V", NULL, NP_OP_ADD, 2u * lanes, w.nn2, 0, 0, 0, 2);
+        np_dp_op(&d, "V", "nn2", NP_OP_REG, 0, 0, 0, w.nn2, 0, 3);
         regs += w.nb2 + lanes * (w.dot + w.nn2);
     }
     if (c->luma) {
