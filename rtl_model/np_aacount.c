@@ -519,21 +519,39 @@ static aac_widths widths_of(const np_aacount_cfg *c)
 
 /*
  * A product with the constant k (a bits times k): shift-adds of k's canonical
- * signed digits, one adder of the product's span per digit after the first
- * (a power of two, or 0, is wiring).
+ * signed digits, lowest first, one adder per digit after the first (a power of
+ * two, or 0, is wiring). Each adder is a + 1 bits wide: the new term x 2^pos
+ * spans bits pos .. pos + a - 1, the partial sum's bits below pos pass through
+ * untouched, and its top is below pos + a (canonical digits are never
+ * adjacent: the sum of the lower ones is under 2^(pos - 1 + a + 1)).
  */
 static void const_mul(np_dp *d, const char *stage, unsigned count, unsigned a, uint64_t k, unsigned level)
 {
-    unsigned terms = 0, lo = 0, hi = 0;
+    unsigned terms = 0;
     for (unsigned pos = 0; k && pos < 64; pos++, k >>= 1)
         if (k & 1u) {
-            if (terms++ == 0)
-                lo = pos;
-            hi = pos;
+            terms++;
             k = (k & 2u) ? k + 1u : k - 1u; /* digit -1 or +1 */
         }
     if (terms > 1u)
-        np_dp_op(d, stage, NULL, NP_OP_ADD, count * (terms - 1u), a + hi - lo + 1u, 0, 0, 0, level);
+        np_dp_op(d, stage, NULL, NP_OP_ADD, count * (terms - 1u), a + 1u, 0, 0, 0, level);
+}
+
+/* Bits of k (0 for 0) and its trailing zero bits (0 for 0). */
+static unsigned ubits64(uint64_t k)
+{
+    unsigned b = 0;
+    while (k >> b)
+        b++;
+    return b;
+}
+
+static unsigned tzeros64(uint64_t k)
+{
+    unsigned t = 0;
+    while (k && !(k >> t & 1u))
+        t++;
+    return t;
 }
 
 /*
@@ -660,14 +678,26 @@ size_t np_aacount_datapath(const np_aacount_cfg *c, np_op *ops, size_t max)
     np_dp_op(&d, "P", NULL, NP_OP_REG, 1, regs, 0, 0, 0, 0);
     /* C: the normal thresholds (pmin nd < na[j] qmin, constant products, u72), the max of three counts, the mask */
     if (c->normal) {
+        /*
+         * Each comparison pmin nd < na[j] qmin is over the products' live bits: below
+         * both constants' trailing zeros both sides are 0 (no logic); between the two
+         * counts only one side has bits, which enter as "not all 0" (a comparison with
+         * the constant 0); above, a comparator up to the wider product's top.
+         */
         live = 0;
         const_mul(&d, "C", 1, w.p, r.nd, 0);
+        unsigned tz_d = tzeros64(r.nd), top_d = w.p + ubits64(r.nd);
         for (unsigned j = 1; j < n; j++)
             if (r.na_on[j]) {
                 const_mul(&d, "C", 1, w.q, r.na[j], 0);
+                unsigned tz_a = tzeros64(r.na[j]), top_a = w.q + ubits64(r.na[j]);
+                unsigned top = top_d > top_a ? top_d : top_a;
+                unsigned hi_tz = tz_d > tz_a ? tz_d : tz_a, lo_tz = tz_d > tz_a ? tz_a : tz_d;
+                np_dp_op(&d, "C", NULL, NP_OP_CMP, 1, top - hi_tz, 0, 0, 0, 1);
+                if (hi_tz > lo_tz)
+                    np_dp_op(&d, "C", NULL, NP_OP_CMPK, 1, hi_tz - lo_tz, 0, 0, 0, 1);
                 live++;
             }
-        np_dp_op(&d, "C", NULL, NP_OP_CMP, live, w.p + 32u, 0, 0, 0, 1);
         np_dp_op(&d, "C", NULL, NP_OP_INC, live, 5, 0, 0, 0, 2);
         np_dp_op(&d, "C", NULL, NP_OP_MUX, live, 5, 2, 0, 0, 3);
     }

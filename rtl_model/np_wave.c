@@ -749,21 +749,32 @@ static void jac_datapath(np_dp *dp, const np_wave_unit *u, unsigned n, const np_
     np_dp d = *dp;
     const unsigned nrm = u->c.normals, nt = nrm ? 6u : 4u;
     const unsigned wsa = w->sa, wgm = w->gm, wlj = w->lj, wly = w->ly, wjs = w->js, wj = w->j;
-    OP("M", NULL, NP_OP_MUL, 4u * n, 16, 16, 0, 0, 0); /* e: cx kmx, cx kmz, cz kmx, cz kmz */
+    OP("M", NULL, NP_OP_SMUL, 4u * n, 16, 16, 0, 0, 0); /* e: cx kmx, cx kmz, cz kmx, cz kmz (s16 x s16) */
     OP("M", "yq", NP_OP_ADD, n, wsa, 0, wsa, 1, 1);    /* round(ap c / 2^17) from the product yc rounds */
-    OP("M", "lj", NP_OP_MUL, 4u * n, wsa, 31, wlj, 1, 2);
+    OP("M", "lj", NP_OP_SMUL, 4u * n, wsa, 31, wlj, 1, 2); /* yq e */
     if (nrm)
-        OP("M", "ly", NP_OP_MUL, 2u * n, wsa, 16, wly, 1, 1);
+        OP("M", "ly", NP_OP_SMUL, 2u * n, wsa, 16, wly, 1, 1); /* sa kmx, sa kmz */
     OP("M", NULL, NP_OP_REG, 1, n * (4u * wlj + (nrm ? 2u * wly : 0u)), 0, 0, 0, 0);
-    for (unsigned m = 0; m < nt; m++)
-        np_dp_add_tree(&d, "T", "js", n, wjs, 1, 0);
+    /* js[m] = -sum lj[m]: as X and Z, 0 - lj[m] of lane 0 (an incrementer), then n - 1 subtractors */
+    OP("T", NULL, NP_OP_INC, nt, wjs, 0, 0, 0, 0);
+    OP("T", n > 1u ? "js" : NULL, NP_OP_ADD, nt * (n - 1u), wjs, 0, n > 1u ? wjs : 0u, 1, 1);
+    if (n == 1u)
+        OP("T", "js", NP_OP_REG, 0, 0, 0, wjs, 1, 1);
     OP("T", NULL, NP_OP_REG, 1, nt * wjs, 0, 0, 0, 0);
     OP("G", NULL, NP_OP_MUL, nt, wjs, wgm, 0, 0, 0);
     OP("G", "jac", NP_OP_ADD, nt, wj, 0, wj, 1, 2);
     OP("G", NULL, NP_OP_REG, 1, 3u * 16u + nt * wj + 1u, 0, 0, 0, 0);
-    /* N: a, d; ny = a d - jxz jzx (fold); with normals nx, nz too. */
+    /*
+     * N: a = 2^14 + jxx, d = 2^14 + jzz (s(wj + 1)); ny = a d - jxz jzx (fold); with normals
+     * nx = jzx yz - d yx and nz = jxz yx - a yz too. Every product is signed x signed: a d is
+     * s(wj + 1) x s(wj + 1); nx's and nz's products by d or a are s(wj + 1) x s(wj); the others
+     * (jxz jzx, jzx yz, jxz yx) s(wj) x s(wj).
+     */
     OP("N", NULL, NP_OP_ADD, 2, wj + 1u, 0, 0, 0, 0);
-    OP("N", NULL, NP_OP_MUL, nrm ? 6u : 2u, wj + 1u, wj + 1u, 0, 0, 1);
+    OP("N", NULL, NP_OP_SMUL, 1, wj + 1u, wj + 1u, 0, 0, 1);
+    if (nrm)
+        OP("N", NULL, NP_OP_SMUL, 2, wj + 1u, wj, 0, 0, 1);
+    OP("N", NULL, NP_OP_SMUL, nrm ? 3u : 1u, wj, wj, 0, 0, 1);
     OP("N", NULL, NP_OP_ADD, nrm ? 3u : 1u, 2u * (wj + 1u), 0, 0, 0, 2); /* exact differences, Q8.28 */
     if (nrm)
         OP("N", NULL, NP_OP_ADD, 3, NP_WAVE_N_BITS, 0, 0, 0, 3); /* the roundings to s20 Q9.10 */
@@ -841,7 +852,7 @@ size_t np_wave_datapath(const np_wave_unit *u, np_op *ops, size_t max)
     OP("S", "cs", NP_OP_NEG, nsin, 19, 0, 19, 1, 5);
     if (rec) {
         /* Per lane: (c dc - s ds, s dc + c ds) in one clock (the state's loop), rounded, the set-up mux, the state. */
-        OP("S", NULL, NP_OP_MUL, 4u * n, 31, 31, 0, 0, 0);
+        OP("S", NULL, NP_OP_SMUL, 4u * n, 31, 31, 0, 0, 0); /* signed x signed */
         OP("S", NULL, NP_OP_ADD, 2u * n, 62, 0, 0, 0, 1);
         OP("S", NULL, NP_OP_ADD, 2u * n, 31, 0, 0, 0, 2);
         OP("S", NULL, NP_OP_MUX, 2u * n, 31, 2, 0, 0, 3);
@@ -855,7 +866,7 @@ size_t np_wave_datapath(const np_wave_unit *u, np_op *ops, size_t max)
      * bit); G = sm min(g, gcap).
      */
     if (u->c.irr) {
-        OP("A", NULL, NP_OP_MUL, 1, 19, 19, 0, 0, 0);
+        OP("A", NULL, NP_OP_SMUL, 1, 19, 19, 0, 0, 0); /* s1 s2: s19 x s19 */
         OP("A", "w", NP_OP_INC, 1, 21, 0, 19, 1, 1);
         OP("A", NULL, NP_OP_MUL, n, 16, 19, 0, 0, 2);
         OP("A", NULL, NP_OP_INC, n, wap + 1u, 0, 0, 0, 3);
@@ -873,7 +884,7 @@ size_t np_wave_datapath(const np_wave_unit *u, np_op *ops, size_t max)
     OP("M", NULL, NP_OP_MUL, 2u * n, wap + 1u, 19, 0, 0, 0);
     OP("M", "yc", NP_OP_INC, n, wyc, 0, wyc, 1, 1);
     OP("M", "sa", NP_OP_INC, n, wsa, 0, wsa, 1, 1);
-    OP("M", "xp", NP_OP_MUL, 2u * n, wsa, 16, wxp, 1, 2);
+    OP("M", "xp", NP_OP_SMUL, 2u * n, wsa, 16, wxp, 1, 2); /* sa cx, sa cz: signed x s16 */
     if (u->c.cap)
         OP("M", "bc", NP_OP_MUL, 1, 16, 19, wbc, 1, 0);
     OP("M", NULL, NP_OP_REG, 1, n * (wyc + 2u * wxp) + wbc + wgm + 1u, 0, 0, 0, 0);

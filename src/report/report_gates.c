@@ -35,7 +35,7 @@ const np_cost_model np_cost_default = {
     .cmp_bit = 7.9,
     .mul_pp = 10.2,
     .mul_edge = 8.0,
-    .smul_pp = 11.8,
+    .smul_edge = 14.0,
     .mux2_bit = 3.0,
     .neg_bit = 5.9,
     .lut_bit = 0.0,
@@ -73,9 +73,10 @@ double np_cost_op_gates(const np_cost_model *m, const np_op *op)
             per = 1.5 * a * b;
         break;
     case NP_OP_SMUL:
-        per = m->smul_pp * a * b - m->mul_edge * (a + b);
+        per = m->mul_pp * a * b - m->mul_edge * (a + b);
         if (per < 1.5 * a * b)
             per = 1.5 * a * b;
+        per += m->smul_edge * (a + b);
         break;
     case NP_OP_MULLO: /* the partial-product bits under bit a: a b - b (b - 1) / 2 */
         per = m->mul_pp * (a * b - b * (b - 1.0) / 2.0) - m->mul_edge * (a + b);

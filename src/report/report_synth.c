@@ -89,7 +89,7 @@ static int wave_params(const void *cfg, char *buf, size_t len, char *err, size_t
     if (k > 0 && (size_t)k < len && u->c.cap)
         k += snprintf(buf + k, len - (size_t)k, " -set W_BC %u", w.bc);
     if (k > 0 && (size_t)k < len && np_wave_has_jac(&u->c))
-        k += snprintf(buf + k, len - (size_t)k, " -set W_LJ %u -set W_JS %u", w.lj, w.js);
+        k += snprintf(buf + k, len - (size_t)k, " -set W_LJ %u -set W_JS %u -set W_J %u", w.lj, w.js, w.j);
     if (k > 0 && (size_t)k < len && u->c.normals)
         k += snprintf(buf + k, len - (size_t)k, " -set W_LY %u", w.ly);
     if (k < 0 || (size_t)k >= len) {
