@@ -21,10 +21,11 @@ add_test(NAME layers.check_fails
                  \"$0\" \"$1\" > /dev/null 2> \"$1.err\"; s=$?; cat \"$1.err\"
                  test $s -eq 1 || { echo \"exit $s, want 1\"; exit 1; }
                  grep -q \"^src/units/units.c:$n: #include .np_render.h. (render, level 6) from units (level 4) goes up\" \"$1.err\" || { echo 'no message naming units.c:'$n; exit 1; }
-                 # and a listed exception that is gone is reported (the list only shrinks)
-                 sed -i '/#include \"np_sweep.h\"/d' \"$1/src/units/unit_classic.c\"
+                 # and a listed exception that matches no include is reported (the list only shrinks):
+                 # a row for an include that is not there, added to the copy's table
+                 sed -i '/^<!-- .layer-exceptions -->/i | src/units/units.c | np_gone.h | a stale row |' \"$1/docs/architecture.md\"
                  \"$0\" \"$1\" > /dev/null 2> \"$1.err2\"; cat \"$1.err2\"
-                 grep -q 'exception src/units/unit_classic.c -> np_sweep.h matches no forbidden include' \"$1.err2\" || exit 1
+                 grep -q 'exception src/units/units.c -> np_gone.h matches no forbidden include' \"$1.err2\" || exit 1
                  # and an include circle inside one folder: np_fixed.h <-> np_classic.h
                  echo '#include \"np_classic.h\"' >> \"$1/rtl_model/np_fixed.h\"
                  \"$0\" \"$1\" > /dev/null 2> \"$1.err3\"; cat \"$1.err3\"

@@ -217,10 +217,10 @@ endif()
 
 # ------------------------------------------------------------------ co-simulation
 # The C side (np_cosim.c: the cycle model and the stimulus) is a static
-# library built with the project's flags; each Verilated build links it.
+# library built with the project's flags; each Verilated build links it,
+# with the unit registry (np_tools: np_cosim_open_spec opens its units).
 add_library(np_cosim STATIC ${NP_RTL_TB}/np_cosim.c)
-target_link_libraries(np_cosim PUBLIC np_rtl_model)
-target_include_directories(np_cosim PRIVATE $<TARGET_PROPERTY:np_tools,INCLUDE_DIRECTORIES>)
+target_link_libraries(np_cosim PUBLIC np_tools np_rtl_model)
 np_project_target(np_cosim)
 
 # np_rtl_cosim_build(unit name top rtl_defines gparams sources...): a Verilated
@@ -229,6 +229,8 @@ function(np_rtl_cosim_build unit name top defs gparams)
   set(dir ${NP_RTL_WORK}/${unit}/cosim-${name})
   file(MAKE_DIRECTORY ${dir})
   set(cflags "-I${NP_RTL_TB} -O2")
+  set(model)
+  set(vopt)
   if(unit STREQUAL "simplex3")
     string(APPEND cflags " -DNP_COSIM_SIMPLEX")
   elseif(unit STREQUAL "wave")  # the harness sets np_wave's register inputs: it needs np_wave.h and TRAINS
@@ -250,19 +252,65 @@ function(np_rtl_cosim_build unit name top defs gparams)
     endforeach()
     string(JOIN "," acfg ${acfg})
     string(APPEND cflags " -DNP_COSIM_AACOUNT -DNP_COSIM_AAC_CFG=${acfg}")
+  elseif(unit STREQUAL "simplexn" OR unit STREQUAL "classicn")
+    # The n-D RTL against the registry's unit of its DIMS (simplex2/4/5, simplexn3; classic2/4/5,
+    # classic3, which is the family's n = 3): gparams must set DIMS and every other key of that
+    # unit, each the parameter of its name in capitals (IN_REG, OUT_SKID are the pipe options, not
+    # keys). The harness refuses a --unit or --cfg other than these; np_rtl_cosim passes them.
+    if(NOT gparams MATCHES "(^|;)-GDIMS=([2-5])(;|$)")
+      message(FATAL_ERROR "np_rtl_cosim_build(${unit} ${name}): gparams must set -GDIMS=2..5")
+    endif()
+    set(dims ${CMAKE_MATCH_2})
+    string(REGEX REPLACE "n$" "" model ${unit})
+    if(dims EQUAL 3 AND unit STREQUAL "simplexn")
+      set(model simplexn3)
+    else()
+      set(model ${model}${dims})
+    endif()
+    set(keys)
+    foreach(g ${gparams})
+      string(REGEX REPLACE "^-G([A-Z_]+)=(.*)$" "\\1;\\2" kv "${g}")
+      list(GET kv 0 key)
+      list(GET kv 1 val)
+      string(TOLOWER ${key} key)
+      if(NOT key MATCHES "^(in_reg|out_skid)$" AND NOT (model STREQUAL "classic3" AND key STREQUAL "dims"))
+        list(APPEND keys ${key}=${val})
+      endif()
+    endforeach()
+    string(JOIN "," keys ${keys})
+    string(APPEND cflags " -DNP_COSIM_NDIM=${model} -DNP_COSIM_KEYS=${keys}")
+    # A fault copy runs only until its mismatches show (20,000 cycles): its Verilated C++ at -O0,
+    # as np_rtl_builds' fault benches (simplexn n = 4: 17.5 s -> 10.2 s to build, 0.5 s to run).
+    if(name MATCHES "^fault_")
+      set(vopt -MAKEFLAGS OPT_FAST=-O0 -MAKEFLAGS OPT_SLOW=-O0 -MAKEFLAGS OPT_GLOBAL=-O0)
+    endif()
+    set_property(GLOBAL PROPERTY np_cosim_unit_${unit}_${name} "${model}")
+    set_property(GLOBAL PROPERTY np_cosim_keys_${unit}_${name} "${keys}")
   endif()
+  # np_cosim, the registry it opens units from (np_tools), the models, and what np_tools links.
+  set(libs "$<TARGET_FILE:np_cosim> $<TARGET_FILE:np_tools> $<TARGET_FILE:np_rtl_model> -lm -lpthread")
   np_rtl_test(rtl.${unit}.cosim.build.${name} "${NP_VERILATOR}" pass "" "rtl;nosan"
     ${NP_VERILATOR} --cc --exe --build -j 1 -Wall -I${NP_RTL_SRC} ${defs} ${gparams} --top-module ${top} --prefix Vcosim
-    -Mdir ${dir} -o cosim -CFLAGS ${cflags}
-    -LDFLAGS "$<TARGET_FILE:np_cosim> $<TARGET_FILE:np_rtl_model>"
+    -Mdir ${dir} -o cosim -CFLAGS ${cflags} -LDFLAGS "${libs}" ${vopt}
     ${NP_RTL_TB}/cosim_main.cpp ${ARGN})
   set_tests_properties(rtl.${unit}.cosim.build.${name} PROPERTIES FIXTURES_SETUP rtl_${unit}_cosim_${name})
 endfunction()
 
-# np_rtl_cosim(test unit name expect pattern args...)
+# np_rtl_cosim(test unit name expect pattern args...); an n-D build's run gets --unit (the registry
+# unit) and, unless args give one, --cfg (the keys it was built with).
 function(np_rtl_cosim test unit name expect pattern)
+  get_property(model GLOBAL PROPERTY np_cosim_unit_${unit}_${name})
+  set(args --unit ${unit} ${ARGN})
+  if(model)
+    get_property(keys GLOBAL PROPERTY np_cosim_keys_${unit}_${name})
+    set(args --unit ${model})
+    if(NOT "--cfg" IN_LIST ARGN)
+      list(APPEND args --cfg ${keys})
+    endif()
+    list(APPEND args ${ARGN})
+  endif()
   np_rtl_test(${test} "${NP_VERILATOR}" ${expect} "${pattern}" "rtl;nosan"
-    ${NP_RTL_WORK}/${unit}/cosim-${name}/cosim --unit ${unit} ${ARGN})
+    ${NP_RTL_WORK}/${unit}/cosim-${name}/cosim ${args})
   set_tests_properties(${test} PROPERTIES FIXTURES_REQUIRED rtl_${unit}_cosim_${name})
 endfunction()
 

@@ -51,3 +51,85 @@ add_test(NAME rtl.board.uart.lint
   COMMAND sh -c "command -v verilator > /dev/null || { echo 'verilator not installed: skipped'; exit 77; }
                  for m in tx rx; do for c in 4 104; do verilator --lint-only -Wall -GCLKS_PER_BIT=$c \"$0/np_uart_$m.v\" || exit 1; done; done; echo 'lint clean'" ${NP_BOARD_SRC})
 set_tests_properties(rtl.board.uart.lint PROPERTIES SKIP_RETURN_CODE 77 LABELS "rtl;board;nosan" PASS_REGULAR_EXPRESSION "lint clean")
+
+# The protocol engine (np_link_engine.v; np_board_core.v: the engine with classic3 LERP_SERIAL behind it):
+#   rtl.board.engine.lint             verilator --lint-only -Wall: the core, and the engine alone at
+#                                     the largest max_payload (65532, a 128 KiB buffer)
+#   rtl.board.diff.build[.FAULT]      board_diff: the Verilated core with the C board emulator (fixture)
+#   rtl.board.diff                    the same OUT streams into both (a session, 12 faults, each
+#                                     also with the IN side stalled): identical IN bytes
+#   rtl.board.diff.fault_seq, .fault_pcrc  the engine that takes any seq (NP_FAULT_LINK_SEQ) or
+#                                     any pcrc (NP_FAULT_LINK_PCRC) must be caught
+set(NP_BOARD_CORE_SRC ${NP_BOARD_SRC}/np_board_core.v ${NP_BOARD_SRC}/np_link_engine.v ${NP_BOARD_SRC}/np_crc32.v
+  ${PROJECT_SOURCE_DIR}/rtl_model/verilog/np_classic3.v ${PROJECT_SOURCE_DIR}/rtl_model/verilog/np_pipe_in_reg.v
+  ${PROJECT_SOURCE_DIR}/rtl_model/verilog/np_pipe_skid.v)
+add_test(NAME rtl.board.engine.lint
+  COMMAND sh -c "command -v verilator > /dev/null || { echo 'verilator not installed: skipped'; exit 77; }
+                 verilator --lint-only -Wall -I\"$0/..\" --top-module np_board_core \"$0/np_board_core.v\" \"$0/np_link_engine.v\" \"$0/np_crc32.v\" \"$0/../np_classic3.v\" \"$0/../np_pipe_in_reg.v\" \"$0/../np_pipe_skid.v\" || exit 1
+                 verilator --lint-only -Wall -GMAX_PAYLOAD=65532 -GRXB_AW=17 \"$0/np_link_engine.v\" \"$0/np_crc32.v\" || exit 1
+                 echo 'lint clean'" ${NP_BOARD_SRC})
+set_tests_properties(rtl.board.engine.lint PROPERTIES SKIP_RETURN_CODE 77 LABELS "rtl;board;nosan" PASS_REGULAR_EXPRESSION "lint clean")
+
+# The C side of the harnesses: the link library and what it needs (src/CMakeLists.txt's NP_SRC_DIRS).
+set(np_board_cflags "-O2 -Wall -Wextra -Werror -I${PROJECT_SOURCE_DIR}/rtl_model")
+foreach(d common cli bench units vectors journal sweep ref render report link wave)
+  string(APPEND np_board_cflags " -I${PROJECT_SOURCE_DIR}/src/${d}")
+endforeach()
+set(np_board_ldflags "$<TARGET_FILE:np_link> $<TARGET_FILE:np_tools> $<TARGET_FILE:np_rtl_model> -lm -lpthread")
+
+# np_board_verilate(name top cpp defines sources...): a Verilated harness ${NP_BOARD_WORK}/<name>/<name>,
+# built by the test rtl.board.<name>.build (fixture rtl_board_<name>). A fault copy (defines set)
+# is compiled at -O0: it runs once.
+function(np_board_verilate name top cpp defs)
+  set(dir ${NP_BOARD_WORK}/${name})
+  file(MAKE_DIRECTORY ${dir})
+  set(vopt)
+  if(defs)
+    set(vopt -MAKEFLAGS OPT_FAST=-O0 -MAKEFLAGS OPT_SLOW=-O0 -MAKEFLAGS OPT_GLOBAL=-O0)
+  endif()
+  np_rtl_test(rtl.board.${name}.build "${NP_VERILATOR}" pass "" "rtl;board;nosan"
+    ${NP_VERILATOR} --cc --exe --build -j 1 -Wall -I${PROJECT_SOURCE_DIR}/rtl_model/verilog ${defs} ${vopt}
+    --top-module ${top} --prefix Vbd -Mdir ${dir} -o ${name} -CFLAGS ${np_board_cflags} -LDFLAGS ${np_board_ldflags}
+    ${CMAKE_CURRENT_SOURCE_DIR}/rtl/${cpp} ${ARGN})
+  set_tests_properties(rtl.board.${name}.build PROPERTIES FIXTURES_SETUP rtl_board_${name})
+endfunction()
+# np_board_run(test name expect pattern args...)
+function(np_board_run test name expect pattern)
+  np_rtl_test(${test} "${NP_VERILATOR}" ${expect} "${pattern}" "rtl;board;nosan" ${NP_BOARD_WORK}/${name}/${name} ${ARGN})
+  set_tests_properties(${test} PROPERTIES FIXTURES_REQUIRED rtl_board_${name})
+endfunction()
+
+np_board_verilate(diff np_board_core board_diff.cpp "" ${NP_BOARD_CORE_SRC})
+np_board_verilate(diff_fault_seq np_board_core board_diff.cpp "-DNP_FAULT_LINK_SEQ" ${NP_BOARD_CORE_SRC})
+np_board_verilate(diff_fault_pcrc np_board_core board_diff.cpp "-DNP_FAULT_LINK_PCRC" ${NP_BOARD_CORE_SRC})
+np_board_run(rtl.board.diff diff pass "In 28 streams, [0-9]+ frames \\([0-9]+ bytes\\) compared, 0 mismatches\\." --seed 1 --frames 40)
+np_board_run(rtl.board.diff.seed2 diff pass "In 28 streams, [0-9]+ frames \\([0-9]+ bytes\\) compared, 0 mismatches\\." --seed 2 --frames 40)
+set(np_diff_caught "compared, [1-9][0-9]* mismatches\\.")
+np_board_run(rtl.board.diff.fault_seq diff_fault_seq fail "Streams that differ:.* wrong_seq[ .].*${np_diff_caught}" --seed 1 --frames 40)
+np_board_run(rtl.board.diff.fault_pcrc diff_fault_pcrc fail "Streams that differ:.* pcrc[ .].*${np_diff_caught}" --seed 1 --frames 40)
+
+# The whole board (np_board_top.v: UART in, engine, classic3, UART out) driven by the real host
+# engine (np_host_*, src/link/link_engine.c) through a UART line model (board_e2e.cpp):
+#   rtl.board.top.lint               verilator --lint-only -Wall
+#   rtl.board.e2e                    2,000 random vectors, one session, every one verified
+#   rtl.board.e2e.faults             3,000 vectors with a dropped OUT byte, two flipped OUT bits and a
+#                                    flipped IN bit on the line: the host's link faults, new sessions
+#                                    on the same journal, every vector verified exactly once
+#   rtl.board.e2e.fault_flip         classic3 with NP_FAULT_FLIP behind the engine: the host must
+#                                    report failing vectors
+set(NP_BOARD_TOP_SRC ${NP_BOARD_SRC}/np_board_top.v ${NP_BOARD_SRC}/np_uart_rx.v ${NP_BOARD_SRC}/np_uart_tx.v
+  ${NP_BOARD_CORE_SRC})
+add_test(NAME rtl.board.top.lint
+  COMMAND sh -c "command -v verilator > /dev/null || { echo 'verilator not installed: skipped'; exit 77; }
+                 verilator --lint-only -Wall -I\"$0/..\" --top-module np_board_top \"$0/np_board_top.v\" \"$0/np_uart_rx.v\" \"$0/np_uart_tx.v\" \"$0/np_board_core.v\" \"$0/np_link_engine.v\" \"$0/np_crc32.v\" \"$0/../np_classic3.v\" \"$0/../np_pipe_in_reg.v\" \"$0/../np_pipe_skid.v\" && echo 'lint clean'" ${NP_BOARD_SRC})
+set_tests_properties(rtl.board.top.lint PROPERTIES SKIP_RETURN_CODE 77 LABELS "rtl;board;nosan" PASS_REGULAR_EXPRESSION "lint clean")
+np_board_verilate(e2e np_board_top board_e2e.cpp "" ${NP_BOARD_TOP_SRC})
+np_board_verilate(e2e_fault_flip np_board_top board_e2e.cpp "-DNP_FAULT_FLIP" ${NP_BOARD_TOP_SRC})
+np_board_run(rtl.board.e2e e2e pass
+  "In 2000 records, 2000 verified in 1 sessions \\(2000 counted by the sessions\\), 0 failed: every record verified exactly once\\."
+  --records 2000 --seed 1)
+np_board_run(rtl.board.e2e.faults e2e pass
+  "4 faults injected.*In 3000 records, 3000 verified in [2-8] sessions \\(3000 counted by the sessions\\), 0 failed: every record verified exactly once\\."
+  --records 3000 --seed 1 --fault drop-out:4000 --fault flip-in:6000 --fault flip-out:15000 --fault drop-out:20000)
+np_board_run(rtl.board.e2e.fault_flip e2e_fault_flip fail "In 2000 records, 2000 verified in 1 sessions .*, [1-9][0-9]* failed: NOT verified\\."
+  --records 2000 --seed 1)

@@ -100,3 +100,73 @@ set(NP_RTL_CN_SETS
 set(cn_golden4 ${PROJECT_SOURCE_DIR}/vectors/classic4/classic4-l1-seed1.memh)
 np_rtl_ndim_tests(classicn rtl_classicn_tb "${NP_RTL_CN_SETS}" ${cn_golden4} c4 c4_opts c2
   "is for dims=4 out_bits=8 s_frac=12 lerp_frac=10, not for cfg c2")
+
+# ------------------------------------------------------------------ co-simulation
+# The n-D RTL against the registry's cycle model of its n (np_cosim_open_spec: simplex2/4/5 and
+# simplexn3, the n-D simplex at n = 3; classic2/4/5 and classic3, the classic family's n = 3),
+# every cycle in_ready, out_valid and f, with random bubbles and stalls (cosim_main.cpp). One
+# Verilated build per (unit, n, configuration), shared by its runs. Names:
+#   rtl.<module>.cosim.build.<name>   the Verilated RTL with the harness (fixture)
+#   rtl.<module>.cosim.<name>         a run: 0 mismatches; or, for a fault copy, caught
+# The default configuration of each n, every key written out (the -G parameters and --cfg).
+set(NP_COSIM_SN_s2 "-GDIMS=2;-GOUT_BITS=16;-GT_FRAC=25;-GP_FRAC=25")
+set(NP_COSIM_SN_s3 "-GDIMS=3;-GOUT_BITS=16;-GT_FRAC=23;-GP_FRAC=20;-GK_FRAC=22")
+set(NP_COSIM_SN_s4 "-GDIMS=4;-GOUT_BITS=16;-GT_FRAC=25;-GP_FRAC=25")
+set(NP_COSIM_SN_s5 "-GDIMS=5;-GOUT_BITS=16;-GT_FRAC=25;-GP_FRAC=25")
+set(NP_COSIM_CN_c2 "-GDIMS=2;-GOUT_BITS=8;-GS_FRAC=12;-GLERP_FRAC=11")
+set(NP_COSIM_CN_c3 "-GDIMS=3;-GOUT_BITS=8;-GS_FRAC=12;-GLERP_FRAC=11")
+set(NP_COSIM_CN_c4 "-GDIMS=4;-GOUT_BITS=8;-GS_FRAC=12;-GLERP_FRAC=10")
+set(NP_COSIM_CN_c5 "-GDIMS=5;-GOUT_BITS=8;-GS_FRAC=12;-GLERP_FRAC=10")
+# Other configurations (the benches' s3_coarse, s5_narrow, c4_wide_l): K_FRAC off its default at
+# n = 3; the widest f (20 bits) with t_frac = 3, where P2 and P4 round hardest; and every classic
+# key off its default (s_frac = 3 < lerp_frac = 12).
+set(NP_COSIM_SN_s3_coarse "-GDIMS=3;-GOUT_BITS=16;-GT_FRAC=20;-GP_FRAC=14;-GK_FRAC=16")
+set(NP_COSIM_SN_s5_narrow "-GDIMS=5;-GOUT_BITS=20;-GT_FRAC=3;-GP_FRAC=14")
+set(NP_COSIM_CN_c4_wide_l "-GDIMS=4;-GOUT_BITS=12;-GS_FRAC=3;-GLERP_FRAC=12")
+# The fault copies (np_simplexn.v, np_classicn.v: NP_FAULT_FLIP flips bit 0 of f on about 1 input
+# in 16, NP_FAULT_STALL lets a bank load while its successor stalls) at n = 4, the default.
+set(NP_COSIM_SN_fault_flip "${NP_COSIM_SN_s4}")
+set(NP_COSIM_SN_fault_stall "${NP_COSIM_SN_s4}")
+set(NP_COSIM_CN_fault_flip "${NP_COSIM_CN_c4}")
+set(NP_COSIM_CN_fault_stall "${NP_COSIM_CN_c4}")
+foreach(m "simplexn;SN;s2;s3;s4;s5;s3_coarse;s5_narrow;fault_flip;fault_stall"
+          "classicn;CN;c2;c3;c4;c5;c4_wide_l;fault_flip;fault_stall")
+  list(POP_FRONT m module key)
+  foreach(name ${m})
+    set(defs "")
+    if(name MATCHES "^fault_")
+      string(TOUPPER "NP_${name}" def)
+      set(defs "-D${def}")
+    endif()
+    np_rtl_cosim_build(${module} ${name} np_${module} "${defs}" "${NP_COSIM_${key}_${name}}" ${NP_RTL_${key}_RTL})
+  endforeach()
+endforeach()
+# 10^6 cycles at each default (1 to 7 s a run: docs/rtl.md), 300,000 at the others; the fault copies
+# must show mismatches within 20,000 cycles (the first at cycles 72 and 37 (flip), 225 (stall)).
+set(cosim_1m "1000000 cycles, .* 0 mismatches")
+foreach(name s2 s3 s4 s5 c2 c3 c4 c5 s3_coarse s5_narrow c4_wide_l)
+  set(module simplexn)
+  if(name MATCHES "^c")
+    set(module classicn)
+  endif()
+  if(name MATCHES "_")
+    np_rtl_cosim(rtl.${module}.cosim.${name} ${module} ${name} pass "300000 cycles, .* 0 mismatches" --cycles 300000)
+  else()
+    np_rtl_cosim(rtl.${module}.cosim.${name} ${module} ${name} pass "${cosim_1m}" --cycles 1000000)
+  endif()
+endforeach()
+foreach(module simplexn classicn)
+  foreach(f flip stall)
+    np_rtl_cosim(rtl.${module}.cosim.fault_${f} ${module} fault_${f} fail "20000 cycles, .* [1-9][0-9]* mismatches" --cycles 20000)
+  endforeach()
+endforeach()
+# The binary refuses a configuration or a unit other than its RTL's (the run would compare two
+# different circuits), and writes the cycle trace with the n-D inputs (the 80-bit port at n = 5).
+np_rtl_cosim(rtl.simplexn.cosim.wrong_cfg simplexn s4 fail
+  "this binary is the RTL of --unit simplex4 --cfg dims=4,out_bits=16,t_frac=25,p_frac=25: the model's configuration is dims=4 out_bits=16 t_frac=24"
+  --cfg dims=4,out_bits=16,t_frac=24,p_frac=25 --cycles 10)
+np_rtl_cosim(rtl.classicn.cosim.wrong_unit classicn c4 fail
+  "this binary is the RTL of --unit classic4 --cfg dims=4,out_bits=8,s_frac=12,lerp_frac=10"
+  --unit classic3 --cfg out_bits=8,s_frac=12,lerp_frac=11 --cycles 10)
+np_rtl_cosim(rtl.simplexn.cosim.trace simplexn s5 pass "trace: 2000 cycles written to"
+  --cycles 2000 --trace ${NP_RTL_WORK}/simplexn/cosim-trace.txt)

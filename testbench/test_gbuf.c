@@ -325,7 +325,7 @@ static int shade_cycles(void)
 
 /*
  * The renderer's pixel resolve (np_gbuf_resolve, which sums a pixel's masked
- * samples and calls the unit's np_aacount_resolve) over every (s, sum): one
+ * samples and calls the unit's resolve, np_aacount_resolve through np_unit.samples) over every (s, sum): one
  * pixel of m = 4 per pair, mask = the first s of B4, the sum spread over the s
  * samples (each <= 255), each channel a different sum; the result is
  * round_half_up(sum / s). Background (s = 0) is the scene's colour, rounded.
@@ -348,6 +348,7 @@ static int resolve_exhaustive(void)
     g.n = 16;
     g.w = (unsigned)npx;
     g.h = 1;
+    g.samples = np_unit_find("aacount")->samples; /* as np_gbuf_build takes it from the registry */
     uint16_t *mask = calloc(npx, sizeof *mask);
     uint8_t *rgb = calloc(npx * 16 * 3, 1), *out = calloc(npx * 3, 1);
     uint32_t *want_sum = calloc(npx, sizeof *want_sum);

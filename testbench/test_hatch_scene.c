@@ -176,7 +176,7 @@ static int scene_cost(const char *hatch, np_unit_cost *cost, np_hatch_cfg *cfg)
         return -1;
     }
     memset(&c, 0, sizeof c);
-    int used = u->cfg_scene(c.bytes, &s, err, sizeof err);
+    int used = np_scene_cfg_unit(u, c.bytes, &s, err, sizeof err);
     np_scene_free(&s);
     NP_CHECK(used == 1, "the scene uses hatch: %s", used < 0 ? err : "no");
     if (used != 1 || np_unit_cost_compute(u, c.bytes, &np_cost_default, cost, err, sizeof err) != 0) {

@@ -105,7 +105,7 @@ static int scene_keys(void)
             /* No span unit renders it; the gate report's cfg_scene names simplex4 alone. */
             np_unit_cfg c;
             int want = strcmp(u->name, "simplex4") == 0;
-            NP_CHECK(u->cfg_scene(&c, &sc, err, sizeof err) == want, "%s: cfg_scene is not %d on anim4d", u->name,
+            NP_CHECK(np_scene_cfg_unit(u, &c, &sc, err, sizeof err) == want, "%s: cfg_scene is not %d on anim4d", u->name,
                      want);
         }
     np_scene_free(&sc);

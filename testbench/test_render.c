@@ -12,9 +12,12 @@
 
 #include "np_golden.h"
 #include "np_image.h"
+#include "np_fdiff.h"
 #include "np_render.h"
-#include "np_stream.h"
+#include "np_report_scan.h"
+#include "np_vec_stream.h"
 #include "np_test.h"
+#include "np_texel.h"
 #include "np_texreg.h"
 #include "unit_span.h"
 #include "np_vec.h"

@@ -62,9 +62,10 @@ static const char usage_text[] =
     "  transform, quadric, index and guard bits whose predicted bound is <= 1 LSB (render\n"
     "  --sized renders with them) - instead of the default widths; DIR/scene-NAME-sized-gates.md.\n"
     "  --synth: synthesise the reference RTL (rtl_model/verilog, or --rtl DIR) with Yosys + ABC\n"
-    "  and print its NAND2 equivalents per stage beside the cost model's (classic3, simplex3,\n"
-    "  wave, aacount; docs/cost-model.md). Needs yosys (exit 2 without it); --tolerance PCT: exit 1 when a\n"
-    "  stage is more than PCT % from synthesis; --per-stage: ABC on each stage's cone alone\n"
+    "  and print its NAND2 equivalents per stage beside the cost model's (classic3, simplex3;\n"
+    "  with --unit also wave, aacount, classic2/4/5, simplex2/4/5; docs/cost-model.md). Needs\n"
+    "  yosys (exit 2 without it); --tolerance PCT: exit 1 when a stage is more than PCT % from\n"
+    "  synthesis; --per-stage: ABC on each stage's cone alone\n"
     "  (much faster on simplex3; within a few % of the whole-design flow on classic3); ABC\n"
     "  runs its default script with the SAT sweep bounded (&fraig -x -C 1000), --abc-full: unbounded.\n"
     "  --rtl-param NAME=V,...: RTL parameters that are not configuration keys (with --unit;\n"
@@ -654,7 +655,7 @@ static int write_scene(const char *dir, const char *path)
     for (size_t i = 0; (u = np_unit_at(i)) != NULL && rc == NP_EXIT_OK && n < MAXU; i++) {
         if (!u->datapath)
             continue;
-        int used = u->cfg_scene ? u->cfg_scene(&su[n].cfg, &sc, err, sizeof err) : 0;
+        int used = np_scene_cfg_unit(u, &su[n].cfg, &sc, err, sizeof err);
         if (used < 0) {
             np_err("report", "%s: %s: %s", path, u->name, err);
             rc = NP_EXIT_USAGE;

@@ -10,7 +10,7 @@
 #include "np_render_tools.h"
 #include "np_report_runtime.h"
 
-/* noisepipe render --aa: the adaptive supersampling report (render_aa.c). */
+/* noisepipe render --aa: its options (render_aa.c), then the report (src/report/np_report_aa.h). */
 int np_render_aa_main(int argc, char **argv);
 
 #endif /* RENDER_CLI_H */

@@ -2,8 +2,8 @@
 /*
  * A time-varying solid texture through 4-D noise (Perlin, "Noise Hardware":
  * "Noise over R^4 is also very useful for time-varying solid textures"):
- * a lit sphere whose surface point p reads simplex4's bit-exact model at
- * (p, t), t advancing 1/16 lattice unit per frame, rendered as a short PNG
+ * a lit sphere whose surface point p reads simplex4's bit-exact model (through
+ * the registry, at its defaults: f is s16 Q-1.16) at (p, t), t advancing 1/16 lattice unit per frame, rendered as a short PNG
  * frame sequence (`noisepipe report anim4d`). Not a scene of the scene
  * pipeline: a stand-alone view of the unit, for looking at.
  */
@@ -14,7 +14,7 @@
 #include <stdlib.h>
 
 #include "np_image.h"
-#include "np_simplexn.h"
+#include "np_unit.h"
 
 enum { SIZE = 192, T_STEP = 16 }; /* pixels; Q8.8 steps of t per frame (1/16 unit) */
 
@@ -29,7 +29,16 @@ static uint8_t byte_of(double v)
 
 int np_anim4d_frames(const char *dir, unsigned frames, char *err, size_t errlen)
 {
-    np_simplexn_cfg cfg = np_simplexn_cfg_default(4, 16);
+    const np_unit *u = np_unit_find("simplex4");
+    np_unit_cfg cfg;
+    np_unit_fields fl;
+    if (!u) {
+        snprintf(err, errlen, "no unit simplex4 in the registry");
+        return -1;
+    }
+    if (np_unit_configure(u, &cfg, NULL, err, errlen) != 0)
+        return -1;
+    u->fields(&cfg, &fl);
     uint8_t *rgb = malloc((size_t)SIZE * SIZE * 3u);
     if (!rgb) {
         snprintf(err, errlen, "out of memory");
@@ -43,9 +52,11 @@ int np_anim4d_frames(const char *dir, unsigned frames, char *err, size_t errlen)
                 double r2 = sx * sx + sy * sy, col[3] = { 0.12, 0.12, 0.14 };
                 if (r2 <= 1.0) {
                     double sz = sqrt(1.0 - r2), lam = sx * lx + sy * ly + sz * lz;
-                    uint16_t x[4] = { q88(8.0 + 3.0 * sx), q88(8.0 + 3.0 * sy), q88(8.0 + 3.0 * sz),
-                                      (uint16_t)(0x0400u + fr * T_STEP) };
-                    double f = np_simplexn_eval(&cfg, x) / 65536.0; /* s16 */
+                    const uint64_t x[4] = { q88(8.0 + 3.0 * sx), q88(8.0 + 3.0 * sy), q88(8.0 + 3.0 * sz),
+                                            (uint16_t)(0x0400u + fr * T_STEP) };
+                    uint64_t w[NP_UNIT_MAX_FIELDS];
+                    u->eval(&cfg, x, w);
+                    double f = np_unit_field_value(&fl.out[0], w[0]);
                     double v = 0.5 + 5.0 * f, shade = 0.25 + 0.75 * (lam > 0.0 ? lam : 0.0);
                     col[0] = shade * (0.2 + 0.8 * v);
                     col[1] = shade * (0.1 + 0.7 * v * v);

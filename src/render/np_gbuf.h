@@ -82,9 +82,10 @@
  *   - an engine with a seek (texel) places pixel k0 directly: u0 + k0 du and
  *     s + k0 ds, one more dependency level of the set-up engine after du:
  *     the run is timed as a span of its own k1 - k0 pixels, plus
- *     seek = (octaves + 1) (ceil(3 / P) + Lm - 1) clocks for texel (P, Lm
- *     its setup_mults, mult_lat), added serially (not hidden behind the
- *     previous run: an upper bound); 0 for an engine the model does not know;
+ *     seek = the unit's np_unit_span.seek_cycles (texel: (octaves + 1)
+ *     (ceil(3 / P) + Lm - 1) clocks, P, Lm its setup_mults, mult_lat), added
+ *     serially (not hidden behind the previous run: an upper bound); 0 for a
+ *     unit that declares none;
  *   - an engine without (fdiff: forward differences cannot skip) steps
  *     from k = 0: the run is timed as the span's first k1 pixels, so the
  *     k0 skipped pixels cost a clock each (and any cell set-ups they need),
@@ -97,7 +98,7 @@
  *   out u8        (S R + 2^16) >> 17
  * which equals round_half_up(S / s) for every s in 1..16 and S in
  * 0..255 s (gbuf.resolve_exhaustive, aacount.resolve_exhaustive). The
- * renderer calls the unit's resolve, np_aacount_resolve: one definition.
+ * renderer calls the unit's resolve (np_gbuf.samples): one definition.
  *
  * --- Lighting (np_gbuf_light; scene key light.image, PIN) ---
  * Only when the scene's "light" section has "image": true (default false:
@@ -131,8 +132,8 @@
 
 #include "np_render.h"
 #include "np_scene.h"
-#include "np_span.h"
 #include "np_unit.h"
+#include "np_unit_span.h"
 
 enum {
     NP_GBUF_M_MAX = 4,
@@ -148,9 +149,11 @@ enum {
 
 /*
  * The paper's index matrices (Figure 3) and the resolve's reciprocal ROM have
- * one definition, the unit's (rtl_model/np_aacount.h): np_aacount_bayer(m, a, b)
- * = B_m[b][a], np_aacount_mask(m, s) the first-s mask (bit j = b m + a set iff
- * B_m[b][a] < s; s >= n gives all n), np_aacount_resolve(sum, s) the resolve.
+ * one definition, the unit's: the G-buffer takes them through the registry
+ * (np_unit.samples of the first unit that has one, aacount's: np_gbuf.samples),
+ * mask(m, s) the first-s mask (bit j = b m + a set iff B_m[b][a] < s; s >= n
+ * gives all n), resolve(sum, s) the resolve (rtl_model/np_aacount.h:
+ * np_aacount_mask, np_aacount_resolve, np_aacount_bayer(m, a, b) = B_m[b][a]).
  */
 
 /* A sub-span: sample (a, b) of pixels x0 .. x0 + n - 1 on pixel row y of one polygon. */
@@ -192,6 +195,7 @@ typedef struct np_gbuf {
     uint64_t covered_samples;
     uint64_t polys_drawn;     /* polygons not culled */
     double raster_seconds;
+    const np_unit_samples *samples; /* the sample order and resolve: the registry's (np_unit.samples) */
 } np_gbuf;
 
 /*
@@ -240,14 +244,14 @@ int np_gbuf_shade(const np_gbuf *g, const np_unit *u, const void *cfg, const uin
 
 /*
  * The S buffer (the paper's one sample per pixel): each pixel's sample with
- * B index 0 (np_aacount_mask(m, 1)) shaded, into rgb1 (w * h * 3, one
+ * B index 0 (samples->mask(m, 1)) shaded, into rgb1 (w * h * 3, one
  * pixel each; background where that sample is uncovered). For m = 3 and
  * m = 1 this is the 1x1 renderer's image of the unit, bit for bit.
  */
 int np_gbuf_shade_first(const np_gbuf *g, const np_unit *u, const void *cfg, uint8_t *rgb1, np_gbuf_cost *cost);
 
 /*
- * Resolve: each pixel the mean (np_aacount_resolve) of its samples in mask[p]
+ * Resolve: each pixel the mean (samples->resolve) of its samples in mask[p]
  * (NULL: all n), from per-sample rgb (np_gbuf_shade), into out (w * h * 3).
  * A pixel with an empty mask gets the background.
  */

@@ -12,6 +12,9 @@
 #include <stdint.h>
 
 #include "np_ref.h"
+#include "np_unit.h"
+#include "unit_aacount.h"
+#include "unit_hatch.h"
 
 /*
  * No cap on polygons: explicit polygons are a growing array, meshes are
@@ -57,34 +60,11 @@ typedef struct np_scene_mesh {
     int cull;
 } np_scene_mesh;
 
-/*
- * "aa": the adaptive supersampling of seed 001 (design/scene-pipeline.md,
- * Seed 001; the unit aacount). A metric whose constant the scene leaves out
- * is off (left out of the unit's model, vectors and gates).
- */
-typedef struct np_scene_aa {
-    int present;                         /* the scene has an "aa" section */
-    unsigned m;                          /* "m": 1..4 samples per pixel side (default 3) */
-    int have_cd, have_cn, have_cs;       /* which metrics the scene enables */
-    double c_d, c_n, c_s;                /* "c_d", "c_n", "c_s" >= 0: the metrics' constants */
-    double t_min, t_edge;                /* "t_min" (default 16/255), "t_edge" (default 1/8), 0..1 */
-    unsigned luma_taps;                  /* "luma_taps": 4 (default) or 5 (the centre too, as FXAA) */
-    unsigned tile;                       /* "tile": 0 (default, off) or 6: the 6x6 tile maximum (Fig. 6c) */
-} np_scene_aa;
+/* "aa": the unit aacount's section, in the unit's own type (unit_aacount.h). */
+typedef np_aacount_scene np_scene_aa;
 
-/*
- * "hatch": the scene hatched by the unit hatch (seed 003; docs/hatch.md,
- * "Scenes"): tone from the lit texture, level of detail per polygon.
- */
-typedef struct np_scene_hatch {
-    int present;                         /* the scene has a "hatch" section */
-    unsigned set;                        /* "set": index into np_hatch_sets (default best16) */
-    unsigned layers;                     /* "layers": 1..4 (default 4) */
-    unsigned fade;                       /* "fade": "smooth" (0, default) or "onebyone" (1) */
-    unsigned coverage;                   /* "mode": "brute" (0) or "coverage" (1, default) */
-    unsigned lanes;                      /* "lanes": P, 1..16 (default 1) */
-    double tile_pixels;                  /* "tile_pixels": 1/F, a seed tile's size on screen (default 64) */
-} np_scene_hatch;
+/* "hatch": the unit hatch's section, in the unit's own type (unit_hatch.h). */
+typedef np_hatch_scene np_scene_hatch;
 
 /*
  * "texture.noise": the texture's octaves read a 4-D noise unit instead of
@@ -163,5 +143,15 @@ extern const np_scene_embedded np_scenes_embedded[]; /* terminated by name == NU
 /* The same from a JSON text; name is used in messages in place of the file. */
 int np_scene_parse(const char *json, const char *name, np_scene *s, char *err, size_t errlen);
 void np_scene_free(np_scene *s);
+
+/*
+ * The scene as the units see it (np_unit_scene, np_unit.h): its name, width,
+ * texture and the box of its explicit polygons' texture coordinates, the 4-D
+ * noise unit its texture reads, its "aa" and "hatch" sections when present.
+ * us points into s, which must outlive it.
+ */
+void np_scene_for_units(const np_scene *s, np_unit_scene *us);
+/* u->cfg_scene on scene s adapted by np_scene_for_units: 1, 0 or -1 as np_unit.cfg_scene; 0 without a hook. */
+int np_scene_cfg_unit(const np_unit *u, void *cfg, const np_scene *s, char *err, size_t errlen);
 
 #endif /* NP_SCENE_H */

@@ -15,7 +15,7 @@ static uint8_t luma_of(const uint8_t *rgb)
 
 void np_aa_cfg_from_scene(const np_scene *sc, unsigned m, double z_near, double z_far, np_aacount_cfg *c)
 {
-    np_aacount_cfg_scene(sc, m, z_far - z_near, c);
+    np_aacount_cfg_scene(&sc->aa, m, z_far - z_near, c);
 }
 
 void np_aa_frame_free(np_aa_frame *f)

@@ -7,15 +7,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "np_aacount.h"
 #include "np_common.h"
-#include "np_texel.h"
 #include "np_texreg.h"
 #include "render_view.h"
 
 /*
- * The paper's index matrices and the resolve's reciprocal ROM are the unit's
- * (rtl_model/np_aacount.h: np_aacount_mask, np_aacount_resolve): one
+ * The paper's index matrices and the resolve's reciprocal ROM are the unit's,
+ * through the registry (np_unit.samples, kept in np_gbuf.samples): one
  * definition, the hardware's.
  */
 
@@ -277,6 +275,12 @@ int np_gbuf_build(const np_scene *sc, unsigned m, np_gbuf *g, char *err, size_t 
         snprintf(err, errlen, "G-buffer: m = %u samples per pixel side: expected 1..%d", m, NP_GBUF_M_MAX);
         return -1;
     }
+    for (size_t i = 0; !g->samples && np_unit_at(i); i++)
+        g->samples = np_unit_at(i)->samples;
+    if (!g->samples) {
+        snprintf(err, errlen, "G-buffer: no unit of the registry gives a sample order and resolve (np_unit.samples)");
+        return -1;
+    }
     g->sc = sc;
     g->m = m;
     g->n = m * m;
@@ -457,16 +461,6 @@ void np_gbuf_uv_f(const np_gbuf *g, size_t i, double uv[2])
 
 /* --- Deferred shading --- */
 
-/* The seek's clocks on the engines the cost model knows (np_gbuf.h); 0 for the others. */
-static unsigned seek_cycles(const np_span_engine *e, const void *ecfg, const np_tex_regs *r)
-{
-    if (e == &np_texel_engine) {
-        const np_texel_cfg *c = ecfg;
-        return (r->n_oct + 1u) * ((3u + c->setup_mults - 1u) / c->setup_mults + c->mult_lat - 1u);
-    }
-    return 0;
-}
-
 static int selected(const np_gbuf *g, const uint16_t *mask, uint32_t si, size_t i)
 {
     if (g->span[i] != si)
@@ -492,7 +486,7 @@ int np_gbuf_shade(const np_gbuf *g, const np_unit *u, const void *cfg, const uin
     np_gbuf_lightq lq;
     np_gbuf_light_setup(g->sc, &lq);
     e->init(core, ecfg, &g->regs);
-    const unsigned seek = e->seek ? seek_cycles(e, ecfg, &g->regs) : 0;
+    const unsigned seek = e->seek && u->span->seek_cycles ? u->span->seek_cycles(ecfg, &g->regs) : 0;
     /* The runs as the sequencer sees them (timing only; cycles below). */
     size_t n_tim = 0, cap_tim = 0;
     np_span *tim = NULL;
@@ -607,7 +601,7 @@ int np_gbuf_shade_first(const np_gbuf *g, const np_unit *u, const void *cfg, uin
         free(all);
         return -1;
     }
-    const uint16_t first = np_aacount_mask(g->m, 1);
+    const uint16_t first = g->samples->mask(g->m, 1);
     unsigned j0 = 0;
     while (!((first >> j0) & 1u))
         j0++;
@@ -636,7 +630,7 @@ void np_gbuf_resolve(const np_gbuf *g, const uint16_t *mask, const uint8_t *rgb,
                 s++;
             }
         for (int ch = 0; ch < 3; ch++)
-            out[3 * p + (size_t)ch] = s ? np_aacount_resolve(sum[ch], s) : round8(g->sc->background[ch]);
+            out[3 * p + (size_t)ch] = s ? g->samples->resolve(sum[ch], s) : round8(g->sc->background[ch]);
     }
 }
 

@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "np_fixed.h"
-#include "np_texture.h"
+#include "np_unit_span.h"
 
 enum { IN_X, IN_Y, IN_Z, IN_W, N_IN = 4, Q88_SHIFT = NP_TEX_FC - 8 };
 

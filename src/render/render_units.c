@@ -54,7 +54,7 @@ int np_render_units(const np_scene *sc, const char *(*spec)(const void *ctx, con
         memset(c, 0, sizeof *c);
         c->u = u;
         char why[512];
-        int rc = u->cfg_scene(&c->scene, sc, why, sizeof why);
+        int rc = np_scene_cfg_unit(u, &c->scene, sc, why, sizeof why);
         if (rc < 0) {
             snprintf(err, errlen, "%s: %s", u->name, why);
             return -1;

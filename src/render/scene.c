@@ -915,3 +915,39 @@ void np_scene_free(np_scene *s)
     s->poly = NULL;
     s->n_poly = 0;
 }
+
+/* --- The scene as the units see it (np_unit_scene) --- */
+
+void np_scene_for_units(const np_scene *s, np_unit_scene *us)
+{
+    memset(us, 0, sizeof *us);
+    us->name = s->name;
+    us->width = s->width;
+    us->tex = &s->tex;
+    for (int a = 0; a < 3; a++) {
+        us->tex_lo[a] = (double)INFINITY;
+        us->tex_hi[a] = -(double)INFINITY;
+    }
+    for (unsigned p = 0; p < s->n_poly; p++)
+        for (unsigned v = 0; v < s->poly[p].n; v++)
+            for (int a = 0; a < 3; a++) {
+                us->tex_lo[a] = fmin(us->tex_lo[a], s->poly[p].t[v][a]);
+                us->tex_hi[a] = fmax(us->tex_hi[a], s->poly[p].t[v][a]);
+            }
+    if (s->n_poly == 0)
+        for (int a = 0; a < 3; a++)
+            us->tex_lo[a] = us->tex_hi[a] = 0;
+    us->size_registers = s->size_registers;
+    us->noise_unit = s->noise.present ? s->noise.unit : NULL;
+    us->aa = s->aa.present ? &s->aa : NULL;
+    us->hatch = s->hatch.present ? &s->hatch : NULL;
+}
+
+int np_scene_cfg_unit(const np_unit *u, void *cfg, const np_scene *s, char *err, size_t errlen)
+{
+    if (!u->cfg_scene)
+        return 0;
+    np_unit_scene us;
+    np_scene_for_units(s, &us);
+    return u->cfg_scene(cfg, &us, err, errlen);
+}

@@ -695,7 +695,7 @@ int np_report_fpga(const np_unit *only, const char *spec, const np_fpga_opts *o)
     }
     const np_unit *u;
     for (size_t i = 0; (u = np_unit_at(i)) != NULL; i++) {
-        if ((only && u != only) || (!only && !np_synth_has_rtl(u)))
+        if ((only && u != only) || (!only && !np_synth_in_default_set(u)))
             continue;
         any = 1;
         char err[512];

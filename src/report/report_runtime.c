@@ -17,6 +17,7 @@
 #include "np_image.h"
 #include "np_plot.h"
 #include "np_report_runtime.h"
+#include "np_report_scan.h"
 
 /*
  * The table's configuration columns: every key a registered unit's sweeps

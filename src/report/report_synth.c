@@ -55,9 +55,14 @@ const char *np_synth_default_rtl_dir(void)
 typedef int (*rtl_params_fn)(const void *cfg, char *buf, size_t len, char *err, size_t errlen);
 
 /*
- * A unit's RTL: top module, files, the register prefix of each stage's bank,
- * the keys that are no RTL parameter (NULL-terminated), and the parameters
- * derived from the configuration block.
+ * A unit's RTL: top module, files, the register prefix of each stage's bank
+ * (its registers are named <prefix>_*), or, for an RTL whose banks are not
+ * named so, bank_sel: the Yosys selection of bank k's registers (of the
+ * model's n_stages); the keys that are no RTL parameter (NULL-terminated), the
+ * parameters derived from the configuration block, the banks' valid bits.
+ * by_name: synthesised only when --unit names the unit (the n-D units, wave
+ * and aacount: a run over every unit, and report fpga, keep classic3 and
+ * simplex3, whose syntheses the docs and tests time; aacount alone takes 30 min).
  */
 typedef struct rtl_desc {
     const char *unit, *top;
@@ -66,6 +71,8 @@ typedef struct rtl_desc {
     const char *not_params[4];
     rtl_params_fn params;
     const char *valid; /* the banks' valid bits (NULL: "v") */
+    void (*bank_sel)(unsigned k, unsigned n_stages, char *buf, size_t len);
+    int by_name;
 } rtl_desc;
 
 /*
@@ -112,21 +119,53 @@ static int aacount_params(const void *cfg, char *buf, size_t len, char *err, siz
     return 0;
 }
 
+/*
+ * np_classicn.v's banks (2n + 3 of them: L, H, I1m, I1a, ..., Inm, Ina, O):
+ * L r0_*, H r1_*, level l's multiply g_lvl[l].ra and .rp, its add
+ * g_lvl[l].rl, O ro_f; and the s-curve of axis a carried in banks 1 .. 1 + 2a
+ * as g_s[a].q[k], which the datapath declaration counts in bank k ('?' stands
+ * for the brackets in Yosys's patterns).
+ */
+static void classicn_bank_sel(unsigned k, unsigned n_stages, char *buf, size_t len)
+{
+    if (k == 0)
+        snprintf(buf, len, "w:*r0_*");
+    else if (k + 1 == n_stages)
+        snprintf(buf, len, "w:ro_f");
+    else if (k == 1)
+        snprintf(buf, len, "w:*r1_* w:g_s?*?.q?1? %%u");
+    else if (k % 2 == 0) /* level (k - 2) / 2's multiply */
+        snprintf(buf, len, "w:g_lvl?%u?.ra w:g_lvl?%u?.rp %%u w:g_s?*?.q?%u? %%u", (k - 2) / 2, (k - 2) / 2, k);
+    else
+        snprintf(buf, len, "w:g_lvl?%u?.rl w:g_s?*?.q?%u? %%u", (k - 3) / 2, k);
+}
+
+#define NP_SIMPLEXN_RTL(name)                                                                                 \
+    { name, "np_simplexn", { "np_simplexn.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },                  \
+      { { "SK", "r0" }, { "RK", "r1" }, { "CH", "r2" }, { "KT", "r3" }, { "P2", "r4" }, { "P4", "r5" },        \
+        { "M", "r6" }, { "A", "r7" }, { "O", "r8" }, { NULL, NULL } }, { NULL }, NULL, NULL, NULL, 1 }
+#define NP_CLASSICN_RTL(name)                                                                                 \
+    { name, "np_classicn", { "np_classicn.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL }, { { NULL, NULL } }, \
+      { NULL }, NULL, NULL, classicn_bank_sel, 1 }
+
 static const rtl_desc rtl_units[] = {
     { "classic3", "np_classic3", { "np_classic3.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },
       { { "L", "r0" }, { "H", "r1" }, { "I1m", "r2" }, { "I1a", "r3" }, { "I2m", "r4" }, { "I2a", "r5" },
-        { "I3m", "r6" }, { "I3a", "r7" }, { "O", "r8" }, { NULL, NULL } }, { NULL }, NULL, NULL },
+        { "I3m", "r6" }, { "I3a", "r7" }, { "O", "r8" }, { NULL, NULL } }, { NULL }, NULL, NULL, NULL, 0 },
     /* simplex3 names its banks by the derivative datapath's numbering; without it there is no r7 (M2). */
     { "simplex3", "np_simplex3", { "np_simplex3.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },
       { { "SK", "r0" }, { "RK", "r1" }, { "CH", "r2" }, { "KT", "r3" }, { "P2", "r4" }, { "P4", "r5" },
-        { "M", "r6" }, { "M2", "r7" }, { "A", "r8" }, { "O", "r9" }, { NULL, NULL } }, { NULL }, NULL, NULL },
+        { "M", "r6" }, { "M2", "r7" }, { "A", "r8" }, { "O", "r9" }, { NULL, NULL } }, { NULL }, NULL, NULL, NULL, 0 },
     { "wave", "np_wave", { "np_wave.v", "np_wave_sin.v", "np_wave_rom.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },
       { { "P", "r0" }, { "S", "r1" }, { "A", "r2" }, { "M", "r3" }, { "T", "r4" }, { "G", "r5" }, { "N", "r6" },
         { NULL, NULL } },
-      { "sincos", "reset", "regs", NULL }, wave_params, "bv" },
+      { "sincos", "reset", "regs", NULL }, wave_params, "bv", NULL, 1 },
     { "aacount", "np_aacount", { "np_aacount.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },
       { { "A", "ra" }, { "V", "rv" }, { "P", "rp" }, { "C", "rc" }, { NULL, NULL } },
-      { "tile", NULL }, aacount_params, NULL },
+      { "tile", NULL }, aacount_params, NULL, NULL, 1 },
+    /* The n-D units (np_simplexn.v, np_classicn.v; every key, DIMS included, is a parameter). */
+    NP_CLASSICN_RTL("classic2"), NP_CLASSICN_RTL("classic4"), NP_CLASSICN_RTL("classic5"),
+    NP_SIMPLEXN_RTL("simplex2"), NP_SIMPLEXN_RTL("simplex4"), NP_SIMPLEXN_RTL("simplex5"),
 };
 
 static const rtl_desc *rtl_of(const np_unit *u)
@@ -140,6 +179,12 @@ static const rtl_desc *rtl_of(const np_unit *u)
 int np_synth_has_rtl(const np_unit *u)
 {
     return rtl_of(u) != NULL;
+}
+
+int np_synth_in_default_set(const np_unit *u)
+{
+    const rtl_desc *d = rtl_of(u);
+    return d != NULL && !d->by_name;
 }
 
 /*
@@ -292,12 +337,17 @@ static int write_cones(FILE *f, const rtl_desc *d, const np_unit *u, const np_un
 {
     fprintf(f, "select -set cv w:%s %s %%ci1 %%ci*:-%s[Q]\n", d->valid ? d->valid : "v", extra, ff);
     for (unsigned k = 0; k < c->n_stages; k++) {
-        const char *p = prefix_of(d, c->st[k].name);
+        char sel[256];
+        const char *p = d->bank_sel ? "" : prefix_of(d, c->st[k].name);
         if (!p) {
             snprintf(err, errlen, "%s: stage %s has no register bank in %s", u->name, c->st[k].name, d->files[0]);
             return -1;
         }
-        fprintf(f, "select -set c%u w:*%s_* %%ci1 %%ci*:-%s[Q]%s\n", k, p, ff, *extra ? " @cv %d" : "");
+        if (d->bank_sel)
+            d->bank_sel(k, c->n_stages, sel, sizeof sel);
+        else
+            snprintf(sel, sizeof sel, "w:*%s_*", p);
+        fprintf(f, "select -set c%u %s %%ci1 %%ci*:-%s[Q]%s\n", k, sel, ff, *extra ? " @cv %d" : "");
     }
     return 0;
 }
@@ -420,7 +470,8 @@ int np_synth_run(const np_unit *u, const void *cfg, const np_unit_cost *c, const
     memset(r, 0, sizeof *r);
     const rtl_desc *d = rtl_of(u);
     if (!d) {
-        snprintf(err, errlen, "unit %s has no reference RTL (--synth: classic3, simplex3, wave, aacount)", u->name);
+        snprintf(err, errlen, "unit %s has no reference RTL (--synth: classic3, simplex3; with --unit also "
+                 "wave, aacount, classic2/4/5, simplex2/4/5)", u->name);
         return -1;
     }
     if (system("yosys -V >/dev/null 2>&1") != 0) {
@@ -550,7 +601,7 @@ int np_report_gates_synth(const np_unit *only, const char *spec, const char *rtl
     int rc = NP_EXIT_OK, any = 0;
     const np_unit *u;
     for (size_t i = 0; (u = np_unit_at(i)) != NULL; i++) {
-        if ((only && u != only) || (!only && !np_synth_has_rtl(u)))
+        if ((only && u != only) || (!only && !np_synth_in_default_set(u)))
             continue;
         any = 1;
         char err[512];
@@ -600,7 +651,8 @@ int np_report_gates_synth(const np_unit *only, const char *spec, const char *rtl
         free(c);
     }
     if (!any) {
-        np_err("report", "unit %s has no reference RTL (--synth: classic3, simplex3, wave, aacount)", only ? only->name : "(any)");
+        np_err("report", "unit %s has no reference RTL (--synth: classic3, simplex3; with --unit also wave, "
+                         "aacount, classic2/4/5, simplex2/4/5)", only ? only->name : "(any)");
         return NP_EXIT_USAGE;
     }
     return rc;

@@ -50,7 +50,7 @@ static int measure(const np_unit *u, const np_scene *sc, const np_render_frame *
 {
     np_unit_cfg cfg;
     memset(&cfg, 0, sizeof cfg);
-    int used = u->cfg_scene(&cfg, sc, err, errlen);
+    int used = np_scene_cfg_unit(u, &cfg, sc, err, errlen);
     if (used <= 0) {
         if (used == 0)
             snprintf(err, errlen, "the unit does not render the scene");
@@ -255,7 +255,7 @@ int np_report_tradeoff(const char *dir, const char *scene_path)
                 sc.size_registers = 1;
                 np_unit_cfg c;
                 memset(&c, 0, sizeof c);
-                if (rc == NP_EXIT_OK && u->cfg_scene(&c, &sc, err, sizeof err) > 0)
+                if (rc == NP_EXIT_OK && np_scene_cfg_unit(u, &c, &sc, err, sizeof err) > 0)
                     np_unit_cfg_format_opt(u, &c, NP_UNIT_FMT_COMMAS | NP_UNIT_FMT_NO_SCENE, cfg_text[k],
                                            sizeof cfg_text[k]);
             }

@@ -15,9 +15,9 @@
  *     (a long descriptor sampled near its end): the testbench then sends the
  *     descriptor with its length cut to k0 + m and ignores the first k0 beats.
  *
- * np_stream_generate and np_stream_drive are the stream counterparts of
- * np_vec_generate and np_vec_drive, with the same contracts, for the
- * vectors, verify and device commands to call when unit->stream is set.
+ * The vector machinery writes and drives them (np_stream_generate and
+ * np_stream_drive, src/vectors/np_vec_stream.h); this header is the unit's
+ * side only: the stream model's port and description.
  */
 #ifndef NP_STREAM_H
 #define NP_STREAM_H
@@ -27,7 +27,6 @@
 
 #include "np_rng.h"
 #include "np_unit.h"
-#include "np_vec.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -62,31 +61,6 @@ typedef struct np_unit_stream {
     /* Clocks so far, and the clocks of those the unit stalled for set-up (for reports). */
     void (*counters)(const void *state, uint64_t *cycles, uint64_t *setup_stalls);
 } np_unit_stream;
-
-/*
- * The vectors of a stream unit, in the order: the unit's descriptors (every
- * beat of a descriptor of at most NP_STREAM_FULL beats; of a longer one the
- * first and the last NP_STREAM_EDGE beats, as two runs), then random
- * descriptors (level 1: 8, level 2: 4096, or n_random), every beat. Sets h's
- * seed, level, count and sources. Same contract as np_vec_generate.
- */
-enum { NP_STREAM_FULL = 128, NP_STREAM_EDGE = 32, NP_STREAM_L1_RANDOM = 8, NP_STREAM_L2_RANDOM = 4096 };
-int np_stream_generate(np_vec_header *h, unsigned level, uint64_t seed, uint64_t n_random,
-                       const np_vec_output *outs, unsigned n_outs, char *err, size_t errlen);
-
-/*
- * Run the transactions of source through the stream model like an RTL
- * testbench and hand every beat to sink, in order, with its transaction.
- * Runs of beats (above) become descriptors; the beats before a run's first k
- * are produced by the model and not handed on. traffic != 0 inserts random
- * gaps between descriptors and output stalls (np_rng seeded with seed).
- * Timing given to sink: clocks from the descriptor's transfer to the beat's;
- * latency is set to the same value (a stream's beats have no fixed latency;
- * the stream model's cycle count is checked by the unit's own tests).
- * Same contract and return values as np_vec_drive.
- */
-int np_stream_drive(const np_vec_header *h, np_vec_source_fn source, void *src_ctx, np_vec_sink_fn sink,
-                    void *sink_ctx, int traffic, uint64_t seed, np_vec_drive_stats *st, char *err, size_t errlen);
 
 #ifdef __cplusplus
 } /* extern "C" */

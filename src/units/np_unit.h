@@ -26,7 +26,9 @@
 extern "C" {
 #endif
 
-struct np_scene;
+struct np_ref_texture;
+struct np_aacount_scene;
+struct np_hatch_scene;
 struct np_rng;
 struct np_unit_timing;
 struct np_span_engine;
@@ -74,13 +76,54 @@ typedef struct np_unit_span {
      * model that does not hold what the declaration keeps.
      */
     const char *(*trace)(const void *ecfg, const struct np_tex_regs *r, struct np_rng *g, np_trace *t, size_t n);
+    /*
+     * Optional (NULL: 0, the cost model does not know the engine's seek):
+     * the clocks the engine's seek (np_span_engine.seek) takes to place a
+     * pixel directly, for its configuration ecfg and registers r: the
+     * G-buffer's cost model adds them to a run that starts inside its
+     * sub-span (np_gbuf.h, "Deferred shading").
+     */
+    unsigned (*seek_cycles)(const void *ecfg, const struct np_tex_regs *r);
 } np_unit_span;
+
+/*
+ * A supersampling unit's sample order and resolve (np_unit.samples): what a
+ * G-buffer renderer needs of a unit that chooses how many of a pixel's m x m
+ * samples to shade, so that the image it resolves is the unit's, bit for bit
+ * (src/render/np_gbuf.h takes the first unit of the registry that has one).
+ */
+typedef struct np_unit_samples {
+    /* The first s samples of an m x m pixel (1 <= m <= 4) as a mask: bit b m + a is sample (a, b); s >= m^2 gives all. */
+    uint16_t (*mask)(unsigned m, unsigned s);
+    /* One 8-bit channel of s shaded samples (1 <= s <= 16) that sum to sum (<= 255 s), as the unit resolves it. */
+    uint8_t (*resolve)(uint32_t sum, unsigned s);
+} np_unit_samples;
 
 /* The engine's configuration inside a unit's configuration block cfg. */
 static inline const void *np_unit_span_cfg(const np_unit_span *s, const void *cfg)
 {
     return (const char *)cfg + s->engine_cfg_offset;
 }
+
+/*
+ * A scene as the units see it (np_unit.cfg_scene): what a unit may read of a
+ * scene, in the registry's and the units' own types. A client that has a
+ * scene adapts it to this (the renderer: np_scene_for_units, src/render/), so
+ * the registry and the units know nothing of the scene file or the renderer.
+ * A unit whose scene section is its own declares the section's type with the
+ * unit (np_aacount_scene in unit_aacount.h, np_hatch_scene in unit_hatch.h).
+ */
+typedef struct np_unit_scene {
+    const char *name;                   /* for messages and the names of register sets */
+    unsigned width;                     /* image width in pixels: the longest span */
+    const struct np_ref_texture *tex;   /* the scene's texture (np_ref.h) */
+    /* The box of the texture coordinates over the scene's explicit polygons (all 0 when it has none). */
+    double tex_lo[3], tex_hi[3];
+    int size_registers;                 /* a tool asks for registers sized to the scene (np_su_cfg_scene) */
+    const char *noise_unit;             /* the unit the texture's octaves read ("simplex4"); NULL: value noise */
+    const struct np_aacount_scene *aa;  /* the "aa" section; NULL: none */
+    const struct np_hatch_scene *hatch; /* the "hatch" section; NULL: none */
+} np_unit_scene;
 
 enum { NP_UNIT_MAX_FIELDS = 8, NP_UNIT_CFG_MAX = 256 };
 
@@ -197,7 +240,8 @@ typedef struct np_unit {
     size_t (*boundary)(const void *cfg, uint64_t (*in)[NP_UNIT_MAX_FIELDS], size_t max);
     /*
      * Optional (NULL: the sweep calls eval and ref per input): the exhaustive
-     * sweep's fast path (np_sweep.h) for a unit with inputs x, y, z (u16 each).
+     * sweep's fast path (its constants: np_unit_sweep.h; np_sweep.h runs it)
+     * for a unit with inputs x, y, z (u16 each).
      * For the 256 * rows inputs (x0 + t, y0 + r, z), 0 <= t < 256,
      * 0 <= r < rows, where x0 is a multiple of 256, rows a power of two <= 256
      * and y0 a multiple of rows, writes at index i = (f * rows + r) * 256 + t
@@ -255,7 +299,7 @@ typedef struct np_unit {
      * defaults) for what scene sc needs. 1: the scene uses the unit and cfg
      * is set; 0: it does not; -1 with a message in err.
      */
-    int (*cfg_scene)(void *cfg, const struct np_scene *sc, char *err, size_t errlen);
+    int (*cfg_scene)(void *cfg, const np_unit_scene *sc, char *err, size_t errlen);
     /*
      * Optional (NULL: not a span unit): the span engine. A unit with one and
      * a cfg_scene that accepts a scene is rendered by `noisepipe render`.
@@ -295,6 +339,11 @@ typedef struct np_unit {
      * cases, in runs and shuffled). Call it through np_unit_eval_n.
      */
     void (*eval_n)(const void *cfg, const uint64_t *in, uint64_t *out, size_t n);
+    /*
+     * Optional (NULL: the unit does not choose samples): its sample order and
+     * resolve, for the G-buffer renderer (np_unit_samples).
+     */
+    const np_unit_samples *samples;
 } np_unit;
 
 /*

@@ -13,7 +13,6 @@
 
 #include "np_aacount.h"
 #include "np_ref.h"
-#include "np_scene.h"
 #include "np_unit.h"
 #include "unit_aacount.h"
 
@@ -292,9 +291,8 @@ static uint32_t sat_key(double v, double hi)
     return (uint32_t)(r > hi ? hi : r);
 }
 
-void np_aacount_cfg_scene(const np_scene *sc, unsigned m, double depth_range, np_aacount_cfg *c)
+void np_aacount_cfg_scene(const np_aacount_scene *a, unsigned m, double depth_range, np_aacount_cfg *c)
 {
-    const np_scene_aa *a = &sc->aa;
     *c = np_aacount_cfg_default();
     c->m = (uint8_t)m;
     c->depth = (uint8_t)(a->have_cd != 0);
@@ -319,12 +317,12 @@ void np_aacount_cfg_scene(const np_scene *sc, unsigned m, double depth_range, np
  * with the metrics it enables (the others are not built: no bus bits, no
  * gates). The parallel variant; the gate report prices the serial one too.
  */
-static int cfg_scene(void *cfg, const np_scene *sc, char *err, size_t errlen)
+static int cfg_scene(void *cfg, const np_unit_scene *sc, char *err, size_t errlen)
 {
-    if (!sc->aa.present)
+    if (!sc->aa)
         return 0;
     aac_cfg *c = cfg;
-    np_aacount_cfg_scene(sc, sc->aa.m ? sc->aa.m : 3u, 1.0, &c->c);
+    np_aacount_cfg_scene(sc->aa, sc->aa->m ? sc->aa->m : 3u, 1.0, &c->c);
     const char *why = np_aacount_cfg_check(&c->c);
     if (why) {
         snprintf(err, errlen, "aa: %s", why);
@@ -332,6 +330,9 @@ static int cfg_scene(void *cfg, const np_scene *sc, char *err, size_t errlen)
     }
     return 1;
 }
+
+/* The sample order (the paper's B_m) and the resolve, one definition for the G-buffer renderer too. */
+static const np_unit_samples samples = { np_aacount_mask, np_aacount_resolve };
 
 const np_unit np_unit_aacount = {
     .name = "aacount",
@@ -353,4 +354,5 @@ const np_unit np_unit_aacount = {
     .trace = trace,
     .conformance_configs = conformance_configs,
     .eval_n = eval_n,
+    .samples = &samples,
 };

@@ -8,8 +8,8 @@
 #include "np_classic.h"
 #include "np_ref.h"
 #include "np_rng.h"
-#include "np_sweep.h"
 #include "np_unit.h"
+#include "np_unit_sweep.h"
 
 /* The registry's configuration block: the model's. */
 typedef struct classic_cfg {

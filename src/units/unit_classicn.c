@@ -119,7 +119,7 @@ static void fine_cfg(const void *cfg, void *fine)
         return np_ndim_boundary(N, in, max);                                                                    \
     }                                                                                                           \
     extern const np_unit np_unit_classic##N;                                                                    \
-    static int cfg_scene##N(void *c, const struct np_scene *sc, char *err, size_t errlen)                       \
+    static int cfg_scene##N(void *c, const np_unit_scene *sc, char *err, size_t errlen)                         \
     {                                                                                                           \
         (void)err;                                                                                              \
         (void)errlen;                                                                                           \

@@ -5,8 +5,8 @@
 
 #include "np_hatch.h"
 #include "np_ref.h"
-#include "np_scene.h"
 #include "np_unit.h"
+#include "unit_hatch.h"
 
 _Static_assert(sizeof(np_hatch_cfg) <= NP_UNIT_CFG_MAX, "configuration block too large");
 
@@ -439,10 +439,10 @@ static const char *const conformance_configs[] = { "set=fkm64,fade=onebyone,lane
  */
 extern const np_unit np_unit_hatch;
 
-static int cfg_scene(void *cfg, const np_scene *sc, char *err, size_t errlen)
+static int cfg_scene(void *cfg, const np_unit_scene *sc, char *err, size_t errlen)
 {
-    const np_scene_hatch *h = &sc->hatch;
-    if (!h->present)
+    const np_hatch_scene *h = sc->hatch;
+    if (!h)
         return 0;
     np_hatch_cfg *c = cfg;
     char spec[160];

@@ -21,11 +21,10 @@ size_t np_ndim_boundary(unsigned n, uint64_t (*in)[NP_UNIT_MAX_FIELDS], size_t m
 /*
  * cfg_scene of an n-D unit called name (u: the unit, for its defaults): 1
  * with cfg at the defaults when scene sc's texture reads this unit
- * (texture.noise, np_scene.h: a 4-D texture in a scene), else 0. So the
+ * (np_unit_scene.noise_unit: a 4-D texture in a scene), else 0. So the
  * scene's gate report (`report gates --scene`) names the noise unit it uses.
  */
-struct np_scene;
-int np_ndim_cfg_scene(const np_unit *u, void *cfg, const struct np_scene *sc);
+int np_ndim_cfg_scene(const np_unit *u, void *cfg, const np_unit_scene *sc);
 
 /* The n-D simplex datapath at n = 3 as a unit, not registered (unit_simplexn.c): the dims report's 3-D row. */
 extern const np_unit np_unit_simplexn3;

@@ -8,8 +8,8 @@
 #include "np_ref.h"
 #include "np_rng.h"
 #include "np_simplex.h"
-#include "np_sweep.h"
 #include "np_unit.h"
+#include "np_unit_sweep.h"
 
 /* The registry's configuration block: the model's. */
 typedef struct simplex_cfg {
@@ -358,7 +358,7 @@ static void fine_cfg(const void *cfg, void *fine)
     k->c.dout_bits = NP_SIMPLEX_OUT_MAX;
 }
 
-/* The exhaustive sweep's kernel (src/sweep/sweep_simplex.c). */
+/* The exhaustive sweep's kernel (src/units/sweep_simplex.c). */
 static void sweep_rows(const void *cfg, uint16_t x0, uint16_t y0, uint16_t z, unsigned rows, unsigned what,
                        int32_t *code, double *ref)
 {

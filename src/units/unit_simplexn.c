@@ -13,7 +13,6 @@
 #include <string.h>
 
 #include "np_refn.h"
-#include "np_scene.h"
 #include "np_simplexn.h"
 #include "np_unit.h"
 #include "unit_ndim.h"
@@ -37,9 +36,9 @@ static np_simplexn_cfg cfg_of(unsigned n, const void *cfg)
 
 const char *const np_ndim_axis_names[5] = { "x", "y", "z", "w", "v" };
 
-int np_ndim_cfg_scene(const np_unit *u, void *cfg, const np_scene *sc)
+int np_ndim_cfg_scene(const np_unit *u, void *cfg, const np_unit_scene *sc)
 {
-    if (!sc->noise.present || strcmp(sc->noise.unit, u->name) != 0)
+    if (!sc->noise_unit || strcmp(sc->noise_unit, u->name) != 0)
         return 0;
     np_unit_cfg_default(u, cfg);
     return 1;
@@ -255,7 +254,7 @@ static void fine_cfg(const void *cfg, void *fine)
     }                                                                                                          \
     static size_t datapath##N(const void *c, np_op *ops, size_t max) { return datapath(N, c, ops, max); }    \
     extern const np_unit np_unit_simplex##N;                                                                   \
-    static int cfg_scene##N(void *c, const struct np_scene *sc, char *err, size_t errlen)                      \
+    static int cfg_scene##N(void *c, const np_unit_scene *sc, char *err, size_t errlen)                        \
     {                                                                                                          \
         (void)err;                                                                                             \
         (void)errlen;                                                                                          \

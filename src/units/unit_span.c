@@ -11,7 +11,6 @@
 #include <string.h>
 
 #include "np_ref.h"
-#include "np_scene.h"
 #include "np_texreg.h"
 #include "unit_span.h"
 
@@ -162,15 +161,15 @@ double np_su_predicted_lsb(const np_unit *u, const void *cfg, unsigned max_span)
     return ut_own_bound(su, u, cfg, max_span) + b->reg_lsb;
 }
 
-int np_su_cfg_scene(const np_su *su, const np_unit *u, void *cfg, const np_scene *sc, char *err, size_t errlen)
+int np_su_cfg_scene(const np_su *su, const np_unit *u, void *cfg, const np_unit_scene *sc, char *err, size_t errlen)
 {
     unsigned *tex = (unsigned *)(void *)((char *)cfg + su->span.texture_offset);
     char name[80];
-    if (sc->noise.present) /* the octaves read a 4-D noise unit, not the span units' value noise */
+    if (sc->noise_unit) /* the octaves read a 4-D noise unit, not the span units' value noise */
         return 0;
     const int sized = sc->size_registers && su->idx_int_max;
     snprintf(name, sizeof name, "%s:%s", sized ? "sized" : "scene", sc->name);
-    if (!sized && np_ut_texture_add(name, &sc->tex, tex, err, errlen) != 0)
+    if (!sized && np_ut_texture_add(name, sc->tex, tex, err, errlen) != 0)
         return -1;
     if (!su->idx_int_max)
         return 1;
@@ -180,17 +179,7 @@ int np_su_cfg_scene(const np_su *su, const np_unit *u, void *cfg, const np_scene
      * width), the unit's own bound plus the registers' must be <= 1 LSB, and
      * a clamped map's index must fit; else the scene is refused.
      */
-    double lo[3] = { (double)INFINITY, (double)INFINITY, (double)INFINITY },
-           hi[3] = { -(double)INFINITY, -(double)INFINITY, -(double)INFINITY };
-    for (unsigned p = 0; p < sc->n_poly; p++)
-        for (unsigned v = 0; v < sc->poly[p].n; v++)
-            for (int a = 0; a < 3; a++) {
-                lo[a] = fmin(lo[a], sc->poly[p].t[v][a]);
-                hi[a] = fmax(hi[a], sc->poly[p].t[v][a]);
-            }
-    if (sc->n_poly == 0)
-        for (int a = 0; a < 3; a++)
-            lo[a] = hi[a] = 0;
+    const double *lo = sc->tex_lo, *hi = sc->tex_hi;
     np_texreg_scene_bound b;
     if (sized) {
         /*
@@ -202,8 +191,8 @@ int np_su_cfg_scene(const np_su *su, const np_unit *u, void *cfg, const np_scene
          */
         np_texreg_fmt fmt;
         np_tex_regs r;
-        if (np_texreg_size(&sc->tex, lo, hi, sc->width, NP_TEXREG_SIZE_BUDGET, &fmt, &r, &b, err, errlen) != 0 ||
-            ut_texture_add_regs(name, &sc->tex, &r, tex, err, errlen) != 0)
+        if (np_texreg_size(sc->tex, lo, hi, sc->width, NP_TEXREG_SIZE_BUDGET, &fmt, &r, &b, err, errlen) != 0 ||
+            ut_texture_add_regs(name, sc->tex, &r, tex, err, errlen) != 0)
             return -1;
         unsigned *I = (unsigned *)(void *)((char *)cfg + su->span.engine_cfg_offset), need = b.idx_int_need;
         if (r.cmap_repeat)
@@ -224,7 +213,7 @@ int np_su_cfg_scene(const np_su *su, const np_unit *u, void *cfg, const np_scene
                 *G = g0; /* none holds: the check below refuses with the default's numbers */
         }
     } else {
-        np_texreg_scene_bound_compute(&sc->tex, np_ut_regs(*tex), lo, hi, sc->width, &b);
+        np_texreg_scene_bound_compute(sc->tex, np_ut_regs(*tex), lo, hi, sc->width, &b);
     }
     pthread_mutex_lock(&ut_lock);
     ut_scene_bound[*tex - N_TEX] = b;

@@ -136,7 +136,7 @@ size_t np_su_datapath(const np_su *su, const void *cfg, np_op *ops, size_t max);
  * message naming scene, field, value and the width it needs) a scene whose
  * register rounding takes the unit's bound (u->error_bound_lsb) over 1 LSB.
  */
-int np_su_cfg_scene(const np_su *su, const np_unit *u, void *cfg, const struct np_scene *sc, char *err, size_t errlen);
+int np_su_cfg_scene(const np_su *su, const np_unit *u, void *cfg, const np_unit_scene *sc, char *err, size_t errlen);
 /*
  * The predicted colour bound (LSB) of unit u in configuration cfg on the
  * scene whose texture cfg selects: the unit's own bound over spans of
@@ -197,7 +197,7 @@ void np_su_add_setup(np_unit_timing *t, const char *what, unsigned products, uns
     static int su_pipe_init(np_pipe *p, const void *cfg) { return np_su_pipe_init(&SU, su_front, p, cfg); }           \
     static int su_stream_init(void *state, const void *cfg) { return np_su_stream_init(&SU, state, cfg); }            \
     static size_t su_datapath(const void *cfg, np_op *ops, size_t max) { return np_su_datapath(&SU, cfg, ops, max); } \
-    static int su_cfg_scene(void *cfg, const struct np_scene *sc, char *err, size_t errlen)                           \
+    static int su_cfg_scene(void *cfg, const np_unit_scene *sc, char *err, size_t errlen)                              \
     {                                                                                                                  \
         np_unit_cfg_default(&UNIT, cfg);                                                                               \
         return np_su_cfg_scene(&SU, &UNIT, cfg, sc, err, errlen);                                                             \

@@ -77,6 +77,13 @@ static int timing(const void *cfg, np_unit_timing *t, char *err, size_t errlen)
     return 0;
 }
 
+/* The seek (np_unit_span.seek_cycles): u0 + k du and s + k ds, one more level of the front end after du, per octave and the quadric. */
+static unsigned tx_seek_cycles(const void *ecfg, const np_tex_regs *r)
+{
+    const np_texel_cfg *c = ecfg;
+    return (r->n_oct + 1u) * ((3u + c->setup_mults - 1u) / c->setup_mults + c->mult_lat - 1u);
+}
+
 /* The runtime report's sweep: the trilinear weights' bits. */
 static const unsigned rep_wt[] = { 2, 4, 6, 8, 10, 12, 16, 32 };
 static const np_unit_sweep tx_sweeps[] = {
@@ -129,7 +136,8 @@ _Static_assert(sizeof(np_texel_front) <= NP_SU_CORE_MAX && sizeof(np_texel_sig) 
                    (unsigned)NP_TEXEL_STAGES <= (unsigned)NP_SU_STAGES_MAX,
                "the engine fits the span-unit adapter");
 static np_su tx_su = {
-    .span = { &np_texel_engine, offsetof(tx_cfg, c), offsetof(tx_cfg, tex), tx_sweeps, 1, NULL, NULL, tx_trace },
+    .span = { &np_texel_engine, offsetof(tx_cfg, c), offsetof(tx_cfg, tex), tx_sweeps, 1, NULL, NULL, tx_trace,
+              tx_seek_cycles },
     .engine_cfg_size = sizeof(np_texel_cfg),
     .idx_int_max = 11,
     .front_name = "F",

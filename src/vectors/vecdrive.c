@@ -9,8 +9,8 @@
  * with a transaction, it stays raised with the same transaction until the
  * pipe accepts it; bubbles are only inserted between transactions.
  */
-#include "np_stream.h"
 #include "np_vec.h"
+#include "np_vec_stream.h"
 
 #include <stdlib.h>
 #include <string.h>

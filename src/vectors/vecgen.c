@@ -21,8 +21,8 @@
  *
  * k < 4 are the "uniform" patterns, used as backgrounds.
  */
-#include "np_stream.h"
 #include "np_vec.h"
+#include "np_vec_stream.h"
 
 #include <stdlib.h>
 #include <string.h>

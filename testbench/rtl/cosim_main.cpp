@@ -1,16 +1,22 @@
 // SPDX-License-Identifier: MIT
 // cosim_main - drives a Verilated unit (top renamed Vcosim: np_classic3,
 // np_simplex3 with NP_COSIM_SIMPLEX, np_wave with NP_COSIM_WAVE, whose
-// register inputs get np_cosim's test register set, or np_aacount with
+// register inputs get np_cosim's test register set, np_aacount with
 // NP_COSIM_AACOUNT and NP_COSIM_AAC_CFG, the ten values of its -G parameters
-// that --cfg must repeat) clock by clock beside the C cycle model
-// (np_pipe, through np_cosim.h) with the same stimulus, and compares in_ready,
-// out_valid and, when valid, every output word, every cycle.
+// that --cfg must repeat, or an n-D unit, np_simplexn or np_classicn, with
+// NP_COSIM_NDIM=<registry unit> and NP_COSIM_KEYS=<key=value,...>, the
+// configuration its -G parameters were made from, that --unit and --cfg must
+// repeat) clock by clock beside the C cycle model (np_pipe, through
+// np_cosim.h) with the same stimulus, and compares in_ready, out_valid and,
+// when valid, every output word, every cycle.
 //
 //   cosim --unit classic3 --cfg 8,12,11 [--in-reg] [--out-skid] [--cycles N]
 //         [--seed S] [--no-traffic] [--bench] [--trace FILE]
+//   cosim --unit simplex4 --cfg dims=4,out_bits=16,t_frac=25,p_frac=25 [...]
 // --cfg lists the configuration the RTL was Verilated with (-G parameters),
-// in the order of np_cosim_open. --bench also times the two models alone on
+// in the order of np_cosim_open; for a registry unit (an n-D build) it is
+// the unit's every key, as `noisepipe vectors --config` writes them
+// (np_cosim_open_spec). --bench also times the two models alone on
 // the same stimulus and prints their cycles/s. Exit status 0: no mismatch;
 // 1: a mismatch (the first 10 are printed); 2: bad usage.
 //
@@ -21,7 +27,8 @@
 // decimal cycle, 0/1 handshake bits, hex x y z (4 digits) and, when
 // out_valid, each output word in hex (ceil(bits/4) digits), else '-'.
 // (wave: i j t ph u v r g in place of x y z; aacount: the bus as one hex
-// number, ceil(bits/4) digits, most significant first.)
+// number, ceil(bits/4) digits, most significant first; a registry unit: its
+// input fields, ceil(bits/4) digits each.)
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -39,6 +46,15 @@
 #endif
 
 namespace {
+
+#ifdef NP_COSIM_NDIM
+// The registry unit and the configuration the n-D RTL was Verilated with (its -G parameters are
+// these keys in capitals, DIMS the unit's n): the model must be the same unit at the same keys.
+#define NP_COSIM_STR_(...) #__VA_ARGS__
+#define NP_COSIM_STR(...) NP_COSIM_STR_(__VA_ARGS__)
+const char *const nd_unit = NP_COSIM_STR(NP_COSIM_NDIM);
+const char *const nd_keys = NP_COSIM_STR(NP_COSIM_KEYS);
+#endif
 
 #ifdef NP_COSIM_AACOUNT
 // The ten -G values the RTL was Verilated with (m, depth, normal, luma, luma_taps, c_d, c_n, c_s, t_min, t_edge).
@@ -58,7 +74,7 @@ template <std::size_t N> void put_bus(VlWide<N> &p, const uint64_t *w, unsigned 
 }
 #endif
 
-#ifdef NP_COSIM_WAVE
+#if defined(NP_COSIM_WAVE) || defined(NP_COSIM_NDIM)
 // Bits [bit, bit + w) of a Verilated port (CData .. QData, or VlWide for > 64 bits).
 template <typename T> void put_bits(T &p, unsigned bit, unsigned w, uint64_t v)
 {
@@ -124,6 +140,7 @@ struct Rtl {
         top->eval();
     }
     unsigned bus_bits = 0;  // aacount: the width of the port bus
+    unsigned nin = 0;       // n-D: the number of axes, the port x [16 nin - 1 : 0]
     void drive(const np_cosim_cycle &c)
     {
         top->in_valid = c.in_valid;
@@ -138,6 +155,9 @@ struct Rtl {
         top->g = (uint16_t)c.win[7];
 #elif defined(NP_COSIM_AACOUNT)
         put_bus(top->bus, c.bus, bus_bits);
+#elif defined(NP_COSIM_NDIM)
+        for (unsigned a = 0; a < nin; a++)  // field a at [16 (n - 1 - a) +: 16]: x at the top
+            put_bits(top->x, 16 * (nin - 1 - a), 16, c.in[a]);
 #else
         top->x = c.x;
         top->y = c.y;
@@ -174,7 +194,7 @@ struct Rtl {
         o[1] = top->dfdx;
         o[2] = top->dfdy;
         o[3] = top->dfdz;
-#else
+#else  // classic3, and the n-D units (their one output f)
         (void)normals;
         o[0] = top->f;
 #endif
@@ -188,7 +208,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0)
 
 int usage()
 {
-    std::fprintf(stderr, "usage: cosim --unit U --cfg V,V,... [--in-reg] [--out-skid] [--cycles N] "
+    std::fprintf(stderr, "usage: cosim --unit U --cfg V,V,...|KEY=V,... [--in-reg] [--out-skid] [--cycles N] "
                          "[--seed S] [--no-traffic] [--bench]\n");
     return 2;
 }
@@ -215,19 +235,39 @@ int main(int argc, char **argv)
         else return usage();
     }
     if (!unit || !cfg) return usage();
+    // key=value,...: a registry unit's configuration (np_cosim_open_spec); else the values of np_cosim_open.
+    const bool spec = std::strchr(cfg, '=') != nullptr;
     std::vector<unsigned> p;
-    for (const char *s = cfg; *s;) {
+    for (const char *s = cfg; *s && !spec;) {
         char *end;
         p.push_back((unsigned)std::strtoul(s, &end, 10));
         if (end == s) return usage();
         s = *end == ',' ? end + 1 : end;
     }
-    char err[200];
-    np_cosim *m = np_cosim_open(unit, p.data(), (unsigned)p.size(), in_reg, out_skid, seed, err, sizeof err);
+    char err[600];
+    auto open_model = [&]() {
+        return spec ? np_cosim_open_spec(unit, cfg, in_reg, out_skid, seed, err, sizeof err)
+                    : np_cosim_open(unit, p.data(), (unsigned)p.size(), in_reg, out_skid, seed, err, sizeof err);
+    };
+    np_cosim *m = open_model();
     if (!m) {
         std::fprintf(stderr, "cosim: %s\n", err);
         return 2;
     }
+#ifdef NP_COSIM_NDIM
+    // --unit and --cfg are what the RTL was Verilated with.
+    if (!spec || std::strcmp(unit, nd_unit) != 0 || np_cosim_spec_is(m, nd_keys, err, sizeof err) != 0) {
+        std::fprintf(stderr, "cosim: this binary is the RTL of --unit %s --cfg %s%s%s\n", nd_unit, nd_keys,
+                     spec && std::strcmp(unit, nd_unit) == 0 ? ": " : "",
+                     spec && std::strcmp(unit, nd_unit) == 0 ? err : "");
+        return 2;
+    }
+#else
+    if (spec) {
+        std::fprintf(stderr, "cosim: this binary is not an n-D unit's RTL: --cfg takes values, not keys\n");
+        return 2;
+    }
+#endif
     const unsigned nout = np_cosim_outputs(m);
 #ifdef NP_COSIM_WAVE
     // --cfg is what the RTL was Verilated with: trains must be its TRAINS.
@@ -258,9 +298,10 @@ int main(int argc, char **argv)
         return 2;
     }
 #endif
-    const unsigned aac_bits = np_cosim_aac_bus_bits(m);
+    const unsigned aac_bits = np_cosim_aac_bus_bits(m), nin = np_cosim_inputs(m);
     Rtl rtl;
     rtl.bus_bits = aac_bits;
+    rtl.nin = nin;
 #ifdef NP_COSIM_WAVE
     rtl.regs(*np_cosim_wave_regs(m));
 #endif
@@ -275,8 +316,10 @@ int main(int argc, char **argv)
         }
         std::fprintf(trace, "# noisepipe cycle trace 1\n# unit %s\n# config %s%s%s\n# seed %llu\n", unit, cfg,
                      in_reg ? " in_reg" : "", out_skid ? " out_skid" : "", seed);
-        std::fprintf(trace, "# columns cycle in_valid in_ready %s out_valid out_ready",
-                     np_cosim_is_wave(m) ? "i j t ph u v r g" : np_cosim_is_aacount(m) ? "bus" : "x y z");
+        std::fprintf(trace, "# columns cycle in_valid in_ready %s",
+                     np_cosim_is_wave(m) ? "i j t ph u v r g" : np_cosim_is_aacount(m) ? "bus" : nin ? "" : "x y z");
+        for (unsigned k = 0; k < nin; k++) std::fprintf(trace, "%sin%u(%u bits)", k ? " " : "", k, np_cosim_in_bits(m, k));
+        std::fprintf(trace, " out_valid out_ready");
         for (unsigned k = 0; k < nout; k++) std::fprintf(trace, " out%u(%u bits)", k, np_cosim_out_bits(m, k));
         std::fprintf(trace, "\n");
     }
@@ -317,6 +360,11 @@ int main(int argc, char **argv)
                 for (int d = (int)((aac_bits + 3) / 4) - 1; d >= 0; d--)
                     std::fprintf(trace, "%x", (unsigned)(c.bus[d / 16] >> (4 * (d % 16))) & 15u);
                 std::fprintf(trace, " %d %d", c.out_valid, c.out_ready);
+            } else if (nin) {
+                std::fprintf(trace, "%llu %d %d", cy, c.in_valid, c.in_ready);
+                for (unsigned k = 0; k < nin; k++)
+                    std::fprintf(trace, " %0*llx", (int)((np_cosim_in_bits(m, k) + 3) / 4), (unsigned long long)c.in[k]);
+                std::fprintf(trace, " %d %d", c.out_valid, c.out_ready);
             } else
                 std::fprintf(trace, "%llu %d %d %04x %04x %04x %d %d", cy, c.in_valid, c.in_ready, c.x, c.y, c.z,
                              c.out_valid, c.out_ready);
@@ -335,11 +383,12 @@ int main(int argc, char **argv)
     double t_both = seconds_since(t0);
     uint64_t n[5];
     np_cosim_counts(m, n);
-    std::printf("cosim %s cfg %s%s%s: %llu cycles, %llu inputs, %llu out_valid cycles compared, %llu input bubbles, "
-                "%llu output stalls: %llu mismatches (%.2f s)\n",
+    // Results delivered: each compared at its transfer (and on every stalled cycle before it: out_valid cycles).
+    std::printf("cosim %s cfg %s%s%s: %llu cycles, %llu inputs, %llu results delivered, %llu out_valid cycles compared, "
+                "%llu input bubbles, %llu output stalls: %llu mismatches (%.2f s)\n",
                 unit, cfg, in_reg ? " in_reg" : "", out_skid ? " out_skid" : "", (unsigned long long)n[0],
-                (unsigned long long)n[1], compared, (unsigned long long)n[3], (unsigned long long)n[4], mismatches,
-                t_both);
+                (unsigned long long)n[1], (unsigned long long)n[2], compared, (unsigned long long)n[3],
+                (unsigned long long)n[4], mismatches, t_both);
     if (aac_bits) {
         // How the compared windows spread over the counts: each value 0..16 with its number of cycles.
         static const char *const name[4] = {"s", "sd", "sn", "ss"};
@@ -362,7 +411,7 @@ int main(int argc, char **argv)
         // The same stimulus (same seed) through each model alone. The
         // stimulus generator runs in both loops (it lives in np_cosim), so
         // the two figures carry the same overhead.
-        np_cosim *mm = np_cosim_open(unit, p.data(), (unsigned)p.size(), in_reg, out_skid, seed, err, sizeof err);
+        np_cosim *mm = open_model();
         np_cosim_cycle d{};
         auto t1 = std::chrono::steady_clock::now();
         for (unsigned long long cy = 0; cy < cycles; cy++) {
@@ -374,9 +423,10 @@ int main(int argc, char **argv)
         np_cosim_close(mm);
         // The Verilated RTL alone: the same generator, moved on by the RTL's
         // own in_ready (equal to the model's, as the lock-step run showed).
-        np_cosim *g = np_cosim_open(unit, p.data(), (unsigned)p.size(), in_reg, out_skid, seed, err, sizeof err);
+        np_cosim *g = open_model();
         Rtl r2;
         r2.bus_bits = aac_bits;
+        r2.nin = nin;
 #ifdef NP_COSIM_WAVE
         r2.regs(*np_cosim_wave_regs(g));
 #endif

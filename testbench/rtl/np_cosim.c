@@ -10,7 +10,9 @@
 #include "np_pipe.h"
 #include "np_rng.h"
 #include "np_simplex.h"
+#include "np_unit.h"
 #include "np_wave.h"
+#include "unit_ndim.h"
 
 /* Densities of a traffic phase, out of 256 (as src/vecdrive.c). */
 static const unsigned density[4] = { 0, 32, 128, 224 };
@@ -18,6 +20,10 @@ enum { PHASE_MIN = 16, PHASE_SPAN = 256 };
 
 struct np_cosim {
     int simplex, wave, aacount;
+    const np_unit *unit;         /* a registry unit (np_cosim_open_spec), else NULL */
+    np_unit_cfg ucfg;            /* its configuration (the pipe keeps it by reference) */
+    np_unit_fields uf;
+    void *usig;                  /* its input bundle, the pipe's sig_size bytes */
     np_classic_cfg ccfg;
     np_aacount_cfg acfg;
     np_aacount_regs aregs; /* the host's registers of acfg: the stimulus aims lumas at them */
@@ -121,11 +127,89 @@ np_cosim *np_cosim_open(const char *unit, const unsigned *p, unsigned np, int in
     return c;
 }
 
+static const np_unit *cosim_unit_find(const char *name)
+{
+    if (strcmp(name, np_unit_simplexn3.name) == 0)
+        return &np_unit_simplexn3;
+    return np_unit_find(name);
+}
+
+np_cosim *np_cosim_open_spec(const char *unit, const char *spec, int in_reg, int out_skid, uint64_t seed, char *err,
+                             unsigned errn)
+{
+    const np_unit *u = cosim_unit_find(unit);
+    if (!u) {
+        snprintf(err, errn, "%s: not a unit of the registry (noisepipe units)", unit);
+        return NULL;
+    }
+    if (!u->pipe_init || !u->sig_set_in || !u->sig_get_out || u->stream) {
+        snprintf(err, errn, "%s: no one-input-one-output cycle model (np_pipe) to co-simulate", unit);
+        return NULL;
+    }
+    np_cosim *c = calloc(1, sizeof *c);
+    if (!c) {
+        snprintf(err, errn, "out of memory");
+        return NULL;
+    }
+    c->unit = u;
+    if (np_unit_configure_all(u, &c->ucfg, spec, err, errn) != 0) {
+        free(c);
+        return NULL;
+    }
+    u->fields(&c->ucfg, &c->uf);
+    if (c->uf.n_in > NP_COSIM_INS || c->uf.n_out > NP_COSIM_OUTS) {
+        snprintf(err, errn, "%s: %u inputs, %u outputs: more than np_cosim carries", unit, c->uf.n_in, c->uf.n_out);
+        free(c);
+        return NULL;
+    }
+    for (unsigned k = 0; k < c->uf.n_out; k++)
+        if (c->uf.out[k].bits > 32) {
+            snprintf(err, errn, "%s: output %s is wider than 32 bits", unit, c->uf.out[k].name);
+            free(c);
+            return NULL;
+        }
+    if (u->pipe_init(&c->pipe, &c->ucfg) != 0 || !(c->usig = calloc(1, c->pipe.sig_size))) {
+        snprintf(err, errn, "out of memory");
+        np_pipe_free(&c->pipe);
+        free(c);
+        return NULL;
+    }
+    c->pipe.in_reg = in_reg != 0;
+    c->pipe.out_skid = out_skid != 0;
+    np_pipe_reset(&c->pipe);
+    np_rng_seed(&c->rng, seed);
+    return c;
+}
+
+int np_cosim_spec_is(const np_cosim *c, const char *spec, char *err, unsigned errn)
+{
+    np_unit_cfg other;
+    char a[512], b[512];
+    if (!c->unit) {
+        snprintf(err, errn, "not a registry unit");
+        return -1;
+    }
+    if (np_unit_configure_all(c->unit, &other, spec, err, errn) != 0)
+        return -1;
+    np_unit_cfg_format(c->unit, &c->ucfg, a, sizeof a);
+    np_unit_cfg_format(c->unit, &other, b, sizeof b);
+    if (strcmp(a, b) != 0) {
+        snprintf(err, errn, "the model's configuration is %s, not %s", a, b);
+        return -1;
+    }
+    return 0;
+}
+
+unsigned np_cosim_inputs(const np_cosim *c) { return c->unit ? c->uf.n_in : 0u; }
+
+unsigned np_cosim_in_bits(const np_cosim *c, unsigned k) { return c->unit && k < c->uf.n_in ? c->uf.in[k].bits : 0u; }
+
 void np_cosim_close(np_cosim *c)
 {
     if (!c)
         return;
     np_pipe_free(&c->pipe);
+    free(c->usig);
     free(c);
 }
 
@@ -139,6 +223,8 @@ unsigned np_cosim_aac_bus_bits(const np_cosim *c) { return c->aacount ? np_aacou
 
 unsigned np_cosim_outputs(const np_cosim *c)
 {
+    if (c->unit)
+        return c->uf.n_out;
     if (c->wave)
         return 3u + 3u * c->wu.c.normals + c->wu.c.fold;
     if (c->aacount)
@@ -148,6 +234,8 @@ unsigned np_cosim_outputs(const np_cosim *c)
 
 unsigned np_cosim_out_bits(const np_cosim *c, unsigned k)
 {
+    if (c->unit)
+        return k < c->uf.n_out ? c->uf.out[k].bits : 0u;
     if (c->wave)
         return k < 3 ? 16u : (c->wu.c.normals && k < 6) ? 20u : 1u;
     if (c->aacount)
@@ -199,6 +287,35 @@ static void random_wave(np_rng *r, const np_wave_regs *w, uint32_t in[NP_COSIM_W
 
 /* A uniform value in [0, 2^k), k <= 32. */
 static uint32_t random_bits(np_rng *r, unsigned k) { return k ? (uint32_t)(np_rng_next(r) >> (64u - k)) : 0u; }
+
+/*
+ * A registry unit's input words: each field a random word of its width (a
+ * u16 Q8.8 field: random_word, fractions at their edges), then, for
+ * several fields, a tie: two fields equal (1/8 of the inputs) or all of
+ * them (1/64), where an n-D simplex's ranking falls back on its tie rule.
+ */
+static void random_fields(np_rng *r, const np_unit_fields *f, uint64_t in[NP_COSIM_INS])
+{
+    for (unsigned a = 0; a < f->n_in; a++) {
+        const np_field *d = &f->in[a];
+        in[a] = d->bits == 16 && d->frac == 8 && !d->is_signed ? random_word(r)
+              : d->bits >= 64                                ? np_rng_next(r)
+                                                             : np_rng_next(r) >> (64u - d->bits);
+    }
+    if (f->n_in < 2)
+        return;
+    const uint64_t e = np_rng_next(r);
+    const unsigned a = (unsigned)((e >> 6) % f->n_in), b = (unsigned)((e >> 9) % (f->n_in - 1u));
+    if ((e & 63u) == 0) {
+        for (unsigned k = 0; k < f->n_in; k++)
+            if (f->in[k].bits == f->in[0].bits)
+                in[k] = in[0];
+    } else if ((e & 7u) == 0) {
+        const unsigned bb = b >= a ? b + 1u : b; /* another field than a */
+        if (f->in[a].bits == f->in[bb].bits)
+            in[bb] = in[a];
+    }
+}
 
 static int clamp_int(int v, int lo, int hi) { return v < lo ? lo : v > hi ? hi : v; }
 
@@ -341,7 +458,9 @@ void np_cosim_drive(np_cosim *c, np_cosim_cycle *cy, int traffic)
             cy->in_valid = 0;
         } else {
             cy->in_valid = 1;
-            if (c->wave) {
+            if (c->unit) {
+                random_fields(&c->rng, &c->uf, cy->in);
+            } else if (c->wave) {
                 random_wave(&c->rng, &c->wu.r, cy->win);
             } else if (c->aacount) {
                 random_window(c, cy->bus);
@@ -359,7 +478,9 @@ void np_cosim_drive(np_cosim *c, np_cosim_cycle *cy, int traffic)
 void np_cosim_eval(np_cosim *c, np_cosim_cycle *cy)
 {
     /* Only the inputs change: the rest of the bundle stays as calloc left it (the stages write banks, never in_sig). */
-    if (c->aacount) {
+    if (c->unit) {
+        c->unit->sig_set_in(c->usig, cy->in);
+    } else if (c->aacount) {
         np_aacount_sig_in_bus(&c->in.a, cy->bus); /* stage A unpacks the bus, as the RTL's bank A reads it */
     } else if (c->wave) {
         np_wave_in *w = &c->in.w.in;
@@ -381,7 +502,7 @@ void np_cosim_eval(np_cosim *c, np_cosim_cycle *cy)
         c->in.c.z = cy->z;
     }
     c->port.in_valid = cy->in_valid;
-    c->port.in_sig = &c->in;
+    c->port.in_sig = c->unit ? c->usig : (const void *)&c->in;
     c->port.out_ready = cy->out_ready;
     np_pipe_eval(&c->pipe, &c->port);
     cy->in_ready = c->port.in_ready;
@@ -389,7 +510,12 @@ void np_cosim_eval(np_cosim *c, np_cosim_cycle *cy)
     memset(cy->out, 0, sizeof cy->out);
     if (!cy->out_valid)
         return;
-    if (c->aacount) {
+    if (c->unit) {
+        uint64_t w[NP_UNIT_MAX_FIELDS] = { 0 };
+        c->unit->sig_get_out(&c->ucfg, c->port.out_sig, w);
+        for (unsigned k = 0; k < c->uf.n_out; k++)
+            cy->out[k] = (uint32_t)w[k];
+    } else if (c->aacount) {
         const np_aacount_sig *s = c->port.out_sig;
         cy->out[0] = s->s;
         cy->out[1] = s->mask;

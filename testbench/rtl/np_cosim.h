@@ -20,9 +20,10 @@
 extern "C" {
 #endif
 
-/* Outputs of a cycle: 1 (classic3), 4 (simplex3), 3..7 (wave: y, dx, dz, [nx, ny, nz], [fold]) or
- * 5 (aacount: s, mask, sd, sn, ss; a metric that is not built has its count 0 on both sides). */
-enum { NP_COSIM_OUTS = 7, NP_COSIM_WAVE_INS = 8, NP_COSIM_AAC_WORDS = 8 };
+/* Outputs of a cycle: 1 (classic3), 4 (simplex3), 3..7 (wave: y, dx, dz, [nx, ny, nz], [fold]),
+ * 5 (aacount: s, mask, sd, sn, ss; a metric that is not built has its count 0 on both sides), or
+ * a registry unit's output fields (np_cosim_open_spec). Inputs of a registry unit: up to NP_COSIM_INS. */
+enum { NP_COSIM_OUTS = 7, NP_COSIM_WAVE_INS = 8, NP_COSIM_AAC_WORDS = 8, NP_COSIM_INS = 8 };
 
 struct np_wave_regs;
 
@@ -32,6 +33,7 @@ typedef struct np_cosim_cycle {
     uint16_t x, y, z;
     uint32_t win[NP_COSIM_WAVE_INS]; /* wave: i, j, t, ph, u, v, r, g (x, y, z unused) */
     uint64_t bus[NP_COSIM_AAC_WORDS]; /* aacount: the window bus, np_aacount_bus_pack's words (x, y, z unused) */
+    uint64_t in[NP_COSIM_INS];        /* a registry unit: its input fields' words, in field order (x, y, z unused) */
     int out_ready;
     /* the cycle model's outputs, from np_cosim_eval (out: outputs' words masked to their widths) */
     int in_ready;
@@ -55,6 +57,23 @@ typedef struct np_cosim np_cosim;
  */
 np_cosim *np_cosim_open(const char *unit, const unsigned *p, unsigned np, int in_reg, int out_skid,
                         uint64_t seed, char *err, unsigned errn);
+/*
+ * Any unit of the registry (np_unit_find; also the unregistered n-D unit at
+ * n = 3, simplexn3, unit_ndim.h) through its np_unit entries: pipe_init,
+ * sig_set_in, sig_get_out and fields. spec gives every key of the unit once
+ * ("key=value,...", np_unit_configure_all), so a run names the whole
+ * configuration the RTL was built with. Inputs: each field a random word of
+ * its width; a u16 Q8.8 field as random_word (np_cosim.c), and a tie of
+ * two axes (an equal word, 1/8 of the inputs) or of all of them (1/64).
+ * The n-D RTL (np_simplexn.v, np_classicn.v) co-simulates this way.
+ */
+np_cosim *np_cosim_open_spec(const char *unit, const char *spec, int in_reg, int out_skid, uint64_t seed, char *err,
+                             unsigned errn);
+/* A registry unit's configuration is spec (0, or -1: another one, or a bad spec; why in err). */
+int np_cosim_spec_is(const np_cosim *c, const char *spec, char *err, unsigned errn);
+/* Number of inputs of a registry unit and the width of input k (0 for another unit). */
+unsigned np_cosim_inputs(const np_cosim *c);
+unsigned np_cosim_in_bits(const np_cosim *c, unsigned k);
 void np_cosim_close(np_cosim *c);
 /* The wave unit's register set (NULL for another unit): the RTL's register inputs. */
 const struct np_wave_regs *np_cosim_wave_regs(const np_cosim *c);
@@ -63,7 +82,7 @@ int np_cosim_is_wave(const np_cosim *c);
 /* 1 when the unit is aacount (its input is bus[], not x, y, z); bits of its bus (0 for another unit). */
 int np_cosim_is_aacount(const np_cosim *c);
 unsigned np_cosim_aac_bus_bits(const np_cosim *c);
-/* Number of outputs of the unit (1, 4, 3..7 or 5) and the width of output k. */
+/* Number of outputs of the unit (1, 4, 3..7, 5, or a registry unit's) and the width of output k. */
 unsigned np_cosim_outputs(const np_cosim *c);
 unsigned np_cosim_out_bits(const np_cosim *c, unsigned k);
 /* Stimulus of this cycle; traffic 0 streams without bubbles or stalls. */

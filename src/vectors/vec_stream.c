@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* Vectors of stream units: generation and the testbench loop (np_stream.h). */
-#include "np_stream.h"
+/* Vectors of stream units: generation and the testbench loop (np_vec_stream.h; the format: np_stream.h). */
+#include "np_vec_stream.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -44,7 +44,7 @@
 
 #include "np_hash.h"
 #include "np_simplex.h"
-#include "np_sweep.h"
+#include "np_unit_sweep.h"
 #include "np_simplex32.h"
 
 /* ---- The reference row, in segments ---- */

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* One scanline's noise, forward differences against per pixel (np_render.h; the seed's figures 10 and 11). */
-#include "np_render.h"
+/* One scanline's noise, forward differences against per pixel (np_report_scan.h; the seed's figures 10 and 11). */
+#include "np_report_scan.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "np_texel.h"
 #include "np_texreg.h"
 
 /* --- One scanline's noise (figures 10 and 11) --- */
