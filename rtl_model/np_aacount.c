@@ -517,16 +517,66 @@ static aac_widths widths_of(const np_aacount_cfg *c)
     return w;
 }
 
+/*
+ * A product with the constant k (a bits times k): shift-adds of k's canonical
+ * signed digits, lowest first, one adder per digit after the first (a power of
+ * two, or 0, is wiring). Each adder is a + 1 bits wide: the new term x 2^pos
+ * spans bits pos .. pos + a - 1, the partial sum's bits below pos pass through
+ * untouched, and its top is below pos + a (canonical digits are never
+ * adjacent: the sum of the lower ones is under 2^(pos - 1 + a + 1)).
+ */
+static void const_mul(np_dp *d, const char *stage, unsigned count, unsigned a, uint64_t k, unsigned level)
+{
+    unsigned terms = 0;
+    for (unsigned pos = 0; k && pos < 64; pos++, k >>= 1)
+        if (k & 1u) {
+            terms++;
+            k = (k & 2u) ? k + 1u : k - 1u; /* digit -1 or +1 */
+        }
+    if (terms > 1u)
+        np_dp_op(d, stage, NULL, NP_OP_ADD, count * (terms - 1u), a + 1u, 0, 0, 0, level);
+}
+
+/* Bits of k (0 for 0) and its trailing zero bits (0 for 0). */
+static unsigned ubits64(uint64_t k)
+{
+    unsigned b = 0;
+    while (k >> b)
+        b++;
+    return b;
+}
+
+static unsigned tzeros64(uint64_t k)
+{
+    unsigned t = 0;
+    while (k && !(k >> t & 1u))
+        t++;
+    return t;
+}
+
+/*
+ * The declaration of what np_aacount.v builds (report gates --synth compares
+ * it stage by stage): the threshold registers are constants of the
+ * configuration there (np_aacount_regs_compute at elaboration), so each
+ * comparison with a threshold is a comparison with a constant, one that can
+ * never hold (vd[j] beyond v's range, rs[j] = 256, na_on[j] = 0) is left out,
+ * and the normal test's products with nd and na[j] are constant products.
+ * d^2, sum_d^2, |nbar|^2, |n|^2 and dot^2 are squarers; each count is the
+ * RTL's chain of conditional increments. The resolve (np_aacount_resolve) is
+ * the renderer's, after the unit: no stage here.
+ */
 size_t np_aacount_datapath(const np_aacount_cfg *c, np_op *ops, size_t max)
 {
     np_dp d = { ops, max, 0 };
-    unsigned n = n_of(c), lanes = c->serial ? 1u : n, thr = n > 1 ? n - 1u : 0u;
+    unsigned n = n_of(c), lanes = c->serial ? 1u : n;
     aac_widths w = widths_of(c);
-    unsigned lv, regs;
+    np_aacount_regs r;
+    np_aacount_regs_compute(c, &r);
+    unsigned lv, regs, live;
     /* A: the sums (parallel: adder trees over n lanes; serial: one accumulator each) */
     regs = 1;
     if (c->depth) {
-        np_dp_op(&d, "A", "d2", NP_OP_MUL, lanes, 24, 24, 48, 0, 0);
+        np_dp_op(&d, "A", "d2", NP_OP_SQR, lanes, 24, 0, 48, 0, 0);
         if (c->serial) {
             np_dp_op(&d, "A", "sum_d", NP_OP_ADD, 1, w.sum_d, 0, w.sum_d, 0, 1);
             np_dp_op(&d, "A", "sum_d2", NP_OP_ADD, 1, w.sum_d2, 0, w.sum_d2, 0, 1);
@@ -542,6 +592,7 @@ size_t np_aacount_datapath(const np_aacount_cfg *c, np_op *ops, size_t max)
         else
             for (unsigned k = 0; k < 3; k++)
                 np_dp_add_tree(&d, "A", "nbar", n, w.nbar, 1, 0);
+        np_dp_op(&d, "A", NULL, NP_OP_CMPK, lanes, 24, 0, 0, 0, 0); /* any normal: a sample's 24 bits not 0 */
         /* the normals wait for nbar: the serial unit's two n x 24 buffers, the parallel one's pipeline */
         np_dp_op(&d, "A", NULL, NP_OP_REG, c->serial ? 2u : 1u, n * 24u, 0, 0, 0, 0);
         regs += 3u * w.nbar + 1u;
@@ -556,36 +607,44 @@ size_t np_aacount_datapath(const np_aacount_cfg *c, np_op *ops, size_t max)
     /* V: v = n sum_d2 - sum_d^2; dots and norms; luma range and gate */
     regs = 1;
     if (c->depth) {
-        if (c->m == 3) /* 9 x = 8 x + x */
-            np_dp_op(&d, "V", NULL, NP_OP_ADD, 1, w.sum_d2 + 4u, 0, 0, 0, 0);
-        np_dp_op(&d, "V", NULL, NP_OP_MUL, 1, w.sum_d, w.sum_d, 0, 0, 0);
-        np_dp_op(&d, "V", "v", NP_OP_ADD, 1, 2u * w.sum_d, 0, w.v, 0, 1);
+        const_mul(&d, "V", 1, w.sum_d2, n, 0); /* n sum_d2: 9 x = 8 x + x; 4 x, 16 x wiring */
+        np_dp_op(&d, "V", NULL, NP_OP_SQR, 1, w.sum_d, 0, 0, 0, 0);
+        np_dp_op(&d, "V", "v", NP_OP_ADD, 1, w.v, 0, w.v, 0, 1);
         regs += w.v;
     }
     if (c->normal) {
-        np_dp_op(&d, "V", NULL, NP_OP_MUL, 3, w.nbar, w.nbar, 0, 0, 0);
-        lv = np_dp_add_tree(&d, "V", "nb2", 3, w.nb2, 0, 1);
+        /* |nbar|^2: each component's magnitude (a conditional negation; |nbar_k| <= 128 n fits
+         * w.nbar - 1 bits), squared unsigned */
+        np_dp_op(&d, "V", NULL, NP_OP_NEG, 3, w.nbar - 1u, 0, 0, 0, 0);
+        np_dp_op(&d, "V", NULL, NP_OP_SQR, 3, w.nbar - 1u, 0, 0, 0, 1);
+        lv = np_dp_add_tree(&d, "V", "nb2", 3, w.nb2, 0, 2);
         (void)lv;
-        np_dp_op(&d, "V", NULL, NP_OP_MUL, 3u * lanes, w.nbar, 8, 0, 1, 0);
+        /* per sample: dot = nbar . n, three signed x signed products (s(w.nbar) x s8) */
+        np_dp_op(&d, "V", NULL, NP_OP_SMUL, 3u * lanes, w.nbar, 8, 0, 1, 0);
         np_dp_op(&d, "V", NULL, NP_OP_ADD, 2u * lanes, w.dot, 0, 0, 1, 1);
         np_dp_op(&d, "V", "dot", NP_OP_REG, 0, 0, 0, w.dot, 1, 2); /* wiring: the second adder's output */
-        np_dp_op(&d, "V", NULL, NP_OP_MUL, 3u * lanes, 8, 8, 0, 0, 0);
-        np_dp_op(&d, "V", NULL, NP_OP_ADD, 2u * lanes, w.nn2, 0, 0, 0, 1);
-        np_dp_op(&d, "V", "nn2", NP_OP_REG, 0, 0, 0, w.nn2, 0, 2);
+        /* nn2 = |n|^2: each s8's magnitude (0..128) squared; bit 7 of a magnitude is set only at 128,
+         * whose square is a single bit (2^14), so the squarer is 7 bits wide */
+        np_dp_op(&d, "V", NULL, NP_OP_NEG, 3u * lanes, 8, 0, 0, 0, 0);
+        np_dp_op(&d, "V", NULL, NP_OP_SQR, 3u * lanes, 7, 0, 0, 0, 1);
+        np_dp_op(&d, "V", NULL, NP_OP_ADD, 2u * lanes, w.nn2, 0, 0, 0, 2);
+        np_dp_op(&d, "V", "nn2", NP_OP_REG, 0, 0, 0, w.nn2, 0, 3);
         regs += w.nb2 + lanes * (w.dot + w.nn2);
     }
     if (c->luma) {
         np_dp_op(&d, "V", "r", NP_OP_ADD, 1, 8, 0, 8, 0, 0);
-        np_dp_op(&d, "V", NULL, NP_OP_MUL, 1, 8, 8, 0, 0, 0);
-        np_dp_op(&d, "V", NULL, NP_OP_CMP, 2, 16, 0, 0, 0, 1);
+        const_mul(&d, "V", 1, 8, r.t_edge, 0);             /* t_edge lmax */
+        np_dp_op(&d, "V", NULL, NP_OP_CMPK, 1, 8, 0, 0, 0, 1); /* r < t_min */
+        np_dp_op(&d, "V", NULL, NP_OP_CMP, 1, 16, 0, 0, 0, 1); /* 256 r < t_edge lmax */
         regs += 9u;
     }
     np_dp_op(&d, "V", NULL, NP_OP_REG, 1, regs, 0, 0, 0, 0);
     /* P: squares, the least ratio (a comparison tree, or a running one), the counts */
     regs = 1;
     if (c->normal) {
-        np_dp_op(&d, "P", "p", NP_OP_MUL, lanes, w.dot, w.dot, w.p, 0, 0);
+        np_dp_op(&d, "P", "p", NP_OP_SQR, lanes, w.dot, 0, w.p, 0, 0);
         np_dp_op(&d, "P", "q", NP_OP_MUL, lanes, w.nb2, w.nn2, w.q, 0, 0);
+        np_dp_op(&d, "P", NULL, NP_OP_CMPK, lanes, w.nn2, 0, 0, 0, 0); /* a sample with a normal: nn2 != 0 */
         /* the least ratio: a tree of n - 1 comparisons (serial: one running comparison) */
         unsigned items = c->serial ? 2u : n;
         for (unsigned k = 0; items > 1u; k++) {
@@ -595,39 +654,58 @@ size_t np_aacount_datapath(const np_aacount_cfg *c, np_op *ops, size_t max)
             np_dp_op(&d, "P", NULL, NP_OP_MUX, here, w.p + w.q, 2, 0, 0, 3u + 3u * k);
             items -= here;
         }
-        regs += w.p + w.q + 1u;
+        np_dp_op(&d, "P", NULL, NP_OP_CMPK, 1, w.nb2, 0, 0, 0, 0); /* nbar = 0 */
+        regs += w.p + w.q + 2u;
     }
     if (c->depth) {
-        np_dp_op(&d, "P", NULL, NP_OP_CMP, thr, 57, 0, 0, 0, 0);
-        np_dp_add_tree(&d, "P", NULL, thr, 5, 0, 1); /* the thermometer code's ones counted */
+        live = 0;
+        for (unsigned j = 1; j < n; j++)
+            live += r.vd[j] < ((uint64_t)1 << w.v);
+        np_dp_op(&d, "P", NULL, NP_OP_CMPK, live, w.v, 0, 0, 0, 0);
+        np_dp_op(&d, "P", NULL, NP_OP_INC, live, 5, 0, 0, 0, 1); /* the count: a conditional +1 a threshold */
+        np_dp_op(&d, "P", NULL, NP_OP_MUX, live, 5, 2, 0, 0, 2);
         regs += 5u;
     }
     if (c->luma) {
-        np_dp_op(&d, "P", NULL, NP_OP_CMP, thr, 9, 0, 0, 0, 0);
-        np_dp_add_tree(&d, "P", NULL, thr, 5, 0, 1);
+        live = 0;
+        for (unsigned j = 1; j < n; j++)
+            live += r.rs[j] < 256u;
+        np_dp_op(&d, "P", NULL, NP_OP_CMPK, live, 8, 0, 0, 0, 0);
+        np_dp_op(&d, "P", NULL, NP_OP_INC, live, 5, 0, 0, 0, 1);
+        np_dp_op(&d, "P", NULL, NP_OP_MUX, live, 5, 2, 0, 0, 2);
         regs += 5u;
     }
     np_dp_op(&d, "P", NULL, NP_OP_REG, 1, regs, 0, 0, 0, 0);
-    /* C: the normal thresholds (u72 products), the max of three counts, the mask */
+    /* C: the normal thresholds (pmin nd < na[j] qmin, constant products, u72), the max of three counts, the mask */
     if (c->normal) {
-        np_dp_op(&d, "C", NULL, NP_OP_MUL, 1u + thr, w.p, 32, 0, 0, 0);
-        np_dp_op(&d, "C", NULL, NP_OP_CMP, thr, w.p + 32u, 0, 0, 0, 1);
-        np_dp_add_tree(&d, "C", NULL, thr, 5, 0, 2);
+        /*
+         * Each comparison pmin nd < na[j] qmin is over the products' live bits: below
+         * both constants' trailing zeros both sides are 0 (no logic); between the two
+         * counts only one side has bits, which enter as "not all 0" (a comparison with
+         * the constant 0); above, a comparator up to the wider product's top.
+         */
+        live = 0;
+        const_mul(&d, "C", 1, w.p, r.nd, 0);
+        unsigned tz_d = tzeros64(r.nd), top_d = w.p + ubits64(r.nd);
+        for (unsigned j = 1; j < n; j++)
+            if (r.na_on[j]) {
+                const_mul(&d, "C", 1, w.q, r.na[j], 0);
+                unsigned tz_a = tzeros64(r.na[j]), top_a = w.q + ubits64(r.na[j]);
+                unsigned top = top_d > top_a ? top_d : top_a;
+                unsigned hi_tz = tz_d > tz_a ? tz_d : tz_a, lo_tz = tz_d > tz_a ? tz_a : tz_d;
+                np_dp_op(&d, "C", NULL, NP_OP_CMP, 1, top - hi_tz, 0, 0, 0, 1);
+                if (hi_tz > lo_tz)
+                    np_dp_op(&d, "C", NULL, NP_OP_CMPK, 1, hi_tz - lo_tz, 0, 0, 0, 1);
+                live++;
+            }
+        np_dp_op(&d, "C", NULL, NP_OP_INC, live, 5, 0, 0, 0, 2);
+        np_dp_op(&d, "C", NULL, NP_OP_MUX, live, 5, 2, 0, 0, 3);
     }
     np_dp_op(&d, "C", NULL, NP_OP_CMP, 2, 5, 0, 0, 0, 3);
     /* s <= n: the u5 output port carries np_bits_for_range(0, n) of them */
     np_dp_op(&d, "C", "s", NP_OP_MUX, 2, 5, 2, np_bits_for_range(0, (int64_t)n, 0), 0, 4);
     np_dp_op(&d, "C", NULL, NP_OP_LUT, 1, 5, n, 0, 0, 5);
     np_dp_op(&d, "C", NULL, NP_OP_REG, 1, 5u * 4u + 16u + 1u, 0, 0, 0, 0);
-    /* R: the resolve, per channel (sum u12 x rom u18, + 2^16, the ROM) */
-    np_dp_op(&d, "R", NULL, NP_OP_ROM, 3, 4, NP_AAC_ROM_BITS, 0, 0, 0);
-    np_dp_op(&d, "R", NULL, NP_OP_MUL, 3, 12, NP_AAC_ROM_BITS, 0, 0, 1);
-    np_dp_op(&d, "R", NULL, NP_OP_ADD, 3, 14, 0, 0, 0, 2);
-    np_dp_op(&d, "R", NULL, NP_OP_REG, 1, 3u * 8u + 1u, 0, 0, 0, 0);
-    /* the threshold registers the host loads */
-    np_dp_op(&d, "C", NULL, NP_OP_REG, 1,
-             (c->depth ? thr * 57u : 0u) + (c->normal ? thr * 33u + 32u : 0u) + (c->luma ? thr * 9u + 16u : 0u), 0, 0,
-             0, 0);
     return d.n;
 }
 

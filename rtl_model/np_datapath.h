@@ -32,6 +32,8 @@ typedef enum np_op_kind {
     NP_OP_CMPK, /* comparison with a constant (saturation, clamps): a = width */
     NP_OP_SQR,  /* squarer x * x: a = the operand's width */
     NP_OP_CARRY, /* the carry out of an a-bit sum whose sum bits are not read (a majority chain) */
+    NP_OP_MULLO, /* multiplier keeping the product's low a bits only (modulo 2^a): a x b, a >= b */
+    NP_OP_SMUL,  /* signed x signed array multiplier (both operands two's complement): a x b bits */
     NP_OP_KINDS
 } np_op_kind;
 

@@ -704,11 +704,22 @@ static unsigned ubits(int64_t m) { return np_bits_for_range(0, m, 0); }
  * the normal's six products (ny's two with fold only) and the fold compare.
  * The widths follow the register set's bounds (as the trains' do).
  */
-static void jac_datapath(np_dp *dp, const np_wave_unit *u, unsigned n, unsigned wsa, unsigned wgm)
+void np_wave_datapath_widths(const np_wave_unit *u, np_wave_dp_widths *w)
 {
-    np_dp d = *dp;
-    const unsigned nrm = u->c.normals, nt = nrm ? 6u : 4u;
+    const wave_bounds b = bounds_of(u);
+    const unsigned nt = u->c.normals ? 6u : 4u;
     int64_t mlj = 0, mly = 0, sum[NP_WAVE_NJ] = { 0 }, jb[NP_WAVE_NJ];
+    memset(w, 0, sizeof *w);
+    w->ap = ubits(b.ap);
+    w->yc = sbits(b.yc);
+    w->sa = sbits(b.sa);
+    w->xp = sbits(b.xp);
+    w->ys = sbits(b.ys);
+    w->xs = sbits(b.xs);
+    w->gm = ubits(b.gm);
+    w->bc = u->c.cap ? sbits(b.bc) : 0u;
+    if (!np_wave_has_jac(&u->c))
+        return;
     for (unsigned k = 0; k < u->r.n; k++) {
         const np_wave_train *t = &u->r.tr[k];
         int64_t e[4], ap = ((int64_t)t->amp + (u->c.irr ? t->airr : 0)) << (NP_WAVE_SIN_FRAC - NP_WAVE_AMP_FRAC);
@@ -725,26 +736,45 @@ static void jac_datapath(np_dp *dp, const np_wave_unit *u, unsigned n, unsigned 
         sum[5] += vz;
     }
     np_wave_jac_range_lsb(&u->r, jb);
-    unsigned wlj = sbits(mlj), wly = sbits(mly), wjs = 0, wj = 0;
+    w->lj = sbits(mlj);
+    w->ly = sbits(mly);
     for (unsigned m = 0; m < nt; m++) {
-        wjs = sbits(sum[m]) > wjs ? sbits(sum[m]) : wjs;
-        wj = sbits(jb[m]) > wj ? sbits(jb[m]) : wj;
+        w->js = sbits(sum[m]) > w->js ? sbits(sum[m]) : w->js;
+        w->j = sbits(jb[m]) > w->j ? sbits(jb[m]) : w->j;
     }
-    OP("M", NULL, NP_OP_MUL, 4u * n, 16, 16, 0, 0, 0); /* e: cx kmx, cx kmz, cz kmx, cz kmz */
+}
+
+static void jac_datapath(np_dp *dp, const np_wave_unit *u, unsigned n, const np_wave_dp_widths *w)
+{
+    np_dp d = *dp;
+    const unsigned nrm = u->c.normals, nt = nrm ? 6u : 4u;
+    const unsigned wsa = w->sa, wgm = w->gm, wlj = w->lj, wly = w->ly, wjs = w->js, wj = w->j;
+    OP("M", NULL, NP_OP_SMUL, 4u * n, 16, 16, 0, 0, 0); /* e: cx kmx, cx kmz, cz kmx, cz kmz (s16 x s16) */
     OP("M", "yq", NP_OP_ADD, n, wsa, 0, wsa, 1, 1);    /* round(ap c / 2^17) from the product yc rounds */
-    OP("M", "lj", NP_OP_MUL, 4u * n, wsa, 31, wlj, 1, 2);
+    OP("M", "lj", NP_OP_SMUL, 4u * n, wsa, 31, wlj, 1, 2); /* yq e */
     if (nrm)
-        OP("M", "ly", NP_OP_MUL, 2u * n, wsa, 16, wly, 1, 1);
+        OP("M", "ly", NP_OP_SMUL, 2u * n, wsa, 16, wly, 1, 1); /* sa kmx, sa kmz */
     OP("M", NULL, NP_OP_REG, 1, n * (4u * wlj + (nrm ? 2u * wly : 0u)), 0, 0, 0, 0);
-    for (unsigned m = 0; m < nt; m++)
-        np_dp_add_tree(&d, "T", "js", n, wjs, 1, 0);
+    /* js[m] = -sum lj[m]: as X and Z, 0 - lj[m] of lane 0 (an incrementer), then n - 1 subtractors */
+    OP("T", NULL, NP_OP_INC, nt, wjs, 0, 0, 0, 0);
+    OP("T", n > 1u ? "js" : NULL, NP_OP_ADD, nt * (n - 1u), wjs, 0, n > 1u ? wjs : 0u, 1, 1);
+    if (n == 1u)
+        OP("T", "js", NP_OP_REG, 0, 0, 0, wjs, 1, 1);
     OP("T", NULL, NP_OP_REG, 1, nt * wjs, 0, 0, 0, 0);
     OP("G", NULL, NP_OP_MUL, nt, wjs, wgm, 0, 0, 0);
     OP("G", "jac", NP_OP_ADD, nt, wj, 0, wj, 1, 2);
     OP("G", NULL, NP_OP_REG, 1, 3u * 16u + nt * wj + 1u, 0, 0, 0, 0);
-    /* N: a, d; ny = a d - jxz jzx (fold); with normals nx, nz too. */
+    /*
+     * N: a = 2^14 + jxx, d = 2^14 + jzz (s(wj + 1)); ny = a d - jxz jzx (fold); with normals
+     * nx = jzx yz - d yx and nz = jxz yx - a yz too. Every product is signed x signed: a d is
+     * s(wj + 1) x s(wj + 1); nx's and nz's products by d or a are s(wj + 1) x s(wj); the others
+     * (jxz jzx, jzx yz, jxz yx) s(wj) x s(wj).
+     */
     OP("N", NULL, NP_OP_ADD, 2, wj + 1u, 0, 0, 0, 0);
-    OP("N", NULL, NP_OP_MUL, nrm ? 6u : 2u, wj + 1u, wj + 1u, 0, 0, 1);
+    OP("N", NULL, NP_OP_SMUL, 1, wj + 1u, wj + 1u, 0, 0, 1);
+    if (nrm)
+        OP("N", NULL, NP_OP_SMUL, 2, wj + 1u, wj, 0, 0, 1);
+    OP("N", NULL, NP_OP_SMUL, nrm ? 3u : 1u, wj, wj, 0, 0, 1);
     OP("N", NULL, NP_OP_ADD, nrm ? 3u : 1u, 2u * (wj + 1u), 0, 0, 0, 2); /* exact differences, Q8.28 */
     if (nrm)
         OP("N", NULL, NP_OP_ADD, 3, NP_WAVE_N_BITS, 0, 0, 0, 3); /* the roundings to s20 Q9.10 */
@@ -765,13 +795,19 @@ size_t np_wave_datapath(const np_wave_unit *u, np_op *ops, size_t max)
      */
     const unsigned rec = u->c.sincos == NP_WAVE_SINCOS_RECURRENCE, nl = rec ? 1u : n;
     const unsigned nfx = (u->c.irr ? 2u : 0u) + (u->c.cap ? 1u : 0u), nsin = 2u * nl + nfx;
-    wave_bounds b = bounds_of(u);
-    unsigned wap = ubits(b.ap), wyc = sbits(b.yc), wsa = sbits(b.sa), wxp = sbits(b.xp);
-    unsigned wys = sbits(b.ys), wxs = sbits(b.xs), wgm = ubits(b.gm), wbc = u->c.cap ? sbits(b.bc) : 0u;
-    /* P: per train a train lane's phase: kx i, kz j (32 x 16, low 32 bits), om t (32 x 32, low 32), three adds. */
-    OP("P", NULL, NP_OP_MUL, 2u * nl, 32, 16, 0, 0, 0);
-    OP("P", NULL, NP_OP_MUL, nl, 32, 32, 0, 0, 0);
-    OP("P", NULL, NP_OP_ADD, 2u * nl, 32, 0, 0, 0, 1);
+    np_wave_dp_widths w;
+    np_wave_datapath_widths(u, &w);
+    const unsigned wap = w.ap, wyc = w.yc, wsa = w.sa, wxp = w.xp, wys = w.ys, wxs = w.xs, wgm = w.gm, wbc = w.bc;
+    /*
+     * The widths are those np_wave.v is built at (`report gates --synth`
+     * passes them); each operator is the RTL's, stage by stage (docs/wave.md,
+     * "Gates against synthesis"). P: per train lane th = kx i + kz j + phi +
+     * ph - om t, every product modulo 2^32 (the partial products under bit
+     * 32 only: mullo), four adders.
+     */
+    OP("P", NULL, NP_OP_MULLO, 2u * nl, 32, 16, 0, 0, 0);
+    OP("P", NULL, NP_OP_MULLO, nl, 32, 32, 0, 0, 0);
+    OP("P", NULL, NP_OP_ADD, 3u * nl, 32, 0, 0, 0, 1);
     OP("P", "th", NP_OP_ADD, nl, 32, 0, 32, 0, 2);
     if (rec) {
         OP("P", NULL, NP_OP_MUX, 4, 32, n, 0, 0, 0); /* kx, kz, phi, om of the lane setting up */
@@ -779,29 +815,44 @@ size_t np_wave_datapath(const np_wave_unit *u, np_op *ops, size_t max)
         OP("P", NULL, NP_OP_CMP, n, 17, 0, 0, 0, 1); /* which lane sets up: (i + k) mod N = 0 */
     }
     if (u->c.irr) {
-        OP("P", NULL, NP_OP_MUL, 2, 32, 16, 0, 0, 0); /* pu u, pv v */
-        OP("P", NULL, NP_OP_MUL, 1, 32, 32, 0, 0, 0); /* pt t */
+        OP("P", NULL, NP_OP_MULLO, 2, 32, 16, 0, 0, 0); /* pu u, pv v */
+        OP("P", NULL, NP_OP_MULLO, 1, 32, 32, 0, 0, 0); /* pt t */
         OP("P", "p1", NP_OP_ADD, 1, 32, 0, 32, 0, 1);
     }
     if (u->c.cap) {
-        OP("P", NULL, NP_OP_MUL, 1, 32, 32, 0, 0, 0); /* omc t */
-        OP("P", "pc", NP_OP_MUL, 1, 32, 8, 32, 0, 1); /* r (omc t) */
+        OP("P", NULL, NP_OP_MULLO, 1, 32, 32, 0, 0, 0); /* omc t */
+        OP("P", "pc", NP_OP_MULLO, 1, 32, 8, 32, 0, 1); /* r (omc t) */
     }
-    /* Smoothing: V - 1 - v, v < V, the smaller, min with M. */
+    /* Smoothing: V - 1 - v, v < V, v < V - 1 - v, the smaller, min with M (a constant compare). */
     OP("P", NULL, NP_OP_ADD, 1, 16, 0, 0, 0, 0);
     OP("P", NULL, NP_OP_CMP, 2, 16, 0, 0, 0, 1);
-    OP("P", "sm", NP_OP_MUX, 1, ml + 1u, 2, ml + 1u, 0, 2);
-    OP("P", NULL, NP_OP_REG, 1, 32u * (nl + 2u) + (rec ? n : 0u) + (ml + 1u) + 15u + 1u, 0, 0, 0, 0); /* phases, sm, g, valid */
-    /* S: per sine the mirror, the ROM pair, the chord's difference, product and sum, the sign. */
+    OP("P", NULL, NP_OP_MUX, 1, 16, 2, 0, 0, 2);
+    OP("P", NULL, NP_OP_CMPK, 1, 17, 0, 0, 0, 3);
+    OP("P", "sm", NP_OP_MUX, 1, ml + 1u, 2, ml + 1u, 0, 4);
+    OP("P", NULL, NP_OP_REG, 1, 32u * (nl + nfx) + (rec ? n : 0u) + (ml + 1u) + 15u + 1u, 0, 0, 0, 0); /* phases, sm, g, valid */
+    /*
+     * S: per sine the mirror 2^30 - x, the successor's address a + 1, the
+     * two ROM reads, the chord D = R[a+1] - R[a] (dbits: the ROM's first
+     * step, its largest), D f, its rounding, the sum and the sign. The
+     * quarter sine is smooth, and its two ROMs with D synthesise to far less
+     * than an arbitrary table: they are priced at rom_eff[L] bits a word, the
+     * width that puts np_wave_sin.v alone (Yosys + ABC, the --synth flow) at
+     * its measured size: 2,932.5 / 3,284 / 3,896.5 / 5,063.5 / 6,790 NAND2
+     * at L = 6 .. 10 (the model: 2,921 / 3,309 / 3,909 / 5,099 / 7,135).
+     */
+    static const unsigned rom_eff[NP_WAVE_ROM_MAX + 1u] = { [6] = 13, [7] = 13, [8] = 11, [9] = 10, [10] = 8 };
+    const unsigned dbits = np_bits_for_range(0, (int64_t)np_wave_rom(1u << (10u - L)) - (int64_t)np_wave_rom(0), 0);
     OP("S", NULL, NP_OP_NEG, nsin, 30, 0, 0, 0, 0);
-    OP("S", NULL, NP_OP_ROM, 2u * nsin, L, 18, 0, 0, 1);
-    OP("S", NULL, NP_OP_ADD, nsin, 12, 0, 0, 0, 2);
-    OP("S", NULL, NP_OP_MUL, nsin, 12, NP_WAVE_IFRAC, 0, 0, 3);
+    OP("S", NULL, NP_OP_INC, nsin, L + 1u, 0, 0, 0, 0);
+    OP("S", NULL, NP_OP_ROM, 2u * nsin, L, rom_eff[L], 0, 0, 1);
+    OP("S", NULL, NP_OP_ADD, nsin, dbits, 0, 0, 0, 2);
+    OP("S", NULL, NP_OP_MUL, nsin, dbits, NP_WAVE_IFRAC, 0, 0, 3);
+    OP("S", NULL, NP_OP_INC, nsin, 13, 0, 0, 0, 4);
     OP("S", NULL, NP_OP_ADD, nsin, 18, 0, 0, 0, 4);
     OP("S", "cs", NP_OP_NEG, nsin, 19, 0, 19, 1, 5);
     if (rec) {
         /* Per lane: (c dc - s ds, s dc + c ds) in one clock (the state's loop), rounded, the set-up mux, the state. */
-        OP("S", NULL, NP_OP_MUL, 4u * n, 31, 31, 0, 0, 0);
+        OP("S", NULL, NP_OP_SMUL, 4u * n, 31, 31, 0, 0, 0); /* signed x signed */
         OP("S", NULL, NP_OP_ADD, 2u * n, 62, 0, 0, 0, 1);
         OP("S", NULL, NP_OP_ADD, 2u * n, 31, 0, 0, 0, 2);
         OP("S", NULL, NP_OP_MUX, 2u * n, 31, 2, 0, 0, 3);
@@ -809,34 +860,55 @@ size_t np_wave_datapath(const np_wave_unit *u, np_op *ops, size_t max)
         OP("S", NULL, NP_OP_ADD, 2u * n, 19, 0, 0, 0, 4); /* round to Q1.17 and clamp */
     }
     OP("S", NULL, NP_OP_REG, 1, 19u * (2u * n + nfx) + (ml + 1u) + 15u + 1u, 0, 0, 0, 0);
-    /* A: w = s1 s2, ap = amp 2^7 - airr w per train; G = sm min(g, gcap). */
+    /*
+     * A: w = round(s1 s2 / 2^17), ap = amp 2^7 - round(airr w / 2^10) per
+     * train (airr with its sign bit: 16 x 19), 0 for lanes k >= n (an AND a
+     * bit); G = sm min(g, gcap).
+     */
     if (u->c.irr) {
-        OP("A", "w", NP_OP_MUL, 1, 19, 19, 19, 1, 0);
-        OP("A", NULL, NP_OP_MUL, n, 15, 19, 0, 0, 1);
-        OP("A", "ap", NP_OP_ADD, n, wap, 0, wap, 0, 2);
+        OP("A", NULL, NP_OP_SMUL, 1, 19, 19, 0, 0, 0); /* s1 s2: s19 x s19 */
+        OP("A", "w", NP_OP_INC, 1, 21, 0, 19, 1, 1);
+        OP("A", NULL, NP_OP_MUL, n, 16, 19, 0, 0, 2);
+        OP("A", NULL, NP_OP_INC, n, wap + 1u, 0, 0, 0, 3);
+        OP("A", "ap", NP_OP_ADD, n, wap, 0, wap, 0, 4);
     }
+    OP("A", NULL, NP_OP_MUX, n, wap, 2, 0, 0, 5);
     OP("A", NULL, NP_OP_CMP, 1, 15, 0, 0, 0, 0);
-    OP("A", "gm", NP_OP_MUL, 1, ml + 1u, 15, wgm, 0, 1);
+    OP("A", NULL, NP_OP_MUX, 1, 15, 2, 0, 0, 1);
+    OP("A", "gm", NP_OP_MUL, 1, ml + 1u, 15, wgm, 0, 2);
     OP("A", NULL, NP_OP_REG, 1, n * (wap + 38u) + (u->c.cap ? 19u : 0u) + wgm + 1u, 0, 0, 0, 0);
-    /* M: a train lane's four products: ap c, ap s, sa cx, sa cz; the capillary b sc. */
-    OP("M", "yc", NP_OP_MUL, n, wap, 19, wyc, 1, 0);
-    OP("M", "sa", NP_OP_MUL, n, wap, 19, wsa, 1, 0);
-    OP("M", "xp", NP_OP_MUL, 2u * n, wsa, 16, wxp, 1, 1);
+    /*
+     * M: a train lane's four products ap c, ap s ((ap with its sign bit) x
+     * 19), sa cx, sa cz, the roundings of yc and sa; the capillary b sc (16 x 19).
+     */
+    OP("M", NULL, NP_OP_MUL, 2u * n, wap + 1u, 19, 0, 0, 0);
+    OP("M", "yc", NP_OP_INC, n, wyc, 0, wyc, 1, 1);
+    OP("M", "sa", NP_OP_INC, n, wsa, 0, wsa, 1, 1);
+    OP("M", "xp", NP_OP_SMUL, 2u * n, wsa, 16, wxp, 1, 2); /* sa cx, sa cz: signed x s16 */
     if (u->c.cap)
-        OP("M", "bc", NP_OP_MUL, 1, 15, 19, wbc, 1, 0);
+        OP("M", "bc", NP_OP_MUL, 1, 16, 19, wbc, 1, 0);
     OP("M", NULL, NP_OP_REG, 1, n * (wyc + 2u * wxp) + wbc + wgm + 1u, 0, 0, 0, 0);
-    /* T: three adder trees over the lanes. */
-    np_dp_add_tree(&d, "T", "ys", n + 1u, wys, 1, 0);
-    np_dp_add_tree(&d, "T", "xs", 2u * n + 1u, wxs, 1, 0); /* X and Z: n lanes each, one tree declared per pair */
+    /* T: Y = sum yc (n - 1 adders); X = -sum xp, Z likewise (0 - xp0: an incrementer, then n - 1 subtractors). */
+    np_dp_add_tree(&d, "T", "ys", n, wys, 1, 0);
+    if (n == 1u)
+        OP("T", "ys", NP_OP_REG, 0, 0, 0, wys, 1, 0); /* wiring */
+    OP("T", NULL, NP_OP_INC, 2, wxs, 0, 0, 0, 0);
+    OP("T", n > 1u ? "xs" : NULL, NP_OP_ADD, 2u * (n - 1u), wxs, 0, n > 1u ? wxs : 0u, 1, 1);
+    if (n == 1u)
+        OP("T", "xs", NP_OP_REG, 0, 0, 0, wxs, 1, 1);
     OP("T", NULL, NP_OP_REG, 1, wys + 2u * wxs + wbc + wgm + 1u, 0, 0, 0, 0);
-    /* G: the gain products, the capillary term's alignment (wiring), three roundings. */
-    OP("G", NULL, NP_OP_MUL, 1, wys, wgm, 0, 0, 0);
-    OP("G", NULL, NP_OP_MUL, 2, wxs, wgm, 0, 0, 0);
+    /*
+     * G: the gain products (G with its sign bit), the capillary term added
+     * from bit 14 + mlog2 up to the last one read, the three roundings (an
+     * incrementer of the 16 kept bits and the round bit each).
+     */
+    OP("G", NULL, NP_OP_MUL, 1, wys, wgm + 1u, 0, 0, 0);
+    OP("G", NULL, NP_OP_MUL, 2, wxs, wgm + 1u, 0, 0, 0);
     if (u->c.cap)
-        OP("G", NULL, NP_OP_ADD, 1, wys + wgm, 0, 0, 0, 1);
-    OP("G", "out", NP_OP_ADD, 3, 16, 0, 16, 1, 2);
+        OP("G", NULL, NP_OP_ADD, 1, 33, 0, 0, 0, 1);
+    OP("G", "out", NP_OP_INC, 3, 17, 0, 16, 1, 2);
     if (np_wave_has_jac(&u->c))
-        jac_datapath(&d, u, n, wsa, wgm);
+        jac_datapath(&d, u, n, &w);
     else
         OP("G", NULL, NP_OP_REG, 1, 3u * 16u + 1u, 0, 0, 0, 0);
     return d.n;

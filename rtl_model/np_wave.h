@@ -293,6 +293,16 @@ typedef struct np_wave_jac_bound {
 np_wave_jac_bound np_wave_jac_error_bound(const np_wave_unit *u);
 int np_wave_pipe_init(np_pipe *p, const np_wave_unit *u);
 
+/*
+ * The declaration's widths of the register-dependent signals (bits, from the
+ * register set's bounds): ap u, yc, sa, xp, ys (Y), xs (X, Z), bc (0 without
+ * cap), gm u (G); with normals or fold lj, ly, js and j (the terms), else 0.
+ * `report gates --synth` builds np_wave.v at them (its W_* parameters).
+ */
+typedef struct np_wave_dp_widths {
+    unsigned ap, yc, sa, xp, ys, xs, bc, gm, lj, ly, js, j;
+} np_wave_dp_widths;
+void np_wave_datapath_widths(const np_wave_unit *u, np_wave_dp_widths *w);
 /* Datapath declaration (np_datapath.h) for the unit's lanes and registers. */
 size_t np_wave_datapath(const np_wave_unit *u, np_op *ops, size_t max);
 /* Widen the traces of the signals stage k produced (np_datapath.h). */

@@ -9,6 +9,8 @@ module mux16(input [15:0] a, b, input s, output [15:0] y); assign y = s ? b : a;
 module neg12(input signed [11:0] a, input s, output signed [11:0] y); assign y = s ? -a : a; endmodule
 module mul8(input [7:0] a, b, output [15:0] y); assign y = a * b; endmodule
 module mul13(input signed [12:0] a, input [12:0] b, output signed [25:0] y); assign y = a * $signed({1'b0, b}); endmodule
+// Signed x signed (both two's complement: the sign rows of Baugh-Wooley cost more than an unsigned array).
+module smul12x8(input signed [11:0] a, input signed [7:0] b, output signed [19:0] y); assign y = a * b; endmodule
 module lut3x6(input [2:0] i, output reg [5:0] y);
   always @* case (i) 0: y = 6'h15; 1: y = 6'h38; 2: y = 6'h32; 3: y = 6'h2c;
                      4: y = 6'h0d; 5: y = 6'h13; 6: y = 6'h07; default: y = 6'h2a; endcase

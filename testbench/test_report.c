@@ -55,6 +55,7 @@ static int cost_model_calibration(void)
         { "neg12", { { "S", NULL, NP_OP_NEG, 1, 12, 0, 0, 0, 0 } }, 1 },
         { "mul8", { { "S", NULL, NP_OP_MUL, 1, 8, 8, 0, 0, 0 } }, 1 },
         { "mul13", { { "S", NULL, NP_OP_MUL, 1, 13, 13, 0, 0, 0 } }, 1 },
+        { "smul12x8", { { "S", NULL, NP_OP_SMUL, 1, 12, 8, 0, 0, 0 } }, 1 },
         { "dffe16", { { "S", NULL, NP_OP_REG, 1, 16, 0, 0, 0, 0 } }, 1 },
         { "inc16", { { "S", NULL, NP_OP_INC, 1, 16, 0, 0, 0, 0 } }, 1 },
         { "cmpk16", { { "S", NULL, NP_OP_CMPK, 1, 16, 0, 0, 0, 0 } }, 1 },

@@ -273,8 +273,16 @@ module np_aacount #(
     reg rv_gate, rv_any_n;
     integer i_v;
     reg [63:0] v_v, nb2_v;
-    reg signed [31:0] n0, n1, n2, dot_v;
-    reg [31:0] nn_v;
+    // The products at their own widths, so that synthesis builds a WNB x 8
+    // signed multiplier and an unsigned squarer of a magnitude each (a
+    // product written in 32 bits is one of 32-bit operands for Yosys's macc).
+    reg [WNB-2:0] m0, m1, m2;             // |nbar_k| <= 128 n: u(WNB-1)
+    reg [2*WNB-3:0] q0, q1, q2;           // |nbar_k|^2
+    reg signed [7:0] x0, x1, x2;          // the sample's normal, s8 Q0.7
+    reg [7:0] a0, a1, a2;                 // |x_k| <= 128: u8
+    reg signed [WNB+7:0] pr0, pr1, pr2;   // nbar_k x_k, exact
+    reg signed [WDOT-1:0] dot_v;
+    reg [WNN2-1:0] nn_v;
     reg [WDOT*N-1:0] dots_v;
     reg [WNN2*N-1:0] nns_v;
     reg [7:0] r_v;
@@ -283,23 +291,32 @@ module np_aacount #(
         v_v = 64'd0;
         if (DEPTH != 0)
             v_v = N * {{(64-WSD2){1'b0}}, ra_sum_d2} - {{(64-WSD){1'b0}}, ra_sum_d} * {{(64-WSD){1'b0}}, ra_sum_d};
-        n0 = {{(32-WNB){ra_nbar0[WNB-1]}}, ra_nbar0};
-        n1 = {{(32-WNB){ra_nbar1[WNB-1]}}, ra_nbar1};
-        n2 = {{(32-WNB){ra_nbar2[WNB-1]}}, ra_nbar2};
+        // |nbar_k|: a conditional negation; 128 n < 2^(WNB-1), so the top bit is 0
+        m0 = ra_nbar0[WNB-1] ? ~ra_nbar0[WNB-2:0] + 1'b1 : ra_nbar0[WNB-2:0];
+        m1 = ra_nbar1[WNB-1] ? ~ra_nbar1[WNB-2:0] + 1'b1 : ra_nbar1[WNB-2:0];
+        m2 = ra_nbar2[WNB-1] ? ~ra_nbar2[WNB-2:0] + 1'b1 : ra_nbar2[WNB-2:0];
         nb2_v = 64'd0;
         dots_v = {WDOT*N{1'b0}};
         nns_v = {WNN2*N{1'b0}};
         if (NORMAL != 0) begin
-            nb2_v = {32'd0, n0 * n0 + n1 * n1 + n2 * n2};
+            q0 = m0 * m0;
+            q1 = m1 * m1;
+            q2 = m2 * m2;
+            nb2_v = {{(66-2*WNB){1'b0}}, q0} + {{(66-2*WNB){1'b0}}, q1} + {{(66-2*WNB){1'b0}}, q2};
             for (i_v = 0; i_v < N; i_v = i_v + 1) begin
-                dot_v = n0 * {{24{ra_nrm[24 * i_v + 7]}}, ra_nrm[24 * i_v +: 8]}
-                      + n1 * {{24{ra_nrm[24 * i_v + 15]}}, ra_nrm[24 * i_v + 8 +: 8]}
-                      + n2 * {{24{ra_nrm[24 * i_v + 23]}}, ra_nrm[24 * i_v + 16 +: 8]};
-                nn_v = $signed({{24{ra_nrm[24 * i_v + 7]}}, ra_nrm[24 * i_v +: 8]}) * $signed({{24{ra_nrm[24 * i_v + 7]}}, ra_nrm[24 * i_v +: 8]})
-                     + $signed({{24{ra_nrm[24 * i_v + 15]}}, ra_nrm[24 * i_v + 8 +: 8]}) * $signed({{24{ra_nrm[24 * i_v + 15]}}, ra_nrm[24 * i_v + 8 +: 8]})
-                     + $signed({{24{ra_nrm[24 * i_v + 23]}}, ra_nrm[24 * i_v + 16 +: 8]}) * $signed({{24{ra_nrm[24 * i_v + 23]}}, ra_nrm[24 * i_v + 16 +: 8]});
-                dots_v[WDOT * i_v +: WDOT] = dot_v[WDOT-1:0];
-                nns_v[WNN2 * i_v +: WNN2] = nn_v[WNN2-1:0];
+                x0 = ra_nrm[24 * i_v +: 8];
+                x1 = ra_nrm[24 * i_v + 8 +: 8];
+                x2 = ra_nrm[24 * i_v + 16 +: 8];
+                pr0 = ra_nbar0 * x0;
+                pr1 = ra_nbar1 * x1;
+                pr2 = ra_nbar2 * x2;
+                dot_v = pr0[WDOT-1:0] + pr1[WDOT-1:0] + pr2[WDOT-1:0];  // |dot| <= 3 128^2 n: exact in WDOT bits
+                a0 = x0[7] ? ~x0 + 8'd1 : x0;  // -128 -> 128 (8'h80 read unsigned)
+                a1 = x1[7] ? ~x1 + 8'd1 : x1;
+                a2 = x2[7] ? ~x2 + 8'd1 : x2;
+                nn_v = {8'd0, a0} * {8'd0, a0} + {8'd0, a1} * {8'd0, a1} + {8'd0, a2} * {8'd0, a2};
+                dots_v[WDOT * i_v +: WDOT] = dot_v;
+                nns_v[WNN2 * i_v +: WNN2] = nn_v;
             end
         end
         r_v = 8'd0;

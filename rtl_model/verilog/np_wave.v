@@ -33,6 +33,7 @@
 //   W_LJ 40  lj    s(W_LJ)  Q10.29  |yq e| / 2^14 <= 2^23 2^29 / 2^14
 //   W_LY 39  ly    s(W_LY)  Q9.29   sa km
 //   W_JS 42  js    s(W_JS)  Q12.29  four lanes
+//   W_J  18  j     s(W_J)   Q3.14   the Jacobian terms, |.| < 8 (np_wave_regs_check)
 // and the pipe options IN_REG, OUT_SKID (np_pipe.h, np_classic3.v).
 //
 // Ports. The box's registers (np_wave_regs) are inputs held constant while
@@ -82,6 +83,7 @@ module np_wave #(
     parameter integer W_LJ = 40,
     parameter integer W_LY = 39,
     parameter integer W_JS = 42,
+    parameter integer W_J = 18,
     parameter integer IN_REG = 0,
     parameter integer OUT_SKID = 0
 ) (
@@ -405,28 +407,32 @@ module np_wave #(
             assign o_core = {r5_y, r5_dx, r5_dz, 61'd0};
         end else begin : g_jac
             wire signed [WJ-1:0] half_j = $signed({{(WJ - 1){1'b0}}, 1'b1}) <<< (28 + ML);
-            reg signed [17:0] r5_j[0:5];
+            reg signed [W_J-1:0] r5_j[0:5];
             genvar jm;
             for (jm = 0; jm < 6; jm = jm + 1) begin : g_term
                 wire signed [WJ-1:0] jp = (r4_js[jm] * gs + half_j) >>> (29 + ML);
-                always @(posedge clk) if (ld_g) r5_j[jm] <= jm < NT ? jp[17:0] : 18'sd0;
+                always @(posedge clk) if (ld_g) r5_j[jm] <= jm < NT ? jp[W_J-1:0] : {W_J{1'b0}};
             end
             // ---------------------------------------------------------- N
             // a = 2^14 + jxx, d = 2^14 + jzz (s19 Q4.14); exact in Q8.28:
             // Nx = yz jzx - d yx, Ny = a d - jxz jzx, Nz = jxz yx - yz a (s38);
             // nx, ny, nz = round(N / 2^18) s20 Q9.10; fold = Ny <= 0.
             wire ld_n = en[NB-1] && bv[NB-2];
-            wire signed [18:0] ja = 19'sd16384 + r5_j[0], jd = 19'sd16384 + r5_j[3];
-            wire signed [37:0] nxw = r5_j[5] * r5_j[2] - jd * r5_j[4];
+            // a, d s(W_J + 1); the products s(2 W_J + 2), exact (s38 at W_J = 18)
+            localparam integer WN = 2 * W_J + 2;
+            wire signed [W_J:0] ja = $signed({{(W_J - 14){1'b0}}, 15'd16384}) + r5_j[0];
+            wire signed [W_J:0] jd = $signed({{(W_J - 14){1'b0}}, 15'd16384}) + r5_j[3];
+            wire signed [WN-1:0] nxw = r5_j[5] * r5_j[2] - jd * r5_j[4];
 `ifdef NP_FAULT_FOLD
-            wire signed [37:0] nyw = ja * jd;  // fault: det J without jxz jzx
+            wire signed [WN-1:0] nyw = ja * jd;  // fault: det J without jxz jzx
 `else
-            wire signed [37:0] nyw = ja * jd - r5_j[1] * r5_j[2];
+            wire signed [WN-1:0] nyw = ja * jd - r5_j[1] * r5_j[2];
 `endif
-            wire signed [37:0] nzw = r5_j[1] * r5_j[4] - r5_j[5] * ja;
-            wire signed [37:0] nxr = (nxw + 38'sd131072) >>> 18;
-            wire signed [37:0] nyr = (nyw + 38'sd131072) >>> 18;
-            wire signed [37:0] nzr = (nzw + 38'sd131072) >>> 18;
+            wire signed [WN-1:0] nzw = r5_j[1] * r5_j[4] - r5_j[5] * ja;
+            wire signed [WN-1:0] half_n = $signed({{(WN - 18){1'b0}}, 18'd131072});
+            wire signed [WN-1:0] nxr = (nxw + half_n) >>> 18;
+            wire signed [WN-1:0] nyr = (nyw + half_n) >>> 18;
+            wire signed [WN-1:0] nzr = (nzw + half_n) >>> 18;
             reg [15:0] r6_y, r6_dx, r6_dz;
             reg [19:0] r6_nx, r6_ny, r6_nz;
             reg r6_fold;
@@ -437,7 +443,7 @@ module np_wave #(
                 r6_nx <= NORMALS != 0 ? nxr[19:0] : 20'd0;
                 r6_ny <= NORMALS != 0 ? nyr[19:0] : 20'd0;
                 r6_nz <= NORMALS != 0 ? nzr[19:0] : 20'd0;
-                r6_fold <= FOLD != 0 ? nyw <= 38'sd0 : 1'b0;
+                r6_fold <= FOLD != 0 ? nyw <= $signed({WN{1'b0}}) : 1'b0;  // signed: a bare {WN{0}} would make it unsigned
             end
             assign o_core = {r6_y, r6_dx, r6_dz, r6_nx, r6_ny, r6_nz, r6_fold};
         end

@@ -85,6 +85,12 @@ int np_stdout_check(const char *cmd);
 /* mkdir -p: dir and the folders above it that are missing. 0, or -1 with errno set. */
 int np_mkdir_p(const char *dir);
 
+/*
+ * A new private folder "$TMPDIR/<stem>-XXXXXX" (/tmp when TMPDIR is unset or
+ * empty) into dir[size]; 0, or -1 with a message naming the parent in err.
+ */
+int np_tempdir(char *dir, size_t size, const char *stem, char *err, size_t errlen);
+
 #ifdef __cplusplus
 } /* extern "C" */
 #endif

@@ -7,6 +7,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -253,5 +254,17 @@ int np_mkdir_p(const char *dir)
         }
     if (mkdir(buf, 0777) != 0 && errno != EEXIST)
         return -1;
+    return 0;
+}
+
+int np_tempdir(char *dir, size_t size, const char *stem, char *err, size_t errlen)
+{
+    const char *tmp = getenv("TMPDIR");
+    if (!tmp || !*tmp)
+        tmp = "/tmp";
+    if ((size_t)snprintf(dir, size, "%s/%s-XXXXXX", tmp, stem) >= size || !mkdtemp(dir)) {
+        snprintf(err, errlen, "cannot create a temporary folder in %s: %s", tmp, strerror(errno));
+        return -1;
+    }
     return 0;
 }

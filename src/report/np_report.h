@@ -27,6 +27,7 @@ typedef struct np_cost_model {
     double cmp_bit;   /* magnitude comparator, per bit */
     double mul_pp;    /* array multiplier a x b: mul_pp a b - mul_edge (a + b) (at least 1.5 a b: the AND array) */
     double mul_edge;
+    double smul_edge; /* signed x signed multiplier a x b: the mul formula + smul_edge (a + b) (the sign rows) */
     double mux2_bit;  /* 2:1 multiplexer, per bit (a k:1 mux is k - 1 of them) */
     double neg_bit;   /* conditional negate, per bit */
     double lut_bit;   /* fixed-function lookup logic, per stored bit (2^a * b) */

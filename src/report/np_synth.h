@@ -37,8 +37,10 @@ enum {
     NP_SYNTH_ABC_FULL = 2   /* ABC's unbounded default script (--abc-full); else the SAT sweep is bounded */
 };
 
-/* 1 when unit u has reference RTL that --synth can synthesise. */
+/* 1 when unit u has reference RTL that --synth can synthesise (with --unit). */
 int np_synth_has_rtl(const np_unit *u);
+/* 1 when a run without --unit synthesises u (classic3, simplex3: not the by-name units). */
+int np_synth_in_default_set(const np_unit *u);
 
 /*
  * Synthesise u's RTL (files in rtl_dir) at configuration cfg with the

@@ -695,7 +695,7 @@ int np_report_fpga(const np_unit *only, const char *spec, const np_fpga_opts *o)
     }
     const np_unit *u;
     for (size_t i = 0; (u = np_unit_at(i)) != NULL; i++) {
-        if ((only && u != only) || (!only && !np_synth_has_rtl(u)))
+        if ((only && u != only) || (!only && !np_synth_in_default_set(u)))
             continue;
         any = 1;
         char err[512];
@@ -713,11 +713,9 @@ int np_report_fpga(const np_unit *only, const char *spec, const np_fpga_opts *o)
             rc = NP_EXIT_USAGE;
             break;
         }
-        const char *tmpdir = getenv("TMPDIR");
         char w[4096], ys[4200], log[4200], ports_txt[4200], harness[4200], cmd[8800];
-        snprintf(w, sizeof w, "%s/noisepipe-fpga-XXXXXX", tmpdir && *tmpdir ? tmpdir : "/tmp");
-        if (!mkdtemp(w)) {
-            np_err("report", "cannot create a temporary folder in %s", tmpdir && *tmpdir ? tmpdir : "/tmp");
+        if (np_tempdir(w, sizeof w, "noisepipe-fpga", err, sizeof err) != 0) {
+            np_err("report", "%s", err);
             free(c);
             rc = NP_EXIT_USAGE;
             break;

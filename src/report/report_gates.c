@@ -35,6 +35,7 @@ const np_cost_model np_cost_default = {
     .cmp_bit = 7.9,
     .mul_pp = 10.2,
     .mul_edge = 8.0,
+    .smul_edge = 14.0,
     .mux2_bit = 3.0,
     .neg_bit = 5.9,
     .lut_bit = 0.0,
@@ -71,6 +72,17 @@ double np_cost_op_gates(const np_cost_model *m, const np_op *op)
         if (per < 1.5 * a * b)
             per = 1.5 * a * b;
         break;
+    case NP_OP_SMUL:
+        per = m->mul_pp * a * b - m->mul_edge * (a + b);
+        if (per < 1.5 * a * b)
+            per = 1.5 * a * b;
+        per += m->smul_edge * (a + b);
+        break;
+    case NP_OP_MULLO: /* the partial-product bits under bit a: a b - b (b - 1) / 2 */
+        per = m->mul_pp * (a * b - b * (b - 1.0) / 2.0) - m->mul_edge * (a + b);
+        if (per < 1.5 * (a * b - b * (b - 1.0) / 2.0))
+            per = 1.5 * (a * b - b * (b - 1.0) / 2.0);
+        break;
     case NP_OP_MUX: per = m->mux2_bit * a * (b > 1 ? b - 1.0 : 0.0); break;
     case NP_OP_NEG: per = m->neg_bit * a; break;
     case NP_OP_LUT: per = m->lut_bit * ldexp(1.0, (int)op->a) * b; break;
@@ -95,7 +107,9 @@ double np_cost_op_delay(const np_cost_model *m, const np_op *op)
     switch (op->kind) {
     case NP_OP_ADD: return 2.0 * a + m->add_d0;
     case NP_OP_CMP: return a;
-    case NP_OP_MUL: return m->mul_d * (a + b);
+    case NP_OP_MUL:
+    case NP_OP_SMUL:
+    case NP_OP_MULLO: return m->mul_d * (a + b);
     case NP_OP_MUX: return m->mux_d * clog2(op->b);
     case NP_OP_NEG: return 2.0 * a;
     case NP_OP_LUT: return m->lut_d;
@@ -234,7 +248,9 @@ static unsigned inner_bits(const np_op *op)
 {
     switch (op->kind) {
     case NP_OP_ADD: return (2u * op->a + 1u) * op->count;
-    case NP_OP_MUL: return 2u * (op->a + op->b) * op->count;
+    case NP_OP_MUL:
+    case NP_OP_SMUL:
+    case NP_OP_MULLO: return 2u * (op->a + op->b) * op->count;
     default: return op->a * op->count;
     }
 }
@@ -362,7 +378,7 @@ void np_report_levels_md(FILE *f, const np_unit_cost *c, size_t n, unsigned leve
 static const char *kind_name(np_op_kind k)
 {
     static const char *const n[NP_OP_KINDS] = { "add", "cmp", "mul", "mux", "neg", "lut", "rom", "reg",
-                                                                "inc", "cmpk", "sqr", "carry" };
+                                                                "inc", "cmpk", "sqr", "carry", "mullo", "smul" };
     return k < NP_OP_KINDS ? n[k] : "?";
 }
 
@@ -370,6 +386,8 @@ static void op_text(const np_op *op, char *buf, size_t len)
 {
     switch (op->kind) {
     case NP_OP_MUL: snprintf(buf, len, "%u x mul %ux%u", op->count, op->a, op->b); break;
+    case NP_OP_MULLO: snprintf(buf, len, "%u x mullo %ux%u", op->count, op->a, op->b); break;
+    case NP_OP_SMUL: snprintf(buf, len, "%u x smul %ux%u", op->count, op->a, op->b); break;
     case NP_OP_MUX: snprintf(buf, len, "%u x mux %u:1 of %u", op->count, op->b, op->a); break;
     case NP_OP_LUT: snprintf(buf, len, "%u x lut %u->%u", op->count, op->a, op->b); break;
     case NP_OP_ROM: snprintf(buf, len, "%u x rom %ux%u", op->count, 1u << op->a, op->b); break;

@@ -32,8 +32,11 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "np_aacount.h"
 #include "np_common.h"
+#include "np_outfile.h"
 #include "np_synth.h"
+#include "np_wave.h"
 
 #ifndef NP_RTL_DIR
 #define NP_RTL_DIR "rtl_model/verilog"
@@ -45,20 +48,76 @@ const char *np_synth_default_rtl_dir(void)
 }
 
 /*
- * A unit's RTL: top module, files, and the register prefix of each stage's
- * bank (its registers are named <prefix>_*), or, for an RTL whose banks are
- * not named so, bank_sel: the Yosys selection of bank k's registers (of the
- * model's n_stages). by_name: synthesised only when --unit names the unit
- * (the n-D units: a run over every unit, and report fpga, keep classic3 and
- * simplex3, whose syntheses the docs and tests time).
+ * The RTL parameters of a unit that do not come from its keys one for one:
+ * `chparam` arguments (" -set NAME V") for buf; -1 with a message in err
+ * when the configuration has no RTL.
+ */
+typedef int (*rtl_params_fn)(const void *cfg, char *buf, size_t len, char *err, size_t errlen);
+
+/*
+ * A unit's RTL: top module, files, the register prefix of each stage's bank
+ * (its registers are named <prefix>_*), or, for an RTL whose banks are not
+ * named so, bank_sel: the Yosys selection of bank k's registers (of the
+ * model's n_stages); the keys that are no RTL parameter (NULL-terminated), the
+ * parameters derived from the configuration block, the banks' valid bits.
+ * by_name: synthesised only when --unit names the unit (the n-D units, wave
+ * and aacount: a run over every unit, and report fpga, keep classic3 and
+ * simplex3, whose syntheses the docs and tests time; aacount alone takes 30 min).
  */
 typedef struct rtl_desc {
     const char *unit, *top;
-    const char *files[4];
+    const char *files[6];
     struct { const char *stage, *prefix; } bank[12];
+    const char *not_params[4];
+    rtl_params_fn params;
+    const char *valid; /* the banks' valid bits (NULL: "v") */
     void (*bank_sel)(unsigned k, unsigned n_stages, char *buf, size_t len);
     int by_name;
 } rtl_desc;
+
+/*
+ * wave: the block starts with its np_wave_unit (unit_wave.c: "first: the
+ * pipe's cfg is the block"). MLOG2 from the register set, and the widths of
+ * the register-dependent signals at the declaration's (np_wave_datapath_widths:
+ * the RTL's defaults hold every accepted register set, the declaration those
+ * of the test set the report prices). sincos=recurrence has no RTL.
+ */
+static int wave_params(const void *cfg, char *buf, size_t len, char *err, size_t errlen)
+{
+    const np_wave_unit *u = cfg;
+    if (u->c.sincos != NP_WAVE_SINCOS_ROM) {
+        snprintf(err, errlen, "sincos=recurrence has no reference RTL (docs/wave.md, \"Reference RTL\")");
+        return -1;
+    }
+    np_wave_dp_widths w;
+    np_wave_datapath_widths(u, &w);
+    int k = snprintf(buf, len, " -set MLOG2 %u -set W_AP %u -set W_YC %u -set W_SA %u -set W_XP %u -set W_YS %u"
+                     " -set W_XS %u -set W_GM %u", (unsigned)u->r.mlog2, w.ap, w.yc, w.sa, w.xp, w.ys, w.xs, w.gm);
+    if (k > 0 && (size_t)k < len && u->c.cap)
+        k += snprintf(buf + k, len - (size_t)k, " -set W_BC %u", w.bc);
+    if (k > 0 && (size_t)k < len && np_wave_has_jac(&u->c))
+        k += snprintf(buf + k, len - (size_t)k, " -set W_LJ %u -set W_JS %u -set W_J %u", w.lj, w.js, w.j);
+    if (k > 0 && (size_t)k < len && u->c.normals)
+        k += snprintf(buf + k, len - (size_t)k, " -set W_LY %u", w.ly);
+    if (k < 0 || (size_t)k >= len) {
+        snprintf(err, errlen, "wave: parameter list too long");
+        return -1;
+    }
+    return 0;
+}
+
+/* aacount: the parallel variant only (np_aacount.v); tile runs after the unit. */
+static int aacount_params(const void *cfg, char *buf, size_t len, char *err, size_t errlen)
+{
+    const np_aacount_cfg *c = cfg;
+    if (c->serial) {
+        snprintf(err, errlen, "serial=1 has no reference RTL (np_aacount.v is the parallel variant)");
+        return -1;
+    }
+    if (len)
+        buf[0] = '\0';
+    return 0;
+}
 
 /*
  * np_classicn.v's banks (2n + 3 of them: L, H, I1m, I1a, ..., Inm, Ina, O):
@@ -84,19 +143,26 @@ static void classicn_bank_sel(unsigned k, unsigned n_stages, char *buf, size_t l
 #define NP_SIMPLEXN_RTL(name)                                                                                 \
     { name, "np_simplexn", { "np_simplexn.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },                  \
       { { "SK", "r0" }, { "RK", "r1" }, { "CH", "r2" }, { "KT", "r3" }, { "P2", "r4" }, { "P4", "r5" },        \
-        { "M", "r6" }, { "A", "r7" }, { "O", "r8" }, { NULL, NULL } }, NULL, 1 }
+        { "M", "r6" }, { "A", "r7" }, { "O", "r8" }, { NULL, NULL } }, { NULL }, NULL, NULL, NULL, 1 }
 #define NP_CLASSICN_RTL(name)                                                                                 \
     { name, "np_classicn", { "np_classicn.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL }, { { NULL, NULL } }, \
-      classicn_bank_sel, 1 }
+      { NULL }, NULL, NULL, classicn_bank_sel, 1 }
 
 static const rtl_desc rtl_units[] = {
     { "classic3", "np_classic3", { "np_classic3.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },
       { { "L", "r0" }, { "H", "r1" }, { "I1m", "r2" }, { "I1a", "r3" }, { "I2m", "r4" }, { "I2a", "r5" },
-        { "I3m", "r6" }, { "I3a", "r7" }, { "O", "r8" }, { NULL, NULL } }, NULL, 0 },
+        { "I3m", "r6" }, { "I3a", "r7" }, { "O", "r8" }, { NULL, NULL } }, { NULL }, NULL, NULL, NULL, 0 },
     /* simplex3 names its banks by the derivative datapath's numbering; without it there is no r7 (M2). */
     { "simplex3", "np_simplex3", { "np_simplex3.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },
       { { "SK", "r0" }, { "RK", "r1" }, { "CH", "r2" }, { "KT", "r3" }, { "P2", "r4" }, { "P4", "r5" },
-        { "M", "r6" }, { "M2", "r7" }, { "A", "r8" }, { "O", "r9" }, { NULL, NULL } }, NULL, 0 },
+        { "M", "r6" }, { "M2", "r7" }, { "A", "r8" }, { "O", "r9" }, { NULL, NULL } }, { NULL }, NULL, NULL, NULL, 0 },
+    { "wave", "np_wave", { "np_wave.v", "np_wave_sin.v", "np_wave_rom.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },
+      { { "P", "r0" }, { "S", "r1" }, { "A", "r2" }, { "M", "r3" }, { "T", "r4" }, { "G", "r5" }, { "N", "r6" },
+        { NULL, NULL } },
+      { "sincos", "reset", "regs", NULL }, wave_params, "bv", NULL, 1 },
+    { "aacount", "np_aacount", { "np_aacount.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },
+      { { "A", "ra" }, { "V", "rv" }, { "P", "rp" }, { "C", "rc" }, { NULL, NULL } },
+      { "tile", NULL }, aacount_params, NULL, NULL, 1 },
     /* The n-D units (np_simplexn.v, np_classicn.v; every key, DIMS included, is a parameter). */
     NP_CLASSICN_RTL("classic2"), NP_CLASSICN_RTL("classic4"), NP_CLASSICN_RTL("classic5"),
     NP_SIMPLEXN_RTL("simplex2"), NP_SIMPLEXN_RTL("simplex4"), NP_SIMPLEXN_RTL("simplex5"),
@@ -111,6 +177,11 @@ static const rtl_desc *rtl_of(const np_unit *u)
 }
 
 int np_synth_has_rtl(const np_unit *u)
+{
+    return rtl_of(u) != NULL;
+}
+
+int np_synth_in_default_set(const np_unit *u)
 {
     const rtl_desc *d = rtl_of(u);
     return d != NULL && !d->by_name;
@@ -152,6 +223,8 @@ static const struct {
 } rtl_extra_params[] = {
     { "classic3", { "IN_REG", "OUT_SKID", "S_TABLE", "HASH_SERIAL", "LERP_SERIAL", NULL } },
     { "simplex3", { "IN_REG", "OUT_SKID", NULL } },
+    { "wave", { "IN_REG", "OUT_SKID", NULL } },
+    { "aacount", { "IN_REG", "OUT_SKID", NULL } },
 };
 static char g_rtl_params[256];      /* " -set S_TABLE 1 -set HASH_SERIAL 1" */
 static char g_rtl_params_spec[256]; /* "S_TABLE=1 HASH_SERIAL=1", for the heading */
@@ -166,7 +239,7 @@ int np_synth_set_rtl_params(const np_unit *u, const char *spec, char *err, size_
         if (u && strcmp(rtl_extra_params[i].unit, u->name) == 0)
             names = rtl_extra_params[i].names;
     if (!names) {
-        snprintf(err, errlen, "--rtl-param needs --unit classic3 or simplex3");
+        snprintf(err, errlen, "--rtl-param needs --unit classic3, simplex3, wave or aacount");
         return -1;
     }
     size_t n = 0, m = 0;
@@ -206,30 +279,63 @@ int np_synth_set_rtl_params(const np_unit *u, const char *spec, char *err, size_
     return 0;
 }
 
-/* The script's head: the RTL at the configuration (every key, upper case, is a parameter). */
-static void write_read(FILE *f, const rtl_desc *d, const np_unit *u, const void *cfg, const char *dir)
+static int not_param(const rtl_desc *d, const char *key)
 {
+    for (unsigned i = 0; i < 4 && d->not_params[i]; i++)
+        if (strcmp(d->not_params[i], key) == 0)
+            return 1;
+    return 0;
+}
+
+/* Every file of the unit's RTL is readable in dir (else a message naming it). */
+static int rtl_readable(const rtl_desc *d, const char *dir, char *err, size_t errlen)
+{
+    for (unsigned i = 0; i < 6 && d->files[i]; i++) {
+        char path[4096];
+        snprintf(path, sizeof path, "%s/%s", dir, d->files[i]);
+        if (access(path, R_OK) != 0) {
+            snprintf(err, errlen, "%s: cannot read the RTL (--rtl DIR names rtl_model/verilog)", path);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+/*
+ * The script's head: the RTL at the configuration (every key, upper case, is
+ * a parameter, but the unit's not_params; then its derived ones).
+ */
+static int write_read(FILE *f, const rtl_desc *d, const np_unit *u, const void *cfg, const char *dir, char *err,
+                      size_t errlen)
+{
+    char derived[512] = "";
+    if (d->params && d->params(cfg, derived, sizeof derived, err, errlen) != 0)
+        return -1;
     fprintf(f, "read_verilog -I%s", dir);
-    for (unsigned i = 0; i < 4 && d->files[i]; i++)
+    for (unsigned i = 0; i < 6 && d->files[i]; i++)
         fprintf(f, " %s/%s", dir, d->files[i]);
     fprintf(f, "\nchparam");
     size_t nk = np_unit_key_count(u);
     for (size_t k = 0; k < nk; k++) {
         const np_unit_key *key = &u->keys[k];
+        if (not_param(d, key->name))
+            continue;
         fprintf(f, " -set ");
         for (const char *p = key->name; *p; p++)
             fputc(toupper((unsigned char)*p), f);
         fprintf(f, " %u", np_unit_key_get(key, cfg));
     }
+    fputs(derived, f);
     fputs(g_rtl_params, f); /* --rtl-param (np_synth_set_rtl_params) */
     fprintf(f, " %s\n", d->top);
+    return 0;
 }
 
 /* The cone of every bank (c0, c1, ...) and of the valid bits (cv); stop at the flip-flops' outputs. */
 static int write_cones(FILE *f, const rtl_desc *d, const np_unit *u, const np_unit_cost *c, const char *ff,
                        const char *extra, char *err, size_t errlen)
 {
-    fprintf(f, "select -set cv w:v %s %%ci1 %%ci*:-%s[Q]\n", extra, ff);
+    fprintf(f, "select -set cv w:%s %s %%ci1 %%ci*:-%s[Q]\n", d->valid ? d->valid : "v", extra, ff);
     for (unsigned k = 0; k < c->n_stages; k++) {
         char sel[256];
         const char *p = d->bank_sel ? "" : prefix_of(d, c->st[k].name);
@@ -253,7 +359,8 @@ static int write_cones(FILE *f, const rtl_desc *d, const np_unit *u, const np_un
 static int write_script(FILE *f, const rtl_desc *d, const np_unit *u, const void *cfg, const np_unit_cost *c,
                         const char *dir, const char *out, int flags, const char *abc_path, char *err, size_t errlen)
 {
-    write_read(f, d, u, cfg, dir);
+    if (write_read(f, d, u, cfg, dir, err, errlen) != 0)
+        return -1;
     fprintf(f, "synth -top %s -flatten\ndfflegalize -cell $_DFF_P_ 01\n", d->top);
     write_abc(f, flags, abc_path);
     fprintf(f, "opt_clean\n");
@@ -283,7 +390,8 @@ static int write_script_stages(FILE *f, const rtl_desc *d, const np_unit *u, con
                                const char *dir, const char *out, int flags, const char *abc_path, char *err,
                                size_t errlen)
 {
-    write_read(f, d, u, cfg, dir);
+    if (write_read(f, d, u, cfg, dir, err, errlen) != 0)
+        return -1;
     fprintf(f, "synth -top %s -flatten -noabc\ndfflegalize -cell $_DFF_P_ 01\nopt_clean\n", d->top);
     fprintf(f, "tee -q -o %s log NP_FLOPS\ntee -q -a %s stat\ndesign -save np_gates\n", out, out);
     for (unsigned k = 0; k <= c->n_stages; k++) {
@@ -363,28 +471,18 @@ int np_synth_run(const np_unit *u, const void *cfg, const np_unit_cost *c, const
     const rtl_desc *d = rtl_of(u);
     if (!d) {
         snprintf(err, errlen, "unit %s has no reference RTL (--synth: classic3, simplex3; with --unit also "
-                 "classic2/4/5, simplex2/4/5)", u->name);
+                 "wave, aacount, classic2/4/5, simplex2/4/5)", u->name);
         return -1;
     }
     if (system("yosys -V >/dev/null 2>&1") != 0) {
         snprintf(err, errlen, "--synth needs yosys (and berkeley-abc) on PATH: apt-get install yosys berkeley-abc");
         return -2;
     }
-    for (unsigned i = 0; i < 4 && d->files[i]; i++) {
-        char path[4096];
-        snprintf(path, sizeof path, "%s/%s", rtl_dir, d->files[i]);
-        if (access(path, R_OK) != 0) {
-            snprintf(err, errlen, "%s: cannot read the RTL (--rtl DIR names rtl_model/verilog)", path);
-            return -1;
-        }
-    }
-    const char *tmpdir = getenv("TMPDIR");
-    char dir[4096], script[4200], out[4200], log[4200], abc[4200];
-    snprintf(dir, sizeof dir, "%s/noisepipe-synth-XXXXXX", tmpdir && *tmpdir ? tmpdir : "/tmp");
-    if (!mkdtemp(dir)) {
-        snprintf(err, errlen, "cannot create a temporary folder in %s", tmpdir && *tmpdir ? tmpdir : "/tmp");
+    if (rtl_readable(d, rtl_dir, err, errlen) != 0)
         return -1;
-    }
+    char dir[4096], script[4200], out[4200], log[4200], abc[4200];
+    if (np_tempdir(dir, sizeof dir, "noisepipe-synth", err, errlen) != 0)
+        return -1;
     snprintf(script, sizeof script, "%s/synth.ys", dir);
     snprintf(out, sizeof out, "%s/stat.txt", dir);
     snprintf(log, sizeof log, "%s/yosys.log", dir);
@@ -503,7 +601,7 @@ int np_report_gates_synth(const np_unit *only, const char *spec, const char *rtl
     int rc = NP_EXIT_OK, any = 0;
     const np_unit *u;
     for (size_t i = 0; (u = np_unit_at(i)) != NULL; i++) {
-        if ((only && u != only) || (!only && !np_synth_has_rtl(u)))
+        if ((only && u != only) || (!only && !np_synth_in_default_set(u)))
             continue;
         any = 1;
         char err[512];
@@ -553,8 +651,8 @@ int np_report_gates_synth(const np_unit *only, const char *spec, const char *rtl
         free(c);
     }
     if (!any) {
-        np_err("report", "unit %s has no reference RTL (--synth: classic3, simplex3; with --unit also classic2/4/5, "
-                         "simplex2/4/5)", only ? only->name : "(any)");
+        np_err("report", "unit %s has no reference RTL (--synth: classic3, simplex3; with --unit also wave, "
+                         "aacount, classic2/4/5, simplex2/4/5)", only ? only->name : "(any)");
         return NP_EXIT_USAGE;
     }
     return rc;
@@ -575,16 +673,9 @@ int np_synth_write_rtl(FILE *f, const np_unit *u, const void *cfg, const char *r
         snprintf(err, errlen, "unit %s has no reference RTL", u->name);
         return -1;
     }
-    for (unsigned i = 0; i < 4 && d->files[i]; i++) {
-        char path[4096];
-        snprintf(path, sizeof path, "%s/%s", rtl_dir, d->files[i]);
-        if (access(path, R_OK) != 0) {
-            snprintf(err, errlen, "%s: cannot read the RTL (--rtl DIR names rtl_model/verilog)", path);
-            return -1;
-        }
-    }
-    write_read(f, d, u, cfg, rtl_dir);
-    return 0;
+    if (rtl_readable(d, rtl_dir, err, errlen) != 0)
+        return -1;
+    return write_read(f, d, u, cfg, rtl_dir, err, errlen);
 }
 
 const char *np_synth_stage_of(const np_unit *u, const char *reg)
