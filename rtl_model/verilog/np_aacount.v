@@ -103,7 +103,12 @@ module np_aacount #(
     localparam integer WDOT = ubits(3 * 128 * 128 * N) + 1;                    // dot, signed
     localparam integer WNB2 = ubits(3 * 128 * 128 * N * N);                    // nb2
     localparam integer WNN2 = 16;                                              // nn2
-    localparam integer WP = ubits((3 * 128 * 128 * N) * (3 * 128 * 128 * N));  // p, q
+    // p, q: the product in 64-bit constants. Written as (3 128^2 N)^2 in integers it
+    // overflows 32 bits (at M = 2 it is 9 2^32: 0 modulo 2^32); Icarus and Verilator
+    // size it by the 64-bit formal, Yosys 0.23 evaluates it in 32 bits (WP = 32 at M = 3,
+    // 1 at M = 2: a netlist narrower than the simulated RTL).
+    localparam [63:0] DOTMAX = 64'd49152 * N64;
+    localparam integer WP = ubits(DOTMAX * DOTMAX);
 
     // ---------------------------------------------------------------- thresholds
     // np_aacount_regs_compute, exactly: vd[j] u57 (2^56 = never), na[j] u32
