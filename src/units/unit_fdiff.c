@@ -182,7 +182,7 @@ _Static_assert(sizeof(np_fdiff_core) <= NP_SU_CORE_MAX && sizeof(np_span_sig) + 
 static np_su fd_su = {
     .span = { &np_fdiff_engine, offsetof(fd_cfg, c), offsetof(fd_cfg, tex), fd_sweeps,
               sizeof fd_sweeps / sizeof fd_sweeps[0], "g4", "guard=4",
-              fd_trace },
+              fd_trace, NULL }, /* seek_cycles: none (only texel has a seek cost) */
     .engine_cfg_size = sizeof(np_fdiff_cfg),
     .idx_int_max = 11,
     .bound_span = bound_span,
