@@ -88,7 +88,7 @@ function(np_board_verilate name top cpp defs)
     set(vopt -MAKEFLAGS OPT_FAST=-O0 -MAKEFLAGS OPT_SLOW=-O0 -MAKEFLAGS OPT_GLOBAL=-O0)
   endif()
   np_rtl_test(rtl.board.${name}.build "${NP_VERILATOR}" pass "" "rtl;board;nosan"
-    ${NP_VERILATOR} --cc --exe --build -j 1 -Wall -I${PROJECT_SOURCE_DIR}/rtl_model/verilog ${defs} ${vopt}
+    ${NP_VERILATOR} --cc --exe --build -j 1 -Wall -I${PROJECT_SOURCE_DIR}/rtl_model/verilog ${defs} ${vopt} ${NP_VERILATOR_CACHE}
     --top-module ${top} --prefix Vbd -Mdir ${dir} -o ${name} -CFLAGS ${np_board_cflags} -LDFLAGS ${np_board_ldflags}
     ${CMAKE_CURRENT_SOURCE_DIR}/rtl/${cpp} ${ARGN})
   set_tests_properties(rtl.board.${name}.build PROPERTIES FIXTURES_SETUP rtl_board_${name})
