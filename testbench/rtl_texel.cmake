@@ -85,3 +85,26 @@ foreach(l "default;-GN_OCT=1" "oct4;-GN_OCT=4;-GIDX_INT=4;-GW_FRAC=8;-GGUARD=4;-
   np_rtl_test(rtl.texel.lint.${lname} "${NP_VERILATOR}" pass "" "rtl;nosan"
     ${NP_VERILATOR} --lint-only -Wall -I${NP_RTL_SRC} ${l} --top-module np_texel ${NP_RTL_TX_RTL})
 endforeach()
+
+# Co-simulation against the registry's stream model of texel (np_cosim_open_spec: np_span_sim with
+# np_texel_engine; np_cosim.c, cosim_main.cpp): every cycle in_ready, out_valid and, when valid,
+# cr cg cb, with random bubbles and stalls, random descriptors (1 in 16 empty). default: wood at
+# the default keys; marble: four octaves with every numeric key off its default.
+set(tx_def "-GTEXTURE=wood;-GIDX_INT=10;-GW_FRAC=12;-GGUARD=20;-GWEIGHT_FRAC=16;-GSETUP_MULTS=2;-GMULT_LAT=2;-GN_OCT=1")
+np_rtl_cosim_build(texel default np_texel "" "${tx_def}" ${NP_RTL_TX_RTL})
+np_rtl_cosim_build(texel marble np_texel ""
+  "-GTEXTURE=marble;-GIDX_INT=9;-GW_FRAC=10;-GGUARD=6;-GWEIGHT_FRAC=8;-GSETUP_MULTS=1;-GMULT_LAT=3;-GN_OCT=4"
+  ${NP_RTL_TX_RTL})
+foreach(f flip stall setup)
+  string(TOUPPER ${f} F)
+  np_rtl_cosim_build(texel fault_${f} np_texel "-DNP_FAULT_${F}" "${tx_def}" ${NP_RTL_TX_RTL})
+endforeach()
+np_rtl_cosim(rtl.texel.cosim.default texel default pass "1000000 cycles, .* 0 mismatches" --cycles 1000000 --bench)
+np_rtl_cosim(rtl.texel.cosim.marble texel marble pass "1000000 cycles, .* 0 mismatches" --cycles 1000000)
+np_rtl_cosim(rtl.texel.cosim.trace texel default pass "trace: 2000 cycles written to" --cycles 2000
+  --trace ${NP_RTL_WORK}/texel/cosim-trace.txt)
+np_rtl_cosim(rtl.texel.cosim.wrong_cfg texel default fail "this binary is the RTL of --unit texel"
+  --cfg texture=wood,idx_int=10,w_frac=12,guard=20,weight_frac=16,setup_mults=1,mult_lat=2 --cycles 10)
+foreach(f flip stall setup)
+  np_rtl_cosim(rtl.texel.cosim.fault_${f} texel fault_${f} fail "[1-9][0-9]* mismatches" --cycles 100000)
+endforeach()
