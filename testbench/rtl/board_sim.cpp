@@ -9,10 +9,12 @@
 // starts on the line only while the board's rts_n is low (the FT2232H's CTS#), so the host's bytes
 // wait in this program while the board says stop. IN bytes are read off the board's line in the
 // middle of each bit and go to stdout (the bridge's receive buffer, which never fills here). The
-// simulated clock runs while anything moves and for a while after (the unit's latency, a RESULT
-// in progress); when the board is quiet and no byte waits, the program sleeps in poll() until the
-// host writes. It runs until end of file on stdin, lets the board finish what it has, writes what
-// the board sent and exits 0 (a host that is gone, EPIPE on stdout, ends it at once, also 0).
+// simulated clock runs while a byte moves on either line and 20,000 clocks after (the unit's
+// latency, the start of an answer); when the board is quiet and no byte waits, the program sleeps
+// in poll() until the host writes. It runs until end of file on stdin, lets the board finish what
+// it has (at most 5 * 10^7 clocks more: a host killed mid-frame leaves the engine waiting for
+// bytes that never come), writes what the board sent and exits 0 (a host that is gone, EPIPE on
+// stdout, ends it at once, also 0).
 //
 // Faults (--fault KIND:N[:ARG], repeatable), N a byte index counted from 0 over the whole run,
 // OUT bytes (host to board) and IN bytes (board to host) each on their own count:
@@ -55,6 +57,7 @@ const unsigned kCpb = 4;          // np_board_top's CLKS_PER_BIT (its default)
 const uint64_t kLinger = 20000;   // clocks the board runs on after the last byte either way
 const uint64_t kBatch = 2048;     // clocks between looks at stdin while the board runs
 const unsigned kResetClocks = 16;
+const uint64_t kAfterEof = 50000000;  // at most this many clocks after end of input (about 20 s)
 
 enum Kind { DROP_OUT, DROP_IN, FLIP_OUT, FLIP_IN, STALL_OUT, STALL_IN, RESET, N_KINDS };
 const char *const kNames[N_KINDS] = {"drop-out", "drop-in", "flip-out", "flip-in", "stall-out", "stall-in", "reset"};
@@ -354,7 +357,7 @@ int main(int argc, char **argv)
     LineOut lo;
     LineIn li;
     Bridge br;
-    uint64_t clock = 0, quiet_clocks = 0, resets = 0;
+    uint64_t clock = 0, quiet_clocks = 0, resets = 0, eof_clock = 0;
     bool eof = false, host_gone = false;
     std::vector<uint8_t> ibuf(65536);
     double t0 = now_s();
@@ -364,9 +367,11 @@ int main(int argc, char **argv)
         bool out_wall = lo.stall.until_wall > 0 && lo.stall.active(clock);
         bool in_wall = br.stall.until_wall > 0 && br.stall.active(clock);
         bool stalled = out_wall || in_wall;
-        bool active = (!lo.q.empty() && !out_wall) || !lo.idle() || !li.idle() || t->busy ||
-                      quiet_clocks < kLinger || (!br.held.empty() && !in_wall) || lo.reset_left;
-        if (eof && !active && !stalled)
+        // Not `busy`: an engine left in a frame by a host that stopped mid-frame waits for bytes
+        // that never come; kLinger covers the unit's latency and the start of an answer.
+        bool active = (!lo.q.empty() && !out_wall) || !lo.idle() || !li.idle() || quiet_clocks < kLinger ||
+                      (!br.held.empty() && !in_wall) || lo.reset_left;
+        if (eof && ((!active && !stalled) || clock - eof_clock > kAfterEof))
             break;
         // Look at stdin: wait for it only while nothing else moves (or until a wall-time stall ends).
         if (!eof) {
@@ -391,6 +396,7 @@ int main(int argc, char **argv)
                     quiet_clocks = 0;
                 } else if (k == 0 || (errno != EINTR && errno != EAGAIN)) {
                     eof = true;
+                    eof_clock = clock;
                 }
             }
         } else if (!active && stalled) {
