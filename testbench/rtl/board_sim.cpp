@@ -25,7 +25,8 @@
 //   stall-out:N:T       the bridge stops sending OUT bytes for T before byte N
 //   stall-in:N:T        the bridge holds IN byte N and all after it for T
 //                       (T: clocks, or milliseconds of wall time as "250ms"; the board keeps
-//                       running: in a stall-in it keeps sending into the bridge's buffer)
+//                       running: in a stall-in it keeps sending into the bridge's buffer; end of
+//                       input ends a stall: the host is gone)
 //   reset:N             the gateware's rst high for 16 clocks before OUT byte N goes on the line:
 //                       the engine forgets its session (it hunts, halted, for a HELLO)
 // Other options: --pace HZ (at most HZ simulated clocks a second of wall time; 0, the default:
@@ -397,6 +398,9 @@ int main(int argc, char **argv)
                 } else if (k == 0 || (errno != EINTR && errno != EAGAIN)) {
                     eof = true;
                     eof_clock = clock;
+                    // the host is gone: a bridge stall holds nothing back any more
+                    lo.stall.on = false;
+                    br.stall.on = false;
                 }
             }
         } else if (!active && stalled) {
