@@ -578,6 +578,7 @@ void np_link_usb_close(np_usb_board *b);
  * poll(), partial reads and writes; silence for timeout seconds while the host
  * waits, or OUT bytes not taken that long, is NP_FAULT_TIMEOUT; end of file,
  * EPIPE or EIO is NP_FAULT_NO_DEVICE. SIGPIPE is ignored during the session.
+ * A tty is the caller's to set up (raw, baud, CRTSCTS, VMIN >= 1: link_fd.c).
  */
 typedef struct np_fd_opts {
     double timeout;        /* seconds; 0: 2 */
