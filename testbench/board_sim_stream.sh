@@ -14,7 +14,8 @@
 #   fail    one run against a faulty board: must exit 1 with failing vectors
 # Every case but fail ends with the check that nothing was lost or counted twice: the runs'
 # "session: S vectors sent, V verified" add up to the vector count, the journal's R lines cover
-# 0..N-1 once each (sorted, no gap, no overlap), and one more --resume finds nothing to send.
+# 0..N-1 once each (sorted, no gap, no overlap), and one more --resume finds nothing to send;
+# and board_sim's summaries show no overflow (a byte the board lost: rts_n not honoured).
 # Exit 0 pass, 1 fail, 77 skipped (no verilator: board_sim cannot have been built).
 np=$1 sim=$2 work=$3 case=$4 vec=$5
 shift 5
@@ -135,7 +136,8 @@ fail)
   ;;
 esac
 
-# Nothing lost, nothing counted twice.
+# Nothing lost, nothing counted twice; and the bridge honoured rts_n (the board never lost a byte).
+grep -q ', overflow 1$' "$log" && fail "the board lost OUT bytes (overflow): rts_n not honoured"
 grep -q "^In $n tests, no errors found in " "$work/$case.$runs" || fail "the last run's verdict is not clean"
 [ $verified_sum -eq "$n" ] || fail "the runs verified $sums = $verified_sum vectors, not $n"
 next=0 lines=0

@@ -358,7 +358,7 @@ int main(int argc, char **argv)
     LineOut lo;
     LineIn li;
     Bridge br;
-    uint64_t clock = 0, quiet_clocks = 0, resets = 0, eof_clock = 0;
+    uint64_t clock = 0, quiet_clocks = 0, resets = 0, eof_clock = 0, rts_high = 0;
     bool eof = false, host_gone = false;
     std::vector<uint8_t> ibuf(65536);
     double t0 = now_s();
@@ -429,6 +429,7 @@ int main(int argc, char **argv)
             t->clk = 1;
             t->eval();
             clock++;
+            rts_high += t->rts_n;
             quiet_clocks = moved ? 0 : quiet_clocks + 1;
         }
         br.release(clock);
@@ -454,11 +455,11 @@ int main(int argc, char **argv)
         fprintf(stderr,
                 "board_sim: %s; %llu OUT bytes on the line, %llu IN bytes (%llu to the host), %llu clocks "
                 "(%.3f s of board time at 12 MHz), %.2f s wall; %llu faults applied, %llu resets, "
-                "%llu framing errors at the host, overflow %d\n",
+                "%llu framing errors at the host, rts_n high %llu clocks, overflow %d\n",
                 host_gone ? "the host is gone (EPIPE)" : "end of input", (unsigned long long)lo.sent,
                 (unsigned long long)br.index, (unsigned long long)br.written, (unsigned long long)clock,
                 (double)clock / 12e6, wall, (unsigned long long)s.applied, (unsigned long long)resets,
-                (unsigned long long)li.framing, (int)t->overflow);
+                (unsigned long long)li.framing, (unsigned long long)rts_high, (int)t->overflow);
     t->final();
     delete t;
     return 0;
