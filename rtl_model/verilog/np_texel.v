@@ -70,6 +70,10 @@
 //   A : N = a' l3 (mod 2^ALW) rounded once to F bits, s(W); q rounded to F, s(W)
 //   S : x = q + sum N (mod 2^W)
 //   C1: seg u8, cw u(Fw+1) (np_tex_colour_split)  C2: prod u(8+Fw) x3  C3: rgb u8 x3
+// Fault copies (the benches and the co-simulation must catch them): NP_FAULT_FLIP
+// flips bit 0 of cr when x's 4 low bits are 0101; NP_FAULT_STALL lets bank I2
+// overwrite its content under a stall; np_span_seq.v's NP_FAULT_SETUP ends a
+// set-up stall after one clock (the bits stay right, the timing does not).
 // Lint waivers (Verilator -Wall), each for the whole file:
 //   UNUSEDSIGNAL the 128-bit modular temporaries (np_s128 arithmetic, as the
 //                C model's) of which each register keeps its declared bits.
@@ -345,9 +349,14 @@ module np_texel #(
                 always @(posedge clk) if (ld_l) w_q <= wr[WB-1:0];
                 assign w0[a] = w_q;
             end
-            always @(posedge clk) if (ld_l)
-                for (c = 0; c < 8; c = c + 1)
-                    n0[c] <= hash6(ci + {7'd0, c[0]}, cj + {7'd0, c[1]}, ck + {7'd0, c[2]});
+            // (each corner's hash a net of the cell: simulators evaluate it when the cell changes,
+            // not every clock)
+            genvar cn;
+            for (cn = 0; cn < 8; cn = cn + 1) begin : g_corner
+                wire [7:0] hi = ci + cn % 2, hj = cj + (cn / 2) % 2, hk = ck + cn / 4;
+                wire [5:0] h = hash6(hi, hj, hk);
+                always @(posedge clk) if (ld_l) n0[cn] <= h;
+            end
             // --- I1: l1[p] = n[2p] 2^WT + w0 (n[2p+1] - n[2p])
             wire [L1-1:0] l1[0:3];
             reg [WB-1:0] w1[1:2];
