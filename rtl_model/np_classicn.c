@@ -211,14 +211,36 @@ size_t np_classicn_datapath(const np_classicn_cfg *cfg, np_op *ops, size_t max)
     unsigned n = cfg->dims, nc = 1u << n, ws = cfg->s_frac, wl = cfg->lerp_frac, nb = cfg->out_bits;
     unsigned f = np_classicn_out_frac(cfg), sw = ws + 1u, lookups = np_hashn_lookups(n);
     unsigned gb = np_bits_for_range(-(int64_t)np_gradn_max_terms(n) * 256, (int64_t)np_gradn_max_terms(n) * 256, 1);
-    /* L: cell + 1 (n 8-bit incrementers), the lookups, an adder tree per corner; u * u per axis (a squarer). */
+    /*
+     * L: cell + 1 (n 8-bit incrementers), the lookups, an adder tree per
+     * corner; u * u per axis (a squarer). The gradient reads only the hash's
+     * low hb bits (np_gradn_index_bits: 3 at n = 2, 5 at n = 4, 5): the tree
+     * is a sum mod 2^hb and the bank holds hb bits a corner (Yosys drops the
+     * rest; classic2's L was 31 % over synthesis with 6-bit adders). The
+     * traced h keeps the index's 6 bits (the value np_hashn specifies).
+     */
+    unsigned hb = np_gradn_index_bits(n);
     np_dp_op(&d, "L", NULL, NP_OP_INC, n, 8, 0, 0, 0, 0);
-    np_dp_op(&d, "L", NULL, NP_OP_LUT, nc * lookups, 3, 6, 0, 0, 1);
-    tree(&d, "L", "h", nc, lookups, 6, 6, 0, 2);
+    np_dp_op(&d, "L", NULL, NP_OP_LUT, nc * lookups, 3, hb, 0, 0, 1);
+    for (unsigned m = lookups, lv = 2; m > 1u; lv++) {
+        unsigned adders = m / 2u;
+        m -= adders;
+        np_dp_op(&d, "L", m == 1u ? "h" : NULL, NP_OP_ADD, nc * adders, hb, 0, m == 1u ? 6u : 0u, 0, lv);
+    }
     np_dp_op(&d, "L", "s2", NP_OP_SQR, n, 8, 0, 16, 0, 0);
-    np_dp_op(&d, "L", NULL, NP_OP_REG, 1, n * 8 + nc * 6 + n * 16 + 1, 0, 0, 0, 0);
-    /* H: per corner and axis a 3:1 select of the s9 offset, a 10-bit negate; the sum over n axes. */
-    np_dp_op(&d, "H", NULL, NP_OP_MUX, nc * n, 9, 3, 0, 0, 0);
+    np_dp_op(&d, "L", NULL, NP_OP_REG, 1, n * 8 + nc * hb + n * 16 + 1, 0, 0, 0, 0);
+    /*
+     * H: the sum over n axes of G_ca d_ca. n = 3 is classic3's circuit: a
+     * 3:1 select of the offset for each of p, q, r, a 10-bit negate, two
+     * additions (np_classic_datapath). np_classicn.v at n = 2, 4, 5 adds,
+     * subtracts or skips each axis's s9 offset as its coefficient in
+     * {-1, 0, 1} says: a 10-bit conditional negate per axis, whose zero case
+     * folds into its XOR stage (no select; measured per corner alone: 235-248
+     * NAND2 at n = 2, 624-628 at n = 4, 616-622 at n = 5, against 218, 516
+     * and 674 so declared, and 326, 732, 944 with a 3:1 select per axis).
+     */
+    if (n == 3u)
+        np_dp_op(&d, "H", NULL, NP_OP_MUX, nc * n, 9, 3, 0, 0, 0);
     np_dp_op(&d, "H", NULL, NP_OP_NEG, nc * n, 10, 0, 0, 0, 1);
     tree(&d, "H", "g", nc, n, 10, gb, 1, 2);
     /* S second half: 768 - 2u (a constant minus x: an incrementer), the product, + half an LSB. */
