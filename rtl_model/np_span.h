@@ -21,14 +21,22 @@
  * The testbench sets in_valid/in and out_ready, calls np_span_sim_eval (the
  * model drives in_ready, out_valid, out), consumes the output if out_valid &&
  * out_ready, then calls np_span_sim_clock. A descriptor transfers when
- * in_valid && in_ready; in_ready is high only while the unit is idle (a
- * span's descriptor is read after the previous span's last pixel has issued).
+ * in_valid && in_ready. For an engine without a descriptor buffer (prefetch
+ * NULL) in_ready is high only while the unit is idle (a span's descriptor is
+ * read after the previous span's last pixel has issued). With one (np_fdiff,
+ * np_texel) in_ready is high while the buffer is empty: a descriptor is taken
+ * while a span waits for its set-up or steps, and one accepted in the clock
+ * the previous span's last pixel issues begins in that same clock. (The
+ * reference RTL of the sequencer, rtl_model/verilog/np_span_seq.v, is this
+ * clock for clock.)
  *
  * --- Timing (the same for every engine) ---
  * 1 clock to accept a descriptor; then the set-up clocks begin() returns;
  * then one pixel per clock into the engine's pipeline (n_stages deep),
  * except for the set-up clocks advance() returns after a pixel; output
- * backpressure holds the pixel at the pipeline's input. An empty span
+ * backpressure holds the pixel at the pipeline's input (a set-up stall
+ * counts down one per clock whether or not the pipeline could take a
+ * pixel). An empty span
  * (n = 0) costs its accepting clock and nothing else. With no gaps and no
  * backpressure a run of spans therefore takes
  *   spans + set-up cycles + pixels + n_stages   clocks

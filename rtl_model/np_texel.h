@@ -35,6 +35,20 @@
  *   |x - exact| <= sum_i |a'_i| 3 (63/64) 2^-(WT+1) + (n_oct + 1) 2^-(F+1).
  * Nothing accumulates from pixel to pixel.
  *
+ * Span set-up timing (np_texel_span_setup_cycles, front_begin, front_prefetch):
+ * C = sched(np_texel_sched_quad) + n_oct sched(octave) clocks, the octave's
+ * schedule of 6 products when every octave's M is diagonal
+ * (np_tex_regs_diagonal), else 18 (wood at P = 2, Lm = 2: 21 + 5 = 26). The
+ * front end's engine runs one span's set-up at a time. A span begun from idle
+ * starts its job in the next clock (or when the engine frees) and stalls C
+ * clocks; a descriptor taken into the buffer while a span waits or steps
+ * starts its job then, in the next clock or when the engine frees, and begins
+ * (in the clock the previous span's last pixel issues) with a stall of only
+ * what remains of it. An empty span takes no job and no stall.
+ * The texture coordinate s is stepped (s += ds) and carried to stage L for the
+ * width trace only: no stage reads it (the quadric is forward-differenced).
+ * At WT = 32 the weight is the fraction itself, u32 (the datapath's wb = 32).
+ *
  * Pipeline (np_pipe, one pixel per clock, latency NP_TEXEL_STAGES):
  *   L  lattice hashes, weights (the quadric is an input)   I1 x-lerps
  *   I2 y-lerps   I3 z-lerp   A amplitude, rounding to F   S sum

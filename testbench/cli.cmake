@@ -3,7 +3,7 @@
 np_test_program(test_cli test_cli.c)
 np_add_cases(test_cli cli
   outfile_regular_atomic outfile_fifo outfile_chardev outfile_symlink outfile_refuse
-  interrupt_sigint interrupt_sigterm numbers)
+  interrupt_sigint interrupt_sigterm interrupt_note_race numbers)
 
 # End to end through the command: lost standard output is exit 2, never 0.
 add_test(NAME cli.stdout_write_error

@@ -16,6 +16,16 @@ find_program(NP_VERILATOR verilator)
 if(NOT NP_VERILATOR)
   message(STATUS "verilator not found: the rtl.*.verilator.* tests will be skipped (apt-get install verilator)")
 endif()
+# Every Verilated build compiles Verilator's runtime again (verilated.cpp, verilated_threads.cpp,
+# and verilated_timing.cpp for --binary: about 5 s of CPU of a 10-20 s build). With ccache (Debian's
+# ccache, in .ci/debian-packages) each is compiled once per set of flags and the other builds take it
+# from a cache in this build tree (CCACHE_DIR below: nothing is kept from another build or machine);
+# the design's own files differ from build to build and always compile. Without ccache, as before.
+find_program(NP_CCACHE ccache)
+set(NP_VERILATOR_CACHE)
+if(NP_CCACHE)
+  set(NP_VERILATOR_CACHE -MAKEFLAGS OBJCACHE=${NP_CCACHE})
+endif()
 set(NP_RTL_SRC ${PROJECT_SOURCE_DIR}/rtl_model/verilog)
 set(NP_RTL_TB ${CMAKE_CURRENT_SOURCE_DIR}/rtl)
 set(NP_RTL_WORK ${CMAKE_CURRENT_BINARY_DIR}/rtl)
@@ -23,12 +33,19 @@ set(NP_RTL_RUN ${NP_RTL_TB}/rtl_run.cmake)
 set(NP_RTL_PIPE_SRC ${NP_RTL_SRC}/np_pipe_in_reg.v ${NP_RTL_SRC}/np_pipe_skid.v)
 
 # np_rtl_test(name tool expect pattern labels command...): expect pass or fail.
+# An Icarus build or run, or a Yosys check, is labelled nosan too: iverilog, vvp and yosys are not
+# built with the sanitizers, so the sanitizer pass would only run the same tool again (the Icarus runs
+# were about 60 % of that pass's test time). The vector generation (rtl.*.gen.*, noisepipe) stays in it.
 function(np_rtl_test name tool expect pattern labels)
+  if(tool AND (tool STREQUAL "${NP_IVERILOG}" OR tool STREQUAL "${NP_VVP}" OR tool STREQUAL "${NP_YOSYS}")
+     AND NOT labels MATCHES "nosan")
+    set(labels "${labels};nosan")
+  endif()
   string(JOIN "|" cmd ${ARGN})
   add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} "-DTOOL=${tool}" -DEXPECT=${expect}
     "-DPATTERN=${pattern}" "-DCMD=${cmd}" -P ${NP_RTL_RUN})
   set_tests_properties(${name} PROPERTIES TIMEOUT 900 LABELS "${labels}"
-    SKIP_REGULAR_EXPRESSION "rtl: SKIPPED: ")
+    SKIP_REGULAR_EXPRESSION "rtl: SKIPPED: " ENVIRONMENT "CCACHE_DIR=${NP_RTL_WORK}/ccache")
 endfunction()
 
 # Bench builds of <unit>: variant ok, fault_flip, fault_stall (the RTL with
@@ -40,7 +57,7 @@ endfunction()
 function(np_rtl_builds unit variant top)
   set(defs)
   set(vopt)
-  if(variant MATCHES "^fault_(flip|stall|stable|serial|lserial|mirror|fold)$")
+  if(variant MATCHES "^fault_(flip|stall|stable|serial|lserial|mirror|fold|setup)$")
     string(TOUPPER "${variant}" def)
     set(defs -DNP_${def})
     set(vopt -MAKEFLAGS OPT_FAST=-O0 -MAKEFLAGS OPT_SLOW=-O0 -MAKEFLAGS OPT_GLOBAL=-O0)
@@ -54,8 +71,13 @@ function(np_rtl_builds unit variant top)
   np_rtl_test(rtl.${unit}.icarus.build${sfx} "${NP_IVERILOG}" pass "" "rtl"
     ${NP_IVERILOG} -g2012 -Wall -I${NP_RTL_SRC} ${defs} -o ${dir}/${top}.vvp -s ${top} ${ARGN})
   set_tests_properties(rtl.${unit}.icarus.build${sfx} PROPERTIES FIXTURES_SETUP rtl_${unit}_icarus_${variant})
+  # The Verilator copy of a fault bench checks the same bench source Icarus checks in every
+  # build: registered only with -DNOISEPIPE_FULL_RTL_TESTS=ON (np_rtl_check skips its runs too).
+  if(defs AND NOT NOISEPIPE_FULL_RTL_TESTS)
+    return()
+  endif()
   np_rtl_test(rtl.${unit}.verilator.build${sfx} "${NP_VERILATOR}" pass "" "rtl;nosan"
-    ${NP_VERILATOR} --binary -j 1 -Wall -I${NP_RTL_SRC} ${defs} ${vopt} --top-module ${top} -Mdir ${dir}/verilator -o ${top} ${ARGN})
+    ${NP_VERILATOR} --binary -j 1 -Wall -I${NP_RTL_SRC} ${defs} ${vopt} ${NP_VERILATOR_CACHE} --top-module ${top} -Mdir ${dir}/verilator -o ${top} ${ARGN})
   set_tests_properties(rtl.${unit}.verilator.build${sfx} PROPERTIES
     FIXTURES_SETUP rtl_${unit}_verilator_${variant})
 endfunction()
@@ -89,6 +111,9 @@ function(np_rtl_check name unit sim variant top cfg file expect pattern labels)
     set(cmd ${NP_VVP} -n ${dir}/${top}.vvp)
     set(tool "${NP_VVP}")
   else()
+    if(variant MATCHES "^fault_" AND NOT NOISEPIPE_FULL_RTL_TESTS)
+      return()  # its build is not registered (np_rtl_builds)
+    endif()
     set(cmd ${dir}/verilator/${top})
     set(tool "${NP_VERILATOR}")
   endif()
@@ -252,6 +277,44 @@ function(np_rtl_cosim_build unit name top defs gparams)
     endforeach()
     string(JOIN "," acfg ${acfg})
     string(APPEND cflags " -DNP_COSIM_AACOUNT -DNP_COSIM_AAC_CFG=${acfg}")
+  elseif(unit STREQUAL "texel")
+    # np_texel.v against the registry's stream model of texel (np_cosim_open_spec: np_span_sim):
+    # gparams give every key of the unit as the parameter of its name in capitals, N_OCT (the
+    # RTL's octave lanes: the texture's n_oct, which the harness checks) and -GTEXTURE=<name>,
+    # which is not a parameter (the texture whose registers drive the register inputs): taken
+    # out of the Verilator command here and given to the model as texture=<name>.
+    set(keys)
+    set(vg)
+    set(noct 1)
+    set(tex)
+    foreach(g ${gparams})
+      if(g MATCHES "^-GTEXTURE=(.+)$")
+        set(tex ${CMAKE_MATCH_1})
+        continue()
+      endif()
+      list(APPEND vg ${g})
+      string(REGEX REPLACE "^-G([A-Z_]+)=(.*)$" "\\1;\\2" kv "${g}")
+      list(GET kv 0 key)
+      list(GET kv 1 val)
+      if(key STREQUAL "N_OCT")
+        set(noct ${val})
+      else()
+        string(TOLOWER ${key} key)
+        list(APPEND keys ${key}=${val})
+      endif()
+    endforeach()
+    if(NOT tex)
+      message(FATAL_ERROR "np_rtl_cosim_build(texel ${name}): gparams must name -GTEXTURE=<texture>")
+    endif()
+    set(gparams ${vg})
+    string(JOIN "," keys texture=${tex} ${keys})
+    set(model texel)
+    string(APPEND cflags " -DNP_COSIM_NDIM=texel -DNP_COSIM_TEXEL=${noct} -DNP_COSIM_KEYS=${keys} -I${PROJECT_SOURCE_DIR}/rtl_model")
+    if(name MATCHES "^fault_")
+      set(vopt -MAKEFLAGS OPT_FAST=-O0 -MAKEFLAGS OPT_SLOW=-O0 -MAKEFLAGS OPT_GLOBAL=-O0)
+    endif()
+    set_property(GLOBAL PROPERTY np_cosim_unit_${unit}_${name} "${model}")
+    set_property(GLOBAL PROPERTY np_cosim_keys_${unit}_${name} "${keys}")
   elseif(unit STREQUAL "simplexn" OR unit STREQUAL "classicn")
     # The n-D RTL against the registry's unit of its DIMS (simplex2/4/5, simplexn3; classic2/4/5,
     # classic3, which is the family's n = 3): gparams must set DIMS and every other key of that
@@ -279,18 +342,18 @@ function(np_rtl_cosim_build unit name top defs gparams)
     endforeach()
     string(JOIN "," keys ${keys})
     string(APPEND cflags " -DNP_COSIM_NDIM=${model} -DNP_COSIM_KEYS=${keys}")
-    # A fault copy runs only until its mismatches show (20,000 cycles): its Verilated C++ at -O0,
-    # as np_rtl_builds' fault benches (simplexn n = 4: 17.5 s -> 10.2 s to build, 0.5 s to run).
-    if(name MATCHES "^fault_")
-      set(vopt -MAKEFLAGS OPT_FAST=-O0 -MAKEFLAGS OPT_SLOW=-O0 -MAKEFLAGS OPT_GLOBAL=-O0)
-    endif()
     set_property(GLOBAL PROPERTY np_cosim_unit_${unit}_${name} "${model}")
     set_property(GLOBAL PROPERTY np_cosim_keys_${unit}_${name} "${keys}")
+  endif()
+  # A fault copy runs only until its mismatches show (20,000 to 100,000 cycles): its Verilated C++
+  # at -O0, as np_rtl_builds' fault benches (simplexn n = 4: 17.5 s -> 10.2 s to build, 0.5 s to run).
+  if(name MATCHES "^fault_")
+    set(vopt -MAKEFLAGS OPT_FAST=-O0 -MAKEFLAGS OPT_SLOW=-O0 -MAKEFLAGS OPT_GLOBAL=-O0)
   endif()
   # np_cosim, the registry it opens units from (np_tools), the models, and what np_tools links.
   set(libs "$<TARGET_FILE:np_cosim> $<TARGET_FILE:np_tools> $<TARGET_FILE:np_rtl_model> -lm -lpthread")
   np_rtl_test(rtl.${unit}.cosim.build.${name} "${NP_VERILATOR}" pass "" "rtl;nosan"
-    ${NP_VERILATOR} --cc --exe --build -j 1 -Wall -I${NP_RTL_SRC} ${defs} ${gparams} --top-module ${top} --prefix Vcosim
+    ${NP_VERILATOR} --cc --exe --build -j 1 -Wall -I${NP_RTL_SRC} ${defs} ${gparams} ${NP_VERILATOR_CACHE} --top-module ${top} --prefix Vcosim
     -Mdir ${dir} -o cosim -CFLAGS ${cflags} -LDFLAGS "${libs}" ${vopt}
     ${NP_RTL_TB}/cosim_main.cpp ${ARGN})
   set_tests_properties(rtl.${unit}.cosim.build.${name} PROPERTIES FIXTURES_SETUP rtl_${unit}_cosim_${name})
@@ -501,7 +564,7 @@ foreach(v ok fault_flip)
   set(dir ${NP_RTL_WORK}/dpi/${v})
   file(MAKE_DIRECTORY ${dir})
   np_rtl_test(rtl.dpi.build${sfx} "${NP_VERILATOR}" pass "" "rtl;nosan"
-    ${NP_VERILATOR} --binary -j 1 -Wall -I${NP_RTL_SRC} ${defs} --top-module dpi_classic3_tb -Mdir ${dir} -o dpi_classic3_tb
+    ${NP_VERILATOR} --binary -j 1 -Wall -I${NP_RTL_SRC} ${defs} ${NP_VERILATOR_CACHE} --top-module dpi_classic3_tb -Mdir ${dir} -o dpi_classic3_tb
     ${NP_RTL_SRC}/dpi/np_dpi_pkg.sv ${NP_RTL_TB}/dpi_classic3_tb.sv ${NP_RTL_C3_RTL}
     $<TARGET_FILE:np_dpi> $<TARGET_FILE:np_rtl_model>)
   set_tests_properties(rtl.dpi.build${sfx} PROPERTIES FIXTURES_SETUP rtl_dpi_${v})

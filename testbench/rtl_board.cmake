@@ -88,7 +88,7 @@ function(np_board_verilate name top cpp defs)
     set(vopt -MAKEFLAGS OPT_FAST=-O0 -MAKEFLAGS OPT_SLOW=-O0 -MAKEFLAGS OPT_GLOBAL=-O0)
   endif()
   np_rtl_test(rtl.board.${name}.build "${NP_VERILATOR}" pass "" "rtl;board;nosan"
-    ${NP_VERILATOR} --cc --exe --build -j 1 -Wall -I${PROJECT_SOURCE_DIR}/rtl_model/verilog ${defs} ${vopt}
+    ${NP_VERILATOR} --cc --exe --build -j 1 -Wall -I${PROJECT_SOURCE_DIR}/rtl_model/verilog ${defs} ${vopt} ${NP_VERILATOR_CACHE}
     --top-module ${top} --prefix Vbd -Mdir ${dir} -o ${name} -CFLAGS ${np_board_cflags} -LDFLAGS ${np_board_ldflags}
     ${CMAKE_CURRENT_SOURCE_DIR}/rtl/${cpp} ${ARGN})
   set_tests_properties(rtl.board.${name}.build PROPERTIES FIXTURES_SETUP rtl_board_${name})
@@ -138,3 +138,51 @@ np_board_run(rtl.board.e2e.faults e2e pass
   --records 3000 --seed 1 --fault drop-out:4000 --fault flip-in:6000 --fault flip-out:15000 --fault drop-out:20000)
 np_board_run(rtl.board.e2e.fault_flip e2e_fault_flip fail "In 2000 records, 2000 verified in 1 sessions .*, [1-9][0-9]* failed: NOT verified\\."
   --records 2000 --seed 1)
+
+# `noisepipe stream --sim` against the whole board (board_sim.cpp: np_board_top under Verilator on
+# stdin/stdout, the line model of board_e2e.cpp, faults on the line, a reset of the gateware):
+# the command's own fd transport (src/link/link_fd.c), journal, --resume and verdict.
+# Driver: board_sim_stream.sh (its cases: clean, fault, kill, fail, refuse). Golden set: the
+# checked-in classic3-l1-seed1.vec (4,224 vectors) is of the gateware's configuration,
+# out_bits=8 s_frac=12 lerp_frac=11 (classic3's default).
+#   rtl.board.board_sim.build[_fault_flip]   the simulator (fixtures rtl_board_board_sim...)
+#   rtl.board.sim.golden                     one run: 4,224 verified, BYE_ACK counts them
+#   rtl.board.sim.{drop,flip}_{out,in}       a byte lost or a bit flipped on the line: exit 1, --resume
+#   rtl.board.sim.stall_{out,in}             the bridge stops (shorter than the time-out): one run
+#   rtl.board.sim.stall_long                 the IN side held longer than the time-out: --resume
+#   rtl.board.sim.reset                      the gateware reset mid-stream: time-out, --resume
+#   rtl.board.sim.kill_resume                the command SIGKILLed mid-stream, then --resume
+#   rtl.board.sim.fault_flip                 classic3 with NP_FAULT_FLIP: the verdict must fail
+#   link.sim_refusals                        a program that cannot run or ends at once: exit 2
+np_board_verilate(board_sim np_board_top board_sim.cpp "" ${NP_BOARD_TOP_SRC})
+np_board_verilate(board_sim_fault_flip np_board_top board_sim.cpp "-DNP_FAULT_FLIP" ${NP_BOARD_TOP_SRC})
+set(np_sim_vec ${PROJECT_SOURCE_DIR}/vectors/classic3/classic3-l1-seed1.vec)
+set(np_sim_driver ${CMAKE_CURRENT_SOURCE_DIR}/board_sim_stream.sh)
+# np_board_sim_test(name sim case args...): the driver's CASE against the simulator built as <sim>
+function(np_board_sim_test name sim case)
+  add_test(NAME rtl.board.sim.${name}
+    COMMAND sh ${np_sim_driver} $<TARGET_FILE:noisepipe> ${NP_BOARD_WORK}/${sim}/${sim}
+            ${NP_BOARD_WORK}/sim_runs/${name} ${case} ${np_sim_vec} ${ARGN})
+  if(case STREQUAL "fail")
+    set(pat "the faulty board was caught")
+  else()
+    set(pat "board_sim stream ${case}: 4224 vectors verified exactly once in")
+  endif()
+  set_tests_properties(rtl.board.sim.${name} PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 120 LABELS "rtl;board;nosan"
+    FIXTURES_REQUIRED rtl_board_${sim} PASS_REGULAR_EXPRESSION "${pat}")
+endfunction()
+np_board_sim_test(golden board_sim clean)
+np_board_sim_test(drop_out board_sim fault --fault drop-out:9000)
+np_board_sim_test(drop_in board_sim fault --fault drop-in:5000)
+np_board_sim_test(flip_out board_sim fault --fault flip-out:12000)
+np_board_sim_test(flip_in board_sim fault --fault flip-in:7000)
+np_board_sim_test(stall_out board_sim fault --fault stall-out:10000:400ms)
+np_board_sim_test(stall_in board_sim fault --fault stall-in:6000:200000)
+np_board_sim_test(stall_long board_sim fault --fault stall-in:6000:2500ms)
+np_board_sim_test(reset board_sim fault --fault reset:15000)
+np_board_sim_test(kill_resume board_sim kill --pace 600000)
+np_board_sim_test(fault_flip board_sim_fault_flip fail)
+add_test(NAME link.sim_refusals
+  COMMAND sh ${np_sim_driver} $<TARGET_FILE:noisepipe> none ${NP_BOARD_WORK}/sim_runs/refuse refuse ${np_sim_vec})
+set_tests_properties(link.sim_refusals PROPERTIES LABELS "link;board" TIMEOUT 60
+  PASS_REGULAR_EXPRESSION "6 refusals, each exit 2")

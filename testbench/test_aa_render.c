@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "np_aacount.h"
 #include "np_golden.h"
 #include "np_image.h"
 #include "np_render_aa.h"
@@ -41,13 +42,14 @@ static int frame(const np_scene *sc, unsigned m, const np_render_unit_cfg *tex, 
 }
 
 /* A configuration with every metric on at the scene-independent constants c_d, c_n, c_s (unit keys). */
-static np_aacount_cfg cfg_all(unsigned m, uint32_t cd, uint8_t cn, uint16_t cs)
+static np_unit_cfg cfg_all(unsigned m, uint32_t cd, uint8_t cn, uint16_t cs)
 {
-    np_aacount_cfg c = np_aacount_cfg_default();
-    c.m = (uint8_t)m;
-    c.c_d = cd;
-    c.c_n = cn;
-    c.c_s = cs;
+    np_unit_cfg c;
+    np_unit_cfg_default(np_aa_unit(), c.bytes);
+    np_aa_key_set(&c, "m", m);
+    np_aa_key_set(&c, "c_d", cd);
+    np_aa_key_set(&c, "c_n", cn);
+    np_aa_key_set(&c, "c_s", cs);
     return c;
 }
 
@@ -65,10 +67,10 @@ static int thresholds_zero_full(void)
             np_aa_frame f;
             if (frame(&sc, m, &us[t], NULL, &f))
                 break;
-            np_aacount_cfg c = cfg_all(m, 0, 0, 0);
-            np_aacount_regs rg;
-            np_aacount_regs_compute(&c, &rg);
-            memset(rg.vd, 0, sizeof rg.vd);
+            np_unit_cfg c = cfg_all(m, 0, 0, 0), rg;
+            np_aa_unit()->samples->regs(c.bytes, rg.bytes); /* aacount's register block: an np_aacount_regs */
+            np_aacount_regs *ar = (np_aacount_regs *)(void *)rg.bytes;
+            memset(ar->vd, 0, sizeof ar->vd);
             np_aa_result r;
             NP_CHECK(np_aa_run(&f, &c, &rg, 1, &r) == 0, "run");
             size_t npx = (size_t)f.g.w * f.g.h;
@@ -105,7 +107,7 @@ static int c_zero_one_sample(void)
             np_aa_frame f;
             if (frame(&sc, m, &us[t], NULL, &f))
                 break;
-            np_aacount_cfg c = cfg_all(m, 0, 0, 0);
+            np_unit_cfg c = cfg_all(m, 0, 0, 0);
             np_aa_result r;
             NP_CHECK(np_aa_run(&f, &c, NULL, 1, &r) == 0, "run");
             size_t npx = (size_t)f.g.w * f.g.h;
@@ -141,7 +143,7 @@ static int cycle_model(void)
         np_aa_frame f;
         if (frame(&sc, m, &us[t], NULL, &f))
             break;
-        np_aacount_cfg c = cfg_all(m, 400000, 32, 512);
+        np_unit_cfg c = cfg_all(m, 400000, 32, 512);
         np_aa_result r;
         NP_CHECK(np_aa_run(&f, &c, NULL, 0, &r) == 0, "run");
         size_t npx = (size_t)f.g.w * f.g.h;
@@ -181,7 +183,7 @@ static int mse_budget(void)
             for (int k = -4; k <= 4; k++)
                 for (int kd = -2; kd <= 2; kd += 2) {
                     double sc2 = ldexp(1.0, k);
-                    np_aacount_cfg c = cfg_all(m, (uint32_t)fmin(4e9, 400000.0 * ldexp(1.0, kd) * sc2),
+                    np_unit_cfg c = cfg_all(m, (uint32_t)fmin(4e9, 400000.0 * ldexp(1.0, kd) * sc2),
                                                (uint8_t)fmin(255.0, 32.0 * sc2), (uint16_t)fmin(65535.0, 512.0 * sc2));
                     np_aa_result r;
                     if (np_aa_run(&f, &c, NULL, 0, &r))
@@ -202,7 +204,7 @@ static int mse_budget(void)
                                                                                                        : "normal";
                 printf("%s m=%u: %.2f %% of samples at MSE %.3fe-5 (c_d=%u c_n=%u c_s=%u); alone: depth %.1f %%, normal"
                        " %.1f %%, luma %.1f %%: %s drives the count\n",
-                       names[i], m, best, best_mse * 1e5, keep.cfg.c_d, keep.cfg.c_n, keep.cfg.c_s,
+                       names[i], m, best, best_mse * 1e5, np_aa_key(&keep.cfg, "c_d"), np_aa_key(&keep.cfg, "c_n"), np_aa_key(&keep.cfg, "c_s"),
                        100.0 * (double)keep.samples_d / P, 100.0 * (double)keep.samples_n / P,
                        100.0 * (double)keep.samples_s / P, drv);
             } else {
@@ -248,7 +250,7 @@ static int beats_full_3x3(void)
         double best = 1e9, best_pct = 0.0;
         for (int k = -2; k <= 3; k++) {
             double s2 = ldexp(1.0, k);
-            np_aacount_cfg c = cfg_all(4, (uint32_t)(400000.0 * s2), (uint8_t)fmin(255.0, 32.0 * s2),
+            np_unit_cfg c = cfg_all(4, (uint32_t)(400000.0 * s2), (uint8_t)fmin(255.0, 32.0 * s2),
                                        (uint16_t)(512.0 * s2));
             np_aa_result r;
             if (np_aa_run(&f4, &c, NULL, 0, &r))
@@ -286,17 +288,21 @@ static int host_conversion(void)
     sc.aa.c_s = 32.0;
     sc.aa.t_min = 16.0 / 255.0;
     sc.aa.t_edge = 0.125;
-    np_aacount_cfg c;
-    np_aa_cfg_from_scene(&sc, 3, 1.0, 3.0, &c);
+    np_unit_cfg uc;
+    np_aa_cfg_from_scene(&sc, 3, 1.0, 3.0, &uc);
+    const np_aacount_cfg *pc = (const np_aacount_cfg *)(const void *)uc.bytes; /* aacount's block: the model's cfg */
+    np_aacount_cfg c = *pc;
     double want = 1.0e4 * 4.0 * 281474976710656.0 / (16777215.0 * 16777215.0);
     NP_CHECK(fabs((double)c.c_d - want) <= 0.5, "c_d key %u, want %.3f", c.c_d, want);
     NP_CHECK(c.c_n == 32 && c.c_s == 512 && c.t_min == 16 && c.t_edge == 32, "keys c_n=%u c_s=%u t_min=%u t_edge=%u",
              c.c_n, c.c_s, c.t_min, c.t_edge);
     sc.aa.t_min = 16.5 / 255.0; /* r / 255 < t_min iff r <= 16: the key 17 */
-    np_aa_cfg_from_scene(&sc, 3, 1.0, 3.0, &c);
+    np_aa_cfg_from_scene(&sc, 3, 1.0, 3.0, &uc);
+    c = *pc;
     NP_CHECK(c.t_min == 17, "t_min 16.5/255 gives %u", c.t_min);
     sc.aa.have_cn = 0;
-    np_aa_cfg_from_scene(&sc, 3, 1.0, 3.0, &c);
+    np_aa_cfg_from_scene(&sc, 3, 1.0, 3.0, &uc);
+    c = *pc;
     NP_CHECK(c.normal == 0 && c.depth == 1 && c.luma == 1, "a constant left out turns its metric off");
     printf("c_d 1e4 per world^2 over a depth range of 2: key %u (exact %.3f); c_n 8 -> 32, c_s 32 -> 512,"
            " t_min 16/255 -> 16, 16.5/255 -> 17, t_edge 1/8 -> 32\n",
@@ -329,7 +335,7 @@ static int borders(void)
         for (unsigned x = 0; x < W; x++) {
             if (!(x == 0 || y == 0 || x == W - 1 || y == H - 1 || (x % 37 == 5 && y % 41 == 7)))
                 continue;
-            np_aacount_win w;
+            np_unit_window w;
             np_aa_window(&f, x, y, &w);
             const uint8_t *L = f.luma;
             unsigned xl = x ? x - 1 : x, xr = x + 1 < W ? x + 1 : x, yu = y ? y - 1 : y, yd = y + 1 < H ? y + 1 : y;
@@ -343,7 +349,7 @@ static int borders(void)
             }
             checked++;
         }
-    np_aacount_win c;
+    np_unit_window c;
     np_aa_window(&f, 0, 0, &c);
     NP_CHECK(c.luma[1] == c.luma[0] && c.luma[3] == c.luma[0], "corner (0,0): left and up are not the pixel");
     np_aa_window(&f, W - 1, H - 1, &c);
@@ -472,22 +478,23 @@ static int boxes_knobs(void)
                     for (unsigned i = 0; i < n_cd; i++)
                         for (unsigned j = 0; j < n_cn; j++)
                             for (unsigned k = 0; k < n_cs; k++) {
-                                np_aacount_cfg c = cfg_all(4, (uint32_t)(400000.0 * cds[i]),
+                                np_unit_cfg c = cfg_all(4, (uint32_t)(400000.0 * cds[i]),
                                                            (uint8_t)fmin(255.0, 32.0 * cns[j]),
                                                            (uint16_t)fmin(65535.0, 512.0 * css[k]));
-                                c.depth = cds[i] > 0;
-                                c.normal = cns[j] > 0;
-                                c.luma_taps = (uint8_t)taps[a];
-                                c.t_min = (uint8_t)tmins[b];
-                                c.t_edge = (uint8_t)tedges[c2];
-                                c.tile = (uint8_t)tiles[d];
+                                np_aa_key_set(&c, "depth", cds[i] > 0);
+                                np_aa_key_set(&c, "normal", cns[j] > 0);
+                                np_aa_key_set(&c, "luma_taps", (uint8_t)taps[a]);
+                                np_aa_key_set(&c, "t_min", (uint8_t)tmins[b]);
+                                np_aa_key_set(&c, "t_edge", (uint8_t)tedges[c2]);
+                                np_aa_key_set(&c, "tile", (uint8_t)tiles[d]);
                                 np_aa_result r;
                                 if (np_aa_run(&f4, &c, NULL, 0, &r))
                                     break;
                                 tried++;
                                 char txt[160];
                                 snprintf(txt, sizeof txt, "luma_taps=%u t_min=%u t_edge=%u tile=%u c_d=%u c_n=%u c_s=%u",
-                                         taps[a], tmins[b], tedges[c2], tiles[d], c.c_d, c.c_n, c.c_s);
+                                         taps[a], tmins[b], tedges[c2], tiles[d], np_aa_key(&c, "c_d"),
+                                         np_aa_key(&c, "c_n"), np_aa_key(&c, "c_s"));
                                 printf("  %s: %.2f %% (%.2f spp) MSE %.3fe-5%s\n", txt, r.pct, r.pct * 0.16,
                                        r.mse_gt * 1e5, r.pct <= 56.25 ? "" : " (over 9 spp)");
                                 if (r.pct <= 56.25) {

@@ -14,6 +14,7 @@
 #include <sys/stat.h>
 #include <sys/un.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "np_common.h"
@@ -250,6 +251,64 @@ static int interrupted_by(int sig, int want_status)
     return 0;
 }
 
+/*
+ * A signal while the note is being rewritten prints a whole note (the previous or the new one), never
+ * none and never a torn one: the child rewrites it in a loop, as `stream` does after every result,
+ * and is interrupted at 100 points in that loop.
+ */
+static int case_interrupt_note_race(void)
+{
+    char errpath[512];
+    path_in(errpath, sizeof errpath, "stderr_race.txt");
+    static const char *notes[2] = {
+        "note A: journal a.jnl keeps 1 of 2 vectors; run again with --resume (not --force) to send the other 1 [A-end]",
+        "note B: journal b.jnl keeps 2 of 3 vectors verified (0 errors); run again with --resume to send the rest [B-end]",
+    };
+    int whole = 0;
+    for (int trial = 0; trial < 100; trial++) {
+        int ready[2];
+        CHECK(pipe(ready) == 0);
+        pid_t child = fork();
+        CHECK(child >= 0);
+        if (child == 0) {
+            close(ready[0]);
+            int fd = open(errpath, O_WRONLY | O_CREAT | O_TRUNC, 0600);
+            dup2(fd, 2);
+            np_interrupt_install();
+            np_interrupt_note(notes[0]);
+            if (write(ready[1], "r", 1) != 1) /* ready: the parent's signal finds a note already set */
+                _exit(3);
+            for (unsigned i = 0;; i++)
+                np_interrupt_note(notes[(i & 1u) ^ 1u]);
+        }
+        close(ready[1]);
+        char c = 0;
+        CHECK(read(ready[0], &c, 1) == 1 && c == 'r');
+        close(ready[0]);
+        /* 50 to 549 microseconds into the loop: thousands of rewrites, a different point each trial. */
+        struct timespec ts = { 0, (long)(50 + (trial * 37) % 500) * 1000L };
+        nanosleep(&ts, NULL);
+        kill(child, SIGINT);
+        int st = 0;
+        CHECK(waitpid(child, &st, 0) == child);
+        CHECK(WIFEXITED(st) && WEXITSTATUS(st) == 130);
+        char msg[1024] = "";
+        FILE *f = fopen(errpath, "r");
+        CHECK(f != NULL);
+        size_t n = fread(msg, 1, sizeof msg - 1, f);
+        msg[n] = '\0';
+        fclose(f);
+        if (!strstr(msg, notes[0]) && !strstr(msg, notes[1])) {
+            printf("trial %d: the interrupted child printed no whole note: %s", trial, msg);
+            return 1;
+        }
+        whole++;
+    }
+    printf("100 interruptions mid-rewrite: %d whole notes\n", whole);
+    unlink(errpath);
+    return 0;
+}
+
 static int case_interrupt_sigint(void) { return interrupted_by(SIGINT, 130); }
 static int case_interrupt_sigterm(void) { return interrupted_by(SIGTERM, 143); }
 
@@ -267,6 +326,7 @@ CASE(t_symlink, case_symlink)
 CASE(t_refuse, case_refuse)
 CASE(t_sigint, case_interrupt_sigint)
 CASE(t_sigterm, case_interrupt_sigterm)
+CASE(t_note_race, case_interrupt_note_race)
 
 static int case_numbers(void)
 {
@@ -295,6 +355,7 @@ static const np_test_case cases[] = {
     { "outfile_refuse", t_refuse },
     { "interrupt_sigint", t_sigint },
     { "interrupt_sigterm", t_sigterm },
+    { "interrupt_note_race", t_note_race },
     { NULL, NULL },
 };
 

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "np_hatch.h"
 #include "np_hatch_render.h"
 #include "np_report.h"
 #include "np_rng.h"
@@ -35,7 +36,7 @@ static int t_scene_cover_identical(void)
     for (unsigned si = 0; si < 2 && !bad; si++) {
         np_scene_hatch h = sc.hatch;
         h.set = si ? 3u : 1u;
-        np_hatch_cfg c;
+        np_unit_cfg c;
         np_hatch_frame fb, fc;
         if (np_hatch_render_cfg(&h, NULL, &c, err, sizeof err) ||
             np_hatch_render(&sc, &c, 0, h.tile_pixels, NP_HATCH_RENDER_PIPE | (si ? 0u : NP_HATCH_RENDER_REF), &fb,
@@ -67,7 +68,7 @@ static int t_scene_cover_identical(void)
             printf("; max %.4f LSB from the float reference", fb.ref_max);
         printf("\n");
         NP_CHECK(diff == 0, "coverage bit-identical to brute force (%zu pixels differ)", diff);
-        NP_CHECK(!fb.pipe_mismatch && fb.pipe_cycles == fb.samples + np_hatch_depth(&c), "cycle model");
+        NP_CHECK(!fb.pipe_mismatch && fb.pipe_cycles == fb.samples + np_hatch_depth((const np_hatch_cfg *)(const void *)c.bytes), "cycle model");
         NP_CHECK(!fc.pipe_mismatch && fc.pipe_cycles == fc.samples + fc.pipe_depth && fc.pipe_depth < fb.pipe_depth,
                  "the coverage unit's cycle model (latency %u)", fc.pipe_depth);
         NP_CHECK(ink > 1000 && distinct > 10, "a hatched image with ink and tones");

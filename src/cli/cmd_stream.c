@@ -2,13 +2,16 @@
 /*
  * noisepipe stream - send vectors over USB to a board running a unit, read
  * the results back and verify every bit (docs/usb-protocol.md). --emulate
- * runs the same session against the in-process board emulator.
+ * runs the same session against the in-process board emulator; --sim against
+ * a board simulator run as a child on pipes (testbench/rtl/board_sim.cpp: the
+ * Verilated gateware), through the file-descriptor transport.
  */
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "np_common.h"
@@ -18,8 +21,9 @@
 #include "np_vec.h"
 
 static const char usage_text[] =
-    "usage: noisepipe stream (--device VID:PID | --ftdi [VID:PID] | --emulate)\n"
-    "                        [options] (VECTORS | --random N)\n"
+    "usage: noisepipe stream (--device VID:PID | --ftdi [VID:PID] | --emulate |\n"
+    "                        --sim PROGRAM) [options] (VECTORS | --random N)\n"
+    "                        [-- SIMULATOR ARGUMENTS]\n"
     "\n"
     "Stream the vectors to a board running the unit, verify every result bit for\n"
     "bit against the expected outputs, report TestFloat style.\n"
@@ -45,12 +49,17 @@ static const char usage_text[] =
     "  --emulate           no USB: the board emulator (cycle-accurate models) in process\n"
     "  --inject F:INDEX[:BIT]  with --emulate: make the emulated board fail at vector\n"
     "                      INDEX; F = wrong-bit, corrupt, short, drop, silent\n"
+    "  --sim PROGRAM       a board simulator run as a child (no shell): OUT bytes to\n"
+    "                      its stdin, IN bytes from its stdout; the words after '--'\n"
+    "                      are its arguments. build/testbench/rtl_board/board_sim/\n"
+    "                      board_sim is the Verilated gateware (docs/board.md); the\n"
+    "                      journal binds \"sim PROGRAM\" (its arguments are not bound)\n"
     "  --journal FILE      journal of verified ranges (default VECTORS.journal;\n"
     "                      none with --random unless given)\n"
     "  --resume            continue the journal: send only what it does not hold; it\n"
     "                      must be of these vectors (unit, configuration, file size\n"
-    "                      and contents) and this target (the emulator, or the same\n"
-    "                      VID:PID and serial number)\n"
+    "                      and contents) and this target (the emulator, the same\n"
+    "                      --sim PROGRAM, or the same VID:PID and serial number)\n"
     "  --force             without --resume: replace an existing journal (only once\n"
     "                      the target is open); without it an existing journal is\n"
     "                      never overwritten\n"
@@ -63,12 +72,16 @@ static const char usage_text[] =
     "Exit status: 0 every vector verified; 1 a result differed, or the link failed\n"
     "before the end (what was verified stays in the journal: rerun with --resume);\n"
     "2 bad usage or input (also a journal of other vectors or another target, or an\n"
-    "existing journal without --resume/--force), board not found, or the board does\n"
-    "not run the unit or does not speak this protocol (docs/usb-protocol.md).\n";
+    "existing journal without --resume/--force), board not found, a --sim program\n"
+    "that cannot be run or ends before it answers, or the board does not run the\n"
+    "unit or does not speak this protocol (docs/usb-protocol.md).\n";
 
 typedef struct stream_args {
     const char *vectors, *unit, *config, *device, *journal, *inject;
     const char *ftdi, *ftdi_serial; /* ftdi: "" for the default VID:PID */
+    const char *sim;                /* --sim PROGRAM */
+    char **sim_args;                /* the words after "--" (sim_nargs of them) */
+    int sim_nargs, have_dashdash;
     uint64_t random_n, seed, max_errors, frame, window, in_flight, baud;
     int ftdi_interface, have_baud;
     int have_random, emulate, resume, force, quiet;
@@ -131,7 +144,21 @@ static int parse_args(int argc, char **argv, stream_args *a)
         uint64_t x;
         int r;
         const char *arg = argv[i];
-        if (strcmp(arg, "--emulate") == 0) {
+        if (strcmp(arg, "--") == 0) {
+            /* the rest: the simulator's arguments, passed as they are */
+            a->have_dashdash = 1;
+            a->sim_args = argv + i + 1;
+            a->sim_nargs = argc - i - 1;
+            break;
+        } else if ((r = opt(argc, argv, &i, "--sim", &v)) != 0) {
+            if (r < 0)
+                return -1;
+            if (!v[0] || strlen(v) > 180) {
+                np_err("stream", "--sim '%s': expected the simulator's program (a path of at most 180 characters, or a name in PATH)", v);
+                return -1;
+            }
+            a->sim = v;
+        } else if (strcmp(arg, "--emulate") == 0) {
             a->emulate = 1;
         } else if (strcmp(arg, "--ftdi") == 0) {
             /* VID:PID is optional: the next word is taken when it has a ':' (checked later) */
@@ -240,8 +267,12 @@ static int parse_args(int argc, char **argv, stream_args *a)
         np_err("stream", "give a vector file or --random N (noisepipe stream --help)");
         return -1;
     }
-    if (!!a->device + !!a->emulate + !!a->ftdi != 1) {
-        np_err("stream", "give one of --device VID:PID, --ftdi [VID:PID] or --emulate (noisepipe stream --help)");
+    if (!!a->device + !!a->emulate + !!a->ftdi + !!a->sim != 1) {
+        np_err("stream", "give one of --device VID:PID, --ftdi [VID:PID], --emulate or --sim PROGRAM (noisepipe stream --help)");
+        return -1;
+    }
+    if (a->have_dashdash && !a->sim) {
+        np_err("stream", "arguments after '--' are the simulator's: they go with --sim PROGRAM");
         return -1;
     }
     if (a->inject && !a->emulate) {
@@ -600,7 +631,30 @@ int np_cmd_stream(int argc, char **argv)
     np_usb_info ui;
     memset(&ui, 0, sizeof ui);
     char err[1024];
-    if (a.emulate) {
+    np_link_child sim;
+    memset(&sim, 0, sizeof sim);
+    sim.pid = sim.rfd = sim.wfd = -1;
+    if (a.sim) {
+        /* argv for exec: the program, then the words after "--" */
+        char **sargv = calloc((size_t)a.sim_nargs + 2, sizeof *sargv);
+        if (!sargv) {
+            np_err("stream", "out of memory");
+            np_link_job_free(&j);
+            return NP_EXIT_USAGE;
+        }
+        sargv[0] = (char *)a.sim;
+        for (int k = 0; k < a.sim_nargs; k++)
+            sargv[k + 1] = a.sim_args[k];
+        int rc = np_link_spawn(&sim, sargv, err, sizeof err);
+        free(sargv);
+        if (rc != 0) {
+            np_err("stream", "--sim: %s", err);
+            np_link_job_free(&j);
+            return NP_EXIT_USAGE;
+        }
+        /* bound to the simulator's program as given (its arguments, such as injected faults, are not bound) */
+        snprintf(tg.target, sizeof tg.target, "sim %.*s", (int)(sizeof tg.target - 8), a.sim);
+    } else if (a.emulate) {
         if (!(board = np_board_new(&bo))) {
             np_err("stream", "out of memory");
             np_link_job_free(&j);
@@ -650,6 +704,7 @@ int np_cmd_stream(int argc, char **argv)
     if (np_journal_open_bound(&jn, journal, &j, &tg, a.resume, a.force, err, sizeof err) != 0) {
         np_err("stream", "%s", err);
         np_journal_close(&jn);
+        np_link_child_close(&sim, 2.0);
         close_all(board, ub, fb);
         np_link_job_free(&j);
         return NP_EXIT_USAGE;
@@ -664,9 +719,10 @@ int np_cmd_stream(int argc, char **argv)
     rp.quiet = a.quiet;
     rp.tty = isatty(2);
     rp.todo = j.n - jn.prior_checked;
-    printf("stream: %s %s, %llu vectors (%s, %016llx) to %s\n", j.unit->name, j.cfg_text,
+    printf("stream: %s %s, %llu vectors (%s, %016llx) to %s%s\n", j.unit->name, j.cfg_text,
            (unsigned long long)j.n, source, (unsigned long long)j.hash,
-           a.emulate ? "the board emulator" : a.ftdi ? "the FT2232H" : a.device);
+           a.emulate ? "the board emulator" : a.ftdi ? "the FT2232H" : a.sim ? "the simulator " : a.device,
+           a.sim ? a.sim : "");
     if (!a.emulate)
         printf("target: %s\n", tg.target);
     if (journal)
@@ -694,6 +750,7 @@ int np_cmd_stream(int argc, char **argv)
         np_err("stream", "out of memory");
         np_interrupt_note(NULL);
         np_journal_close(&jn);
+        np_link_child_close(&sim, 2.0);
         close_all(board, ub, fb);
         np_link_job_free(&j);
         return NP_EXIT_USAGE;
@@ -718,6 +775,28 @@ int np_cmd_stream(int argc, char **argv)
     if (fb)
         np_link_ftdi_stream(fb, h);
 #endif
+    int sim_early = 0; /* the simulator ended before it answered HELLO: not a board (usage) */
+    char sim_status[128] = "";
+    if (a.sim) {
+        np_fd_opts fo;
+        memset(&fo, 0, sizeof fo);
+        fo.timeout = a.timeout;
+        np_link_fd_stream(sim.rfd, sim.wfd, h, &fo);
+        if (np_host_get_fault(h) == NP_FAULT_NO_DEVICE && np_host_get_stats(h)->info.board_id[0] == '\0') {
+            /* its end of the pipes closed before INFO: a program that exited (give it a second to be reaped) */
+            double t0 = np_now();
+            while (!np_link_child_exited(&sim) && np_now() - t0 < 1.0) {
+                struct timespec ts = { 0, 2000000 };
+                nanosleep(&ts, NULL);
+            }
+            sim_early = np_link_child_exited(&sim);
+        }
+        int signalled = np_link_child_close(&sim, 2.0);
+        np_link_child_status(&sim, sim_status, sizeof sim_status);
+        if (signalled)
+            np_err("stream", "the simulator %s did not end within 2 s of the end of its input: stopped (%s)",
+                   a.sim, sim_status);
+    }
     close_all(board, ub, fb);
     double cpu = cpu_seconds() - cpu0 - board_cpu;
     char jerr[512];
@@ -759,6 +838,14 @@ int np_cmd_stream(int argc, char **argv)
             putchar('\n');
         if (fault != NP_FAULT_NONE)
             np_err("stream", "%s", np_host_fault_msg(h));
+        if (a.sim && fault == NP_FAULT_NO_DEVICE)
+            np_err("stream", "the simulator %s ended: %s%s", a.sim, sim_status,
+                   sim_early ? " before it answered HELLO (is it a board simulator that reads the host's bytes "
+                               "on stdin and writes the board's on stdout? docs/board.md)"
+                             : "");
+        if (a.sim)
+            printf("session: %llu vectors sent, %llu verified; the simulator: %s\n", (unsigned long long)s->sent,
+                   (unsigned long long)s->verified, sim_status);
         if (jsync != 0 && fault == NP_FAULT_NONE) {
             np_err("stream", "%s", jerr);
             fault = NP_FAULT_JOURNAL;
@@ -770,7 +857,7 @@ int np_cmd_stream(int argc, char **argv)
             snprintf(found, sizeof found, "no errors");
         else
             snprintf(found, sizeof found, "%llu error%s", (unsigned long long)errors, errors == 1 ? "" : "s");
-        int usage = fault == NP_FAULT_CONFIG || fault == NP_FAULT_INCOMPATIBLE;
+        int usage = fault == NP_FAULT_CONFIG || fault == NP_FAULT_INCOMPATIBLE || sim_early;
         if (usage) {
             /* a usage error: nothing was tested, no verdict */
         } else if (checked == j.n) {

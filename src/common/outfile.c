@@ -6,6 +6,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <signal.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -17,8 +18,12 @@
 enum { N_SLOTS = 32, NOTE_MAX = 1024 };
 static char slot_path[N_SLOTS][NP_OUTFILE_PATH_MAX + 32];
 static volatile sig_atomic_t slot_used[N_SLOTS];
-static char note_buf[NOTE_MAX];
-static volatile sig_atomic_t note_set;
+/* Two note buffers: np_interrupt_note writes the one the handler is not reading, then makes it
+ * current with one store of note_cur (-1: no note). A signal that lands while a note is being
+ * written prints the previous one, whole: with one buffer, emptied while it was rewritten, a
+ * SIGINT in that window printed no note at all (usb.interrupt failed so once under load). */
+static char note_buf[2][NOTE_MAX];
+static volatile sig_atomic_t note_cur = -1;
 
 int np_interrupt_track(const char *tmp_path)
 {
@@ -41,11 +46,14 @@ void np_interrupt_untrack(int slot)
 
 void np_interrupt_note(const char *note)
 {
-    note_set = 0;
-    if (note) {
-        snprintf(note_buf, sizeof note_buf, "%s", note);
-        note_set = 1;
+    if (!note) {
+        note_cur = -1;
+        return;
     }
+    int next = note_cur == 0 ? 1 : 0;
+    snprintf(note_buf[next], sizeof note_buf[next], "%s", note);
+    atomic_signal_fence(memory_order_seq_cst); /* the text is whole before it becomes current */
+    note_cur = next;
 }
 
 static void put(const char *s) { ssize_t r = write(2, s, strlen(s)); (void)r; }
@@ -74,9 +82,10 @@ static void on_signal(int sig)
     put("; removed ");
     put_uint(removed);
     put(" unfinished output file(s); no output was replaced");
-    if (note_set) {
+    int cur = note_cur;
+    if (cur == 0 || cur == 1) {
         put("; ");
-        put(note_buf);
+        put(note_buf[cur]);
     }
     put("\n");
     _exit(128 + sig);

@@ -14,6 +14,8 @@
  *   link_engine.c  the host's protocol engine: session, window, verification
  *   link_loopback.c the in-process transport: host engine <-> emulator
  *   link_usb.c     the libusb transport (built only with NOISEPIPE_USB)
+ *   link_fd.c      a byte stream on file descriptors (a tty, the pipes of a
+ *                  board simulator run as a child: stream --sim)
  *
  * The host engine and the board are byte-stream state machines: the
  * transport moves bytes between them (np_host_pull -> OUT -> np_board_rx,
@@ -567,6 +569,48 @@ int np_link_usb_open(np_usb_board **out, const np_usb_opts *o, np_usb_info *info
 void np_link_usb_stream(np_usb_board *b, np_host *h);
 /* Release the interface and close (NULL is fine). */
 void np_link_usb_close(np_usb_board *b);
+
+/*
+ * A byte stream on file descriptors (link_fd.c): a kernel tty (/dev/ttyUSB1 of
+ * an FT2232H through ftdi_sio), a pipe or socket to a board simulator. rfd
+ * carries IN bytes, wfd OUT bytes (they may be the same descriptor). Runs the
+ * session of h to its end (done or fault): non-blocking for the session,
+ * poll(), partial reads and writes; silence for timeout seconds while the host
+ * waits, or OUT bytes not taken that long, is NP_FAULT_TIMEOUT; end of file,
+ * EPIPE or EIO is NP_FAULT_NO_DEVICE. SIGPIPE is ignored during the session.
+ * A tty is the caller's to set up (raw, baud, CRTSCTS, VMIN >= 1: link_fd.c).
+ */
+typedef struct np_fd_opts {
+    double timeout;        /* seconds; 0: 2 */
+    size_t chunk;          /* bytes per write() at most; 0: a whole frame */
+} np_fd_opts;
+
+void np_link_fd_stream(int rfd, int wfd, np_host *h, const np_fd_opts *o);
+
+/* A board simulator run as a child on two pipes (its stdin: OUT bytes, its stdout: IN bytes). */
+typedef struct np_link_child {
+    int pid;               /* -1: none */
+    int rfd, wfd;          /* the host's ends: read IN bytes from rfd, write OUT bytes to wfd */
+    int status;            /* waitpid's, once reaped */
+    int reaped;
+} np_link_child;
+
+/*
+ * Start argv[0] (a path, or a name looked up in PATH; no shell) with argv,
+ * stdin and stdout on pipes, stderr shared. 0, or -1 with err (it could not
+ * be run: exec's reason, e.g. "No such file or directory").
+ */
+int np_link_spawn(np_link_child *c, char *const argv[], char *err, size_t errlen);
+/* 1 once the child has exited (reaped, status kept), 0 while it runs. */
+int np_link_child_exited(np_link_child *c);
+/* "exit status 3", "killed by signal 9 (Killed)", "still running". */
+void np_link_child_status(const np_link_child *c, char *buf, size_t len);
+/*
+ * Close both pipes (EOF on the child's stdin ends its session), wait up to
+ * grace seconds for it to exit, then SIGTERM, then SIGKILL; reap it.
+ * 0 when it exited by itself, 1 when it had to be signalled.
+ */
+int np_link_child_close(np_link_child *c, double grace);
 
 /* The FTDI FT2232H's UART channel through libftdi1 (link_ftdi.c; only with NOISEPIPE_HAVE_FTDI). */
 typedef struct np_ftdi_opts {

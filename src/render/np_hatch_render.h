@@ -14,9 +14,13 @@
  *   x_uv    u128 Q32.96  the sample's UV (the G-buffer's s48 Q15.32, exactly
  *                    s + k ds of its sub-span, formed per span in 128 bits:
  *                    x_uv0 + k dx_uv) shifted up 64 (mod 2^32 in UV).
- *   xu, xv  u33 Q1.32    np_hatch_xs(x_uv, level): the unit's seed space.
- *   out     u8       the unit's colour (np_hatch_eval, or np_hatch_eval_cover
- *                    with the host's lists), written as grey (c, c, c).
+ *   xu, xv  u33 Q1.32    the unit's seed space (np_unit_strokes.xs(x_uv, level)).
+ *   out     u8       the unit's colour (np_unit.eval, or the coverage unit's
+ *                    np_unit_strokes.eval_cover with the host's lists),
+ *                    written as grey (c, c, c).
+ * The unit is the registry's "hatch", reached through np_unit.h only: its
+ * configuration is an opaque np_unit_cfg, and what the renderer needs besides
+ * eval, ref and the pipe is its np_unit.strokes.
  * Uncovered samples get the background.
  *
  * Level of detail, per polygon (the host's; affine mapping, so constant):
@@ -33,7 +37,7 @@
  *                   half up in Q1.30; a bit is 1 when the square reaches 2,
  *                   which is then halved): truncated
  *   om  u17 Q1.16   2^16 - m16
- * The level is clamped to the unit's [-64, 31] (np_hatch_xs), m to 0 there.
+ * The level is clamped to the unit's [-64, 31] (np_unit_strokes.xs), m to 0 there.
  */
 #ifndef NP_HATCH_RENDER_H
 #define NP_HATCH_RENDER_H
@@ -41,9 +45,10 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "np_fixed.h"
 #include "np_gbuf.h"
-#include "np_hatch.h"
 #include "np_scene.h"
+#include "np_unit.h"
 
 /* A polygon's level of detail: level, 2^-m and 1 - m (formats above). */
 typedef struct np_hatch_lod {
@@ -59,7 +64,9 @@ np_hatch_lod np_hatch_lod_of(double L);
  * defaults (np_unit_configure) with set, layers, fade and lanes, then more
  * ("key=value,...", may be NULL). 0, or -1 with err.
  */
-int np_hatch_render_cfg(const np_scene_hatch *h, const char *more, np_hatch_cfg *cfg, char *err, size_t errlen);
+int np_hatch_render_cfg(const np_scene_hatch *h, const char *more, np_unit_cfg *cfg, char *err, size_t errlen);
+/* The unit's configuration as text, "set=..,layers=..,fade=..,guard=..,lanes=.." (the hash list's column). */
+void np_hatch_render_cfg_text(const np_unit_cfg *cfg, char *s, size_t n);
 
 typedef struct np_hatch_frame {
     unsigned w, h;
@@ -73,18 +80,19 @@ typedef struct np_hatch_frame {
     int level_min, level_max;
     /* Cycles of an iterative unit with P lanes: brute force layers N / P a point; coverage sum of ceil(len / P). */
     uint64_t iter_cycles;
+    unsigned brute_cycles; /* brute force's a point: layers N / P */
     /* Coverage lists at the samples: mean entries per layer and the longest (coverage mode). */
     double list_mean;
     unsigned list_max;
     /*
      * The unrolled cycle model (np_pipe), fed every covered sample back to back
      * (when asked): brute force's seed stages, or in coverage mode the coverage
-     * unit's slot stages reading the host's lists (np_hatch_cfg.cover_slots).
+     * unit's slot stages reading the host's lists (np_unit_strokes.cover_cfg).
      */
     unsigned pipe_depth;   /* its latency */
     uint64_t pipe_cycles;
     int pipe_mismatch;
-    /* Against the float reference np_ref_hatch (when asked): max |out - ref| in LSB, and > 1 LSB count. */
+    /* Against the float reference np_unit.ref (when asked): max |out - ref| in LSB, and > 1 LSB count. */
     double ref_max;
     uint64_t ref_over;
     double seconds;        /* the bit-exact model's time */
@@ -97,8 +105,11 @@ enum { NP_HATCH_RENDER_PIPE = 1, NP_HATCH_RENDER_REF = 2 };
  * configuration cfg; coverage 1 uses the host's lists. flags: NP_HATCH_RENDER_*.
  * 0, or -1 with err (G-buffer, the texel unit, lists overflowing, memory).
  */
-int np_hatch_render(const np_scene *sc, const np_hatch_cfg *cfg, unsigned coverage, double tile_pixels,
+int np_hatch_render(const np_scene *sc, const np_unit_cfg *cfg, unsigned coverage, double tile_pixels,
                     unsigned flags, np_hatch_frame *out, char *err, size_t errlen);
 void np_hatch_frame_free(np_hatch_frame *f);
+
+/* The hatching unit ("hatch", with np_unit.strokes), or NULL. */
+const np_unit *np_hatch_unit(void);
 
 #endif /* NP_HATCH_RENDER_H */

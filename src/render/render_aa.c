@@ -13,9 +13,41 @@ static uint8_t luma_of(const uint8_t *rgb)
     return (uint8_t)((77u * rgb[0] + 150u * rgb[1] + 29u * rgb[2] + 128u) >> 8);
 }
 
-void np_aa_cfg_from_scene(const np_scene *sc, unsigned m, double z_near, double z_far, np_aacount_cfg *c)
+const np_unit *np_aa_unit(void)
 {
-    np_aacount_cfg_scene(&sc->aa, m, z_far - z_near, c);
+    for (size_t i = 0; np_unit_at(i); i++) {
+        const np_unit *u = np_unit_at(i);
+        if (u->samples && u->samples->count)
+            return u;
+    }
+    return NULL;
+}
+
+unsigned np_aa_key(const np_unit_cfg *c, const char *name)
+{
+    const np_unit *u = np_aa_unit();
+    const np_unit_key *k = u ? np_unit_key_find(u, name) : NULL;
+    return k ? np_unit_key_get(k, c->bytes) : 0u;
+}
+
+void np_aa_key_set(np_unit_cfg *c, const char *name, unsigned v)
+{
+    const np_unit *u = np_aa_unit();
+    const np_unit_key *k = u ? np_unit_key_find(u, name) : NULL;
+    if (k)
+        np_unit_key_put(k, c->bytes, v);
+}
+
+void np_aa_cfg_from_scene(const np_scene *sc, unsigned m, double z_near, double z_far, np_unit_cfg *c)
+{
+    const np_unit *u = np_aa_unit();
+    np_unit_scene us;
+    memset(c, 0, sizeof *c);
+    if (!u)
+        return;
+    np_scene_for_units(sc, &us);
+    us.aa = &sc->aa; /* the section as the scene holds it, present or not (the tests set its constants) */
+    u->samples->cfg_scene(c->bytes, &us, m, z_far - z_near);
 }
 
 void np_aa_frame_free(np_aa_frame *f)
@@ -35,7 +67,12 @@ int np_aa_frame_build(const np_scene *sc, unsigned m, const np_render_unit_cfg *
 {
     memset(f, 0, sizeof *f);
     f->sc = sc;
+    f->unit = np_aa_unit();
     f->tex = tex;
+    if (!f->unit) {
+        snprintf(err, errlen, "no unit of the registry counts samples (np_unit.samples->count)");
+        return -1;
+    }
     f->gt = gt;
     if (np_gbuf_build(sc, m, &f->g, err, errlen))
         return -1;
@@ -80,7 +117,7 @@ void np_aa_result_free(np_aa_result *r)
 }
 
 /* The window of pixel (x, y): its n G-buffer samples and the five lumas, border-clamped. */
-void np_aa_window(const np_aa_frame *f, unsigned x, unsigned y, np_aacount_win *w)
+void np_aa_window(const np_aa_frame *f, unsigned x, unsigned y, np_unit_window *w)
 {
     const np_gbuf *g = &f->g;
     const size_t p = (size_t)y * g->w + x;
@@ -98,19 +135,26 @@ void np_aa_window(const np_aa_frame *f, unsigned x, unsigned y, np_aacount_win *
     w->luma[4] = f->luma[(size_t)yd * g->w + x];
 }
 
-int np_aa_run(const np_aa_frame *f, const np_aacount_cfg *c, const np_aacount_regs *regs, int shade,
-              np_aa_result *r)
+/* np_unit_samples.count_pipe's window source: window i in raster order. */
+static void window_at(const void *ctx, size_t i, np_unit_window *w)
+{
+    const np_aa_frame *f = ctx;
+    np_aa_window(f, (unsigned)(i % f->g.w), (unsigned)(i / f->g.w), w);
+}
+
+int np_aa_run(const np_aa_frame *f, const np_unit_cfg *c, const np_unit_cfg *regs, int shade, np_aa_result *r)
 {
     const np_gbuf *g = &f->g;
+    const np_unit_samples *u = f->unit->samples;
     const size_t npx = (size_t)g->w * g->h;
     memset(r, 0, sizeof *r);
     r->cfg = *c;
-    r->cfg.m = (uint8_t)g->m;
-    np_aacount_regs rg;
+    u->set_m(r->cfg.bytes, g->m);
+    np_unit_cfg rg;
     if (regs)
         rg = *regs;
     else
-        np_aacount_regs_compute(&r->cfg, &rg);
+        u->regs(r->cfg.bytes, rg.bytes);
     r->s = malloc(npx);
     r->sd = malloc(npx);
     r->sn = malloc(npx);
@@ -118,7 +162,6 @@ int np_aa_run(const np_aa_frame *f, const np_aacount_cfg *c, const np_aacount_re
     r->img = malloc(npx * 3);
     uint16_t *masks = malloc(npx * sizeof *masks);
     uint8_t *rgb = shade ? malloc(npx * g->n * 3) : NULL;
-    np_aacount_sig *sig = NULL;
     if (!r->s || !r->sd || !r->sn || !r->ss || !r->img || !masks || (shade && !rgb)) {
         free(masks);
         free(rgb);
@@ -128,58 +171,30 @@ int np_aa_run(const np_aa_frame *f, const np_aacount_cfg *c, const np_aacount_re
     /* 3. the unit, pixel by pixel in raster order */
     for (unsigned y = 0; y < g->h; y++)
         for (unsigned x = 0; x < g->w; x++) {
-            np_aacount_win w;
-            np_aacount_out o;
+            np_unit_window w;
+            np_unit_count o;
             np_aa_window(f, x, y, &w);
-            np_aacount_eval_regs(&r->cfg, &rg, &w, &o);
+            u->count(r->cfg.bytes, rg.bytes, &w, &o);
             size_t p = (size_t)y * g->w + x;
             r->s[p] = o.s;
             r->sd[p] = o.sd;
             r->sn[p] = o.sn;
             r->ss[p] = o.ss;
         }
-    /* The parallel cycle model over the same windows (when the registers are the keys'): its cycles, its s checked. */
-    if (!regs) {
-        np_pipe pipe;
-        sig = malloc(sizeof *sig);
-        if (sig && np_aacount_pipe_init(&pipe, &r->cfg) == 0) {
-            size_t in = 0, out = 0;
-            while (out < npx) {
-                np_pipe_port port;
-                memset(&port, 0, sizeof port);
-                if (in < npx) {
-                    np_aacount_win w;
-                    np_aa_window(f, (unsigned)(in % g->w), (unsigned)(in / g->w), &w);
-                    np_aacount_sig_in(sig, &w);
-                    port.in_valid = 1;
-                    port.in_sig = sig;
-                }
-                port.out_ready = 1;
-                np_pipe_eval(&pipe, &port);
-                if (port.out_valid) {
-                    const np_aacount_sig *o = port.out_sig;
-                    r->pipe_mismatch |= o->s != r->s[out];
-                    out++;
-                }
-                if (port.in_valid && port.in_ready)
-                    in++;
-                np_pipe_clock(&pipe, &port);
-            }
-            r->unit_cycles = pipe.stats.cycles;
-            np_pipe_free(&pipe);
-        }
-        free(sig);
-    }
-    r->unit_cycles_serial = (uint64_t)npx * g->n + np_aacount_serial_latency(&r->cfg);
-    if (r->cfg.tile) {
-        np_aacount_tile_max(r->s, g->w, g->h);
-        np_aacount_tile_max(r->sd, g->w, g->h);
-        np_aacount_tile_max(r->sn, g->w, g->h);
-        np_aacount_tile_max(r->ss, g->w, g->h);
-    }
-    const uint16_t first = np_aacount_mask(g->m, 1);
+    /*
+     * The parallel cycle model over the same windows (when the registers are
+     * the keys'): its cycles, its s checked (no memory: no cycles, as before).
+     */
+    if (!regs)
+        (void)u->count_pipe(r->cfg.bytes, window_at, f, npx, r->s, &r->unit_cycles, &r->pipe_mismatch);
+    r->unit_cycles_serial = (uint64_t)npx * g->n + u->serial_latency(r->cfg.bytes);
+    u->post(r->cfg.bytes, r->s, g->w, g->h);
+    u->post(r->cfg.bytes, r->sd, g->w, g->h);
+    u->post(r->cfg.bytes, r->sn, g->w, g->h);
+    u->post(r->cfg.bytes, r->ss, g->w, g->h);
+    const uint16_t first = u->mask(g->m, 1);
     for (size_t p = 0; p < npx; p++) {
-        masks[p] = np_aacount_mask(g->m, r->s[p]);
+        masks[p] = u->mask(g->m, r->s[p]);
         if (f->covered[p]) {
             r->covered_pixels++;
             r->samples += r->s[p];
@@ -246,14 +261,14 @@ int np_aa_colour_oracle(const np_aa_frame *f, double budget_spp, double *mse_gt,
             continue;
         cov++;
         for (unsigned s = 1; s <= n; s++) {
-            const uint16_t mk = np_aacount_mask(f->g.m, s);
+            const uint16_t mk = f->unit->samples->mask(f->g.m, s);
             double eg = 0, eo = 0;
             for (unsigned ch = 0; ch < 3; ch++) {
                 uint32_t sum = 0;
                 for (unsigned j = 0; j < n; j++)
                     if (((unsigned)mk >> j) & 1u)
                         sum += f->rgb_full[3 * (p * n + j) + ch];
-                const double v = (double)np_aacount_resolve(sum, s);
+                const double v = (double)f->unit->samples->resolve(sum, s);
                 const double dg = (v - f->gt[3 * p + ch]) / 255.0, dfull = (v - (double)f->img_full[3 * p + ch]) / 255.0;
                 eg += dg * dg;
                 eo += dfull * dfull;

@@ -47,21 +47,51 @@ np_hatch_lod np_hatch_lod_of(double L)
     return d;
 }
 
-int np_hatch_render_cfg(const np_scene_hatch *h, const char *more, np_hatch_cfg *cfg, char *err, size_t errlen)
+const np_unit *np_hatch_unit(void)
 {
     const np_unit *u = np_unit_find("hatch");
+    return u && u->strokes ? u : NULL;
+}
+
+/* The text of key name of the hatching unit u in cfg ("" when it has none). */
+static void key_text(const np_unit *u, const void *cfg, const char *name, char *buf, size_t len)
+{
+    const np_unit_key *k = np_unit_key_find(u, name);
+    if (k)
+        np_unit_key_text(k, cfg, buf, len);
+    else
+        snprintf(buf, len, "%s", "");
+}
+
+int np_hatch_render_cfg(const np_scene_hatch *h, const char *more, np_unit_cfg *cfg, char *err, size_t errlen)
+{
+    const np_unit *u = np_hatch_unit();
+    const np_unit_key *ks = u ? np_unit_key_find(u, "set") : NULL;
     char spec[512];
-    if (!u) {
+    if (!u || !ks || !ks->word) {
         snprintf(err, errlen, "the unit hatch is not in the registry");
         return -1;
     }
-    snprintf(spec, sizeof spec, "set=%s,layers=%u,fade=%s,lanes=%u%s%s", np_hatch_sets[h->set].name, h->layers,
+    const char *set = ks->word(h->set);
+    snprintf(spec, sizeof spec, "set=%s,layers=%u,fade=%s,lanes=%u%s%s", set ? set : "?", h->layers,
              h->fade ? "onebyone" : "smooth", h->lanes, more && *more ? "," : "", more ? more : "");
-    np_unit_cfg block; /* np_unit_configure writes a whole configuration block */
-    if (np_unit_configure(u, block.bytes, spec, err, errlen) != 0)
-        return -1;
-    memcpy(cfg, block.bytes, sizeof *cfg);
-    return 0;
+    return np_unit_configure(u, cfg->bytes, spec, err, errlen) != 0 ? -1 : 0;
+}
+
+void np_hatch_render_cfg_text(const np_unit_cfg *cfg, char *s, size_t n)
+{
+    static const char *const names[] = { "set", "layers", "fade", "guard", "lanes" };
+    const np_unit *u = np_hatch_unit();
+    size_t at = 0;
+    s[0] = '\0';
+    for (size_t i = 0; u && i < sizeof names / sizeof names[0] && at < n; i++) {
+        char v[64];
+        key_text(u, cfg->bytes, names[i], v, sizeof v);
+        int w = snprintf(s + at, n - at, "%s%s=%s", i ? "," : "", names[i], v);
+        if (w < 0)
+            break;
+        at += (size_t)w;
+    }
 }
 
 void np_hatch_frame_free(np_hatch_frame *f)
@@ -115,41 +145,47 @@ static int lit_texture(const np_gbuf *g, const np_scene *sc, uint8_t *rgb, char 
     return 0;
 }
 
-static unsigned cover_len(const np_hatch_cover *cv, unsigned l, uint64_t xu, uint64_t xv, unsigned bits)
+/* The unit's input words at pixel p of frame f with seed-space point (xu, xv): xu, xv, tone, pm, om. */
+static void inputs(const np_hatch_frame *f, size_t p, uint64_t xu, uint64_t xv, uint64_t in[NP_UNIT_MAX_FIELDS])
 {
-    unsigned tu = (unsigned)((xu >> (32u - bits)) & (cv->t - 1u)), tv = (unsigned)((xv >> (32u - bits)) & (cv->t - 1u));
-    return cv->len[((size_t)l * cv->t + tv) * cv->t + tu];
+    const np_hatch_lod *lod = &f->lod[f->poly[p]];
+    memset(in, 0, NP_UNIT_MAX_FIELDS * sizeof *in);
+    in[0] = xu;
+    in[1] = xv;
+    in[2] = f->tone[p];
+    in[3] = lod->pm;
+    in[4] = lod->om;
 }
 
 /* The unrolled cycle model fed every covered pixel back to back: its cycles; 1 in *bad when an output differs. */
-static int run_pipe(const np_hatch_cfg *cfg, const np_hatch_frame *f, const uint64_t *xs, const size_t *pix,
+static int run_pipe(const np_unit *u, const void *cfg, const np_hatch_frame *f, const uint64_t *xs, const size_t *pix,
                     size_t n, uint64_t *cycles, int *bad)
 {
     np_pipe pipe;
-    np_hatch_sig in;
-    if (np_hatch_pipe_init(&pipe, cfg) != 0)
+    if (u->pipe_init(&pipe, cfg) != 0)
         return -1;
+    void *in = calloc(1, pipe.sig_size);
+    if (!in) {
+        np_pipe_free(&pipe);
+        return -1;
+    }
     size_t a = 0, d = 0;
     while (d < n) {
         np_pipe_port port;
         memset(&port, 0, sizeof port);
         if (a < n) {
-            size_t p = pix[a];
-            const np_hatch_lod *lod = &f->lod[f->poly[p]];
-            memset(&in, 0, sizeof in);
-            in.xu = xs[2 * a];
-            in.xv = xs[2 * a + 1];
-            in.tone = f->tone[p];
-            in.pm = lod->pm;
-            in.om = lod->om;
+            uint64_t w[NP_UNIT_MAX_FIELDS];
+            inputs(f, pix[a], xs[2 * a], xs[2 * a + 1], w);
+            u->sig_set_in(in, w);
             port.in_valid = 1;
-            port.in_sig = &in;
+            port.in_sig = in;
         }
         port.out_ready = 1;
         np_pipe_eval(&pipe, &port);
         if (port.out_valid) {
-            const np_hatch_sig *o = port.out_sig;
-            *bad |= o->out != f->rgb[3 * pix[d]];
+            uint64_t o[NP_UNIT_MAX_FIELDS];
+            u->sig_get_out(cfg, port.out_sig, o);
+            *bad |= o[0] != f->rgb[3 * pix[d]];
             d++;
         }
         if (port.in_valid && port.in_ready)
@@ -158,25 +194,34 @@ static int run_pipe(const np_hatch_cfg *cfg, const np_hatch_frame *f, const uint
     }
     *cycles = pipe.stats.cycles;
     np_pipe_free(&pipe);
+    free(in);
     return 0;
 }
 
-int np_hatch_render(const np_scene *sc, const np_hatch_cfg *cfg, unsigned coverage, double tile_pixels,
+int np_hatch_render(const np_scene *sc, const np_unit_cfg *cfgb, unsigned coverage, double tile_pixels,
                     unsigned flags, np_hatch_frame *f, char *err, size_t errlen)
 {
+    const np_unit *u = np_hatch_unit();
+    const void *cfg = cfgb->bytes;
     np_gbuf g;
-    np_hatch_cover cv;
+    void *cv = NULL;
     uint8_t *lit = NULL;
     uint64_t *xs = NULL;
     size_t *pix = NULL;
-    int rc = -1, have_cv = 0;
+    int rc = -1;
     memset(f, 0, sizeof *f);
-    memset(&cv, 0, sizeof cv);
-    const char *why = np_hatch_cfg_check(cfg);
+    if (!u) {
+        snprintf(err, errlen, "the unit hatch is not in the registry");
+        return -1;
+    }
+    const np_unit_strokes *st = u->strokes;
+    const char *why = u->cfg_check ? u->cfg_check(cfg) : NULL;
     if (why) {
         snprintf(err, errlen, "hatch: %s", why);
         return -1;
     }
+    np_unit_stroke_info info;
+    st->info(cfg, &info);
     if (np_gbuf_build(sc, 1, &g, err, errlen))
         return -1;
     size_t npx = (size_t)g.w * g.h;
@@ -198,17 +243,8 @@ int np_hatch_render(const np_scene *sc, const np_hatch_cfg *cfg, unsigned covera
     }
     if (lit_texture(&g, sc, lit, err, errlen))
         goto out;
-    if (coverage) {
-        if (np_hatch_cover_build(cfg, &cv) != 0) {
-            snprintf(err, errlen, "hatch: a coverage list holds more than %d seeds (strokes too large)",
-                     NP_HATCH_COVER_MAX);
-            goto out;
-        }
-        have_cv = 1;
-    }
-    unsigned bits = 0;
-    while (have_cv && (1u << bits) < cv.t)
-        bits++;
+    if (coverage && !(cv = st->cover_new(cfg, err, errlen)))
+        goto out;
     for (uint32_t i = 0; i < sc->n_prims; i++)
         f->lod[i].level = INT32_MIN;
     f->level_min = INT32_MAX;
@@ -222,7 +258,7 @@ int np_hatch_render(const np_scene *sc, const np_hatch_cfg *cfg, unsigned covera
     uint8_t bg[3];
     for (int c = 0; c < 3; c++)
         bg[c] = (uint8_t)sc->background[c];
-    unsigned per_point = cfg->layers * np_hatch_n(cfg) / cfg->lanes;
+    f->brute_cycles = info.brute_cycles;
     uint64_t list_sum = 0;
     size_t n = 0;
     clock_t t0 = clock();
@@ -244,29 +280,31 @@ int np_hatch_render(const np_scene *sc, const np_hatch_cfg *cfg, unsigned covera
             np_u128 dx = (np_u128)(np_s128)sp->r.hw.ds[sp->uv[a]] << 64;
             np_u128 xu = x0 + (np_u128)g.k[p] * dx;
             f->uv[a][p] = xu;
-            x[a] = np_hatch_xs(xu, d->level);
+            x[a] = st->xs(xu, d->level);
         }
-        uint32_t out;
-        if (have_cv) {
-            unsigned cyc = 0;
-            out = np_hatch_eval_cover(cfg, &cv, x[0], x[1], tone, d->pm, d->om, &cyc);
+        f->tone[p] = (uint8_t)tone;
+        uint64_t in[NP_UNIT_MAX_FIELDS], out[NP_UNIT_MAX_FIELDS];
+        inputs(f, p, x[0], x[1], in);
+        if (cv) {
+            unsigned cyc = 0, len[NP_UNIT_STROKE_LAYERS_MAX];
+            out[0] = st->eval_cover(cfg, cv, in, &cyc, len);
             f->iter_cycles += cyc;
-            for (unsigned l = 0; l < cfg->layers; l++) {
-                unsigned len = cover_len(&cv, l, x[0], x[1], bits);
-                list_sum += len;
-                f->list_max = len > f->list_max ? len : f->list_max;
+            for (unsigned l = 0; l < info.layers; l++) {
+                list_sum += len[l];
+                f->list_max = len[l] > f->list_max ? len[l] : f->list_max;
             }
         } else {
-            out = np_hatch_eval(cfg, x[0], x[1], tone, d->pm, d->om, NULL);
-            f->iter_cycles += per_point;
+            u->eval(cfg, in, out);
+            f->iter_cycles += info.brute_cycles;
         }
         if (flags & NP_HATCH_RENDER_REF) {
-            double r = np_ref_hatch(cfg, x[0], x[1], tone, d->pm, d->om, NULL), e = fabs((double)out - r);
+            double r, e;
+            u->ref(cfg, in, &r);
+            e = fabs((double)out[0] - r);
             f->ref_max = e > f->ref_max ? e : f->ref_max;
             f->ref_over += e > 1.0;
         }
-        f->rgb[3 * p] = f->rgb[3 * p + 1] = f->rgb[3 * p + 2] = (uint8_t)out;
-        f->tone[p] = (uint8_t)tone;
+        f->rgb[3 * p] = f->rgb[3 * p + 1] = f->rgb[3 * p + 2] = (uint8_t)out[0];
         f->covered[p] = 1;
         f->level_min = d->level < f->level_min ? d->level : f->level_min;
         f->level_max = d->level > f->level_max ? d->level : f->level_max;
@@ -276,23 +314,27 @@ int np_hatch_render(const np_scene *sc, const np_hatch_cfg *cfg, unsigned covera
     }
     f->seconds = (double)(clock() - t0) / CLOCKS_PER_SEC;
     f->samples = n;
-    if (have_cv && n)
-        f->list_mean = (double)list_sum / ((double)n * cfg->layers);
+    if (cv && n)
+        f->list_mean = (double)list_sum / ((double)n * info.layers);
     /* The cycle model: brute force's, or the coverage unit's slots with the host's lists. */
-    np_hatch_cfg pc = *cfg;
-    if (have_cv) {
-        pc.cover_slots = np_hatch_cover_slots(cfg, &cv);
-        pc.cover = &cv;
+    np_unit_cfg pc = *cfgb;
+    np_unit_timing tm;
+    if (cv)
+        st->cover_cfg(pc.bytes, cv);
+    if (!u->timing || u->timing(pc.bytes, &tm, err, errlen)) {
+        if (!u->timing)
+            snprintf(err, errlen, "hatch: the unit has no timing (its pipe's latency)");
+        goto out;
     }
-    f->pipe_depth = np_hatch_depth(&pc);
-    if ((flags & NP_HATCH_RENDER_PIPE) && run_pipe(&pc, f, xs, pix, n, &f->pipe_cycles, &f->pipe_mismatch)) {
+    f->pipe_depth = tm.latency;
+    if ((flags & NP_HATCH_RENDER_PIPE) && run_pipe(u, pc.bytes, f, xs, pix, n, &f->pipe_cycles, &f->pipe_mismatch)) {
         snprintf(err, errlen, "out of memory");
         goto out;
     }
     rc = 0;
 out:
-    if (have_cv)
-        np_hatch_cover_free(&cv);
+    if (cv)
+        st->cover_free(cv);
     free(lit);
     free(xs);
     free(pix);

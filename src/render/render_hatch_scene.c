@@ -19,18 +19,19 @@
 static const char *const CMD = "render";
 
 /* The unit's configuration as text (the hash list's configuration column). */
-static void cfg_text(const np_hatch_cfg *c, unsigned coverage, double tile, char *s, size_t n)
+static void cfg_text(const np_unit_cfg *c, unsigned coverage, double tile, char *s, size_t n)
 {
-    snprintf(s, n, "set=%s,layers=%u,fade=%s,guard=%u,lanes=%u,mode=%s,tile_pixels=%g", np_hatch_sets[c->set].name,
-             c->layers, c->fade ? "onebyone" : "smooth", c->guard, c->lanes, coverage ? "coverage" : "brute", tile);
+    char k[192];
+    np_hatch_render_cfg_text(c, k, sizeof k);
+    snprintf(s, n, "%s,mode=%s,tile_pixels=%g", k, coverage ? "coverage" : "brute", tile);
 }
 
-static void print_frame(const np_hatch_cfg *c, unsigned coverage, const np_hatch_frame *f)
+static void print_frame(const np_scene_hatch *h, unsigned coverage, const np_hatch_frame *f)
 {
-    unsigned per = c->layers * np_hatch_n(c) / c->lanes;
+    unsigned per = f->brute_cycles;
     printf("  hatch  %llu pixels, levels %d..%d; max %.4f LSB from the float reference (%llu over 1 LSB)\n",
            (unsigned long long)f->samples, f->level_min, f->level_max, f->ref_max, (unsigned long long)f->ref_over);
-    printf("         iterative unit (P = %u): %llu cycles, %.3f a pixel (%s; brute force %u a pixel)\n", c->lanes,
+    printf("         iterative unit (P = %u): %llu cycles, %.3f a pixel (%s; brute force %u a pixel)\n", h->lanes,
            (unsigned long long)f->iter_cycles, f->samples ? (double)f->iter_cycles / (double)f->samples : 0.0,
            coverage ? "coverage lists" : "brute force", per);
     if (coverage)
@@ -60,7 +61,7 @@ static int table1(const np_scene *sc, const np_scene_hatch *h)
         np_scene_hatch q = *h;
         q.set = si ? 3u : 1u;
         q.lanes = 1;
-        np_hatch_cfg c;
+        np_unit_cfg c;
         np_hatch_frame fb, fc;
         if (np_hatch_render_cfg(&q, NULL, &c, err, sizeof err) ||
             np_hatch_render(sc, &c, 0, h->tile_pixels, 0, &fb, err, sizeof err)) {
@@ -111,10 +112,11 @@ static double uv_diff(np_u128 a, np_u128 b) { return ldexp((double)(np_s128)(a -
  * the pixels' UV against the centre, in pixels (a pixel's UV size: the
  * square root of the area its UV steps right and down span).
  */
-static void rendered_centroid(const np_hatch_cfg *c, const np_hatch_frame *fr, uint32_t poly, const np_hatch_lod *d,
+static void rendered_centroid(const np_unit_cfg *c, const np_hatch_frame *fr, uint32_t poly, const np_hatch_lod *d,
                               np_u128 cu, np_u128 cv, unsigned idx, zoom_stats *st)
 {
     enum { R = 12 };
+    const np_unit_strokes *hs = np_hatch_unit()->strokes;
     size_t best = 0;
     double bd = -1;
     for (size_t p = 0; p < (size_t)fr->w * fr->h; p++)
@@ -141,16 +143,10 @@ static void rendered_centroid(const np_hatch_cfg *c, const np_hatch_frame *fr, u
             size_t q = (size_t)y * fr->w + x;
             if (fr->poly[q] != poly)
                 return; /* not wholly on the face */
-            np_hatch_sig sg;
-            memset(&sg, 0, sizeof sg);
-            sg.xu = np_hatch_xs(fr->uv[0][q], d->level);
-            sg.xv = np_hatch_xs(fr->uv[1][q], d->level);
-            sg.tone = fr->tone[q];
-            sg.pm = d->pm;
-            sg.om = d->om;
-            np_hatch_setup(c, &sg);
-            np_hatch_seed_sig z;
-            np_hatch_seed(c, &sg, 0, idx, &z);
+            const uint64_t in[5] = { hs->xs(fr->uv[0][q], d->level), hs->xs(fr->uv[1][q], d->level), fr->tone[q], d->pm,
+                                     d->om };
+            np_unit_stroke z;
+            hs->stroke(c->bytes, in, 0, idx, &z);
             double w = (double)z.alpha;
             sw += w;
             su += w * uv_diff(fr->uv[0][q], cu);
@@ -178,13 +174,14 @@ static void rendered_centroid(const np_hatch_cfg *c, const np_hatch_frame *fr, u
  * over its pixels against its UV centre; a centroid more than 1 px off, or a
  * stroke with no ink in its window, is counted.
  */
-static int zoom(const np_scene *sc0, const np_hatch_cfg *c, unsigned coverage, double tile, unsigned frames,
+static int zoom(const np_scene *sc0, const np_unit_cfg *c, unsigned coverage, double tile, unsigned frames,
                 double levels, const char *out, char *err, size_t errlen)
 {
     np_scene sc = *sc0;
-    unsigned n = np_hatch_n(c);
-    uint64_t bu, bv;
-    np_hatch_layer_b(c, 0, &bu, &bv);
+    const np_unit_strokes *st = np_hatch_unit()->strokes;
+    np_unit_stroke_info info;
+    st->info(c->bytes, &info);
+    unsigned n = info.seeds;
     np_u128 cu[64], cvv[64];
     uint32_t prev[64];
     int level0 = 0;
@@ -216,11 +213,11 @@ static int zoom(const np_scene *sc0, const np_hatch_cfg *c, unsigned coverage, d
             poly0 = fr.poly[pc];
             level0 = fr.lod[poly0].level;
             /* The seed tile at level0 under the centre pixel: its N stroke centres in UV (Q32.96, rounded down). */
-            np_u128 D = ((np_u128)1 << n) - 1u;
             unsigned sh = (unsigned)(64 + level0 + 32); /* tile index bits of x_uv at this level */
             for (unsigned i = 0; i < n; i++) {
                 np_u128 tu = fr.uv[0][pc] >> sh << sh, tv = fr.uv[1][pc] >> sh << sh;
-                np_u128 su = ((np_u128)np_hatch_rotl(bu, i, n) << 96) / D, sv = ((np_u128)np_hatch_rotl(bv, i, n) << 96) / D;
+                np_u128 su, sv;
+                st->centre(c->bytes, 0, i, &su, &sv);
                 cu[i] = tu + (level0 >= 0 ? su << level0 : su >> -level0);
                 cvv[i] = tv + (level0 >= 0 ? sv << level0 : sv >> -level0);
                 prev[i] = 0;
@@ -235,16 +232,9 @@ static int zoom(const np_scene *sc0, const np_hatch_cfg *c, unsigned coverage, d
         const np_hatch_lod *d = &fr.lod[poly0];
         lev_lo = (unsigned)(d->level + 64);
         for (unsigned i = 0; i < n; i++) {
-            np_hatch_sig sg;
-            memset(&sg, 0, sizeof sg);
-            sg.xu = np_hatch_xs(cu[i], d->level);
-            sg.xv = np_hatch_xs(cvv[i], d->level);
-            sg.tone = 255;
-            sg.pm = d->pm;
-            sg.om = d->om;
-            np_hatch_setup(c, &sg);
-            np_hatch_seed_sig z;
-            np_hatch_seed(c, &sg, 0, (i + (unsigned)(level0 - d->level)) % n, &z);
+            const uint64_t in[5] = { st->xs(cu[i], d->level), st->xs(cvv[i], d->level), 255, d->pm, d->om };
+            np_unit_stroke z;
+            st->stroke(c->bytes, in, 0, (i + (unsigned)(level0 - d->level)) % n, &z);
             moved += z.ru < -2 || z.ru > 2 || z.rv < -2 || z.rv > 2;
             drops += z.am < prev[i];
             prev[i] = z.am;
@@ -270,7 +260,7 @@ int np_render_hatch_scene(const np_scene *sc, const char *out, int ppm, int cycl
                           double levels, hash_list *hashes)
 {
     char err[1024], cfgs[256], hex[65], path[4096];
-    np_hatch_cfg c;
+    np_unit_cfg c;
     np_hatch_frame f;
     const np_scene_hatch *h = &sc->hatch;
     if (np_hatch_render_cfg(h, NULL, &c, err, sizeof err) ||
@@ -282,7 +272,7 @@ int np_render_hatch_scene(const np_scene *sc, const char *out, int ppm, int cycl
     int rc = NP_EXIT_OK;
     cfg_text(&c, h->coverage, h->tile_pixels, cfgs, sizeof cfgs);
     printf("  hatch  config %s\n", cfgs);
-    print_frame(&c, h->coverage, &f);
+    print_frame(h, h->coverage, &f);
     if (f.pipe_mismatch) {
         np_err(CMD, "%s: hatch: the cycle-accurate model differs from the image", sc->name);
         rc = NP_EXIT_FAIL;

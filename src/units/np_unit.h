@@ -20,6 +20,7 @@
 #include <stdint.h>
 
 #include "np_datapath.h"
+#include "np_fixed.h"
 #include "np_pipe.h"
 
 #ifdef __cplusplus
@@ -92,12 +93,100 @@ typedef struct np_unit_span {
  * samples to shade, so that the image it resolves is the unit's, bit for bit
  * (src/render/np_gbuf.h takes the first unit of the registry that has one).
  */
+struct np_unit_scene;
+
+/*
+ * A pixel's window as a sample-count unit reads it (np_unit_samples.count):
+ * the pixel's n = m^2 G-buffer samples and the lumas of the image S (each
+ * pixel's sample of index 0), in the G-buffer's formats.
+ */
+enum { NP_UNIT_WIN_SAMPLES = 16, NP_UNIT_WIN_LUMAS = 5 };
+typedef struct np_unit_window {
+    uint32_t d[NP_UNIT_WIN_SAMPLES];       /* u24 depth code; uncovered: 2^24 - 1 */
+    int8_t nrm[NP_UNIT_WIN_SAMPLES][3];    /* s8 x 3 normal; uncovered: (0, 0, 0) */
+    uint8_t luma[NP_UNIT_WIN_LUMAS];       /* u8 Y of S: the pixel, left, right, up, down (clamped to the image) */
+} np_unit_window;
+
+/* A sample-count unit's answer for one window: s, and each metric's own count (a metric not built: as the unit leaves it). */
+typedef struct np_unit_count {
+    uint8_t s, sd, sn, ss;
+} np_unit_count;
+
 typedef struct np_unit_samples {
     /* The first s samples of an m x m pixel (1 <= m <= 4) as a mask: bit b m + a is sample (a, b); s >= m^2 gives all. */
     uint16_t (*mask)(unsigned m, unsigned s);
     /* One 8-bit channel of s shaded samples (1 <= s <= 16) that sum to sum (<= 255 s), as the unit resolves it. */
     uint8_t (*resolve)(uint32_t sum, unsigned s);
+    /*
+     * Optional (count NULL: the unit does not choose a count per pixel): the
+     * adaptive count, for the adaptive supersampling renderer
+     * (src/render/np_render_aa.h takes the first unit of the registry that
+     * has one). cfg is a configuration block (np_unit_cfg), regs a register
+     * block the unit computes from it, in np_unit_cfg storage too; both
+     * opaque to the renderer.
+     */
+    /* cfg for scene sc's section of the unit (sc->aa, not NULL) at m (1..4), R = depth_range (z_far - z_near). */
+    void (*cfg_scene)(void *cfg, const struct np_unit_scene *sc, unsigned m, double depth_range);
+    /* Set cfg's m (1..4), no other key changing. */
+    void (*set_m)(void *cfg, unsigned m);
+    /* The host-computed registers of cfg, into regs (np_unit_cfg storage). */
+    void (*regs)(const void *cfg, void *regs);
+    /* The bit-exact count of window w with registers regs. */
+    void (*count)(const void *cfg, const void *regs, const np_unit_window *w, np_unit_count *o);
+    /*
+     * The cycle-accurate model (the parallel variant) fed windows 0 .. n-1
+     * (window(ctx, i, w) writes window i) back to back, output ready every
+     * clock: its cycles, and *mismatch |= 1 when a count differs from
+     * want[i]. 0, or -1 (no memory; nothing written).
+     */
+    int (*count_pipe)(const void *cfg, void (*window)(const void *ctx, size_t i, np_unit_window *w), const void *ctx,
+                      size_t n, const uint8_t *want, uint64_t *cycles, int *mismatch);
+    /* The serial variant's latency, clocks (its schedule: n beats a window + this). */
+    unsigned (*serial_latency)(const void *cfg);
+    /* After the count, over a w x h image of counts s: what cfg does there (a tile maximum), or nothing. */
+    void (*post)(const void *cfg, uint8_t *s, unsigned w, unsigned h);
 } np_unit_samples;
+
+/*
+ * A hatching unit's interface for the hatching renderer (np_unit.strokes;
+ * src/render/np_hatch_render.h): a unit whose input fields are xu, xv (seed
+ * space), tone, pm, om and whose one output is the colour, with the renderer's
+ * coverage lists and per-stroke probe. cfg is a configuration block
+ * (np_unit_cfg); a coverage list set is an opaque object of the unit's.
+ */
+enum { NP_UNIT_STROKE_LAYERS_MAX = 8 };
+typedef struct np_unit_stroke_info {
+    unsigned layers;       /* layers drawn, <= NP_UNIT_STROKE_LAYERS_MAX */
+    unsigned seeds;        /* N: stroke seeds a tile per layer */
+    unsigned brute_cycles; /* an iterative unit's cycles a point by brute force: layers N / lanes */
+} np_unit_stroke_info;
+
+/* One stroke at a point: its alpha, its level ramp and its offset from the seed (the unit's formats). */
+typedef struct np_unit_stroke {
+    uint32_t alpha, am;
+    int64_t ru, rv;
+} np_unit_stroke;
+
+typedef struct np_unit_strokes {
+    /* The xu / xv input word of a UV coordinate x_uv (u128 Q32.96, mod 2^32 in UV) at level (-64..31). */
+    uint64_t (*xs)(np_u128 x_uv, int level);
+    void (*info)(const void *cfg, np_unit_stroke_info *i);
+    /* The host's coverage lists for cfg; NULL with a message in err (a list overflows, no memory). */
+    void *(*cover_new)(const void *cfg, char *err, size_t errlen);
+    void (*cover_free)(void *cover);
+    /* Make cfg the coverage unit that reads lists cover (its cycle model and timing); cover outlives cfg's use. */
+    void (*cover_cfg)(void *cfg, const void *cover);
+    /*
+     * The coverage unit's output word at input words in (xu, xv, tone, pm, om),
+     * the listed seeds only; *cycles: an iterative unit's cycles there; len[l]:
+     * the list length of each layer l < layers at the point.
+     */
+    uint64_t (*eval_cover)(const void *cfg, const void *cover, const uint64_t *in, unsigned *cycles, unsigned *len);
+    /* Stroke i of layer l at input words in (brute force's set-up, then that seed's stage). */
+    void (*stroke)(const void *cfg, const uint64_t *in, unsigned l, unsigned i, np_unit_stroke *z);
+    /* The exact centre of stroke i of layer l in its seed tile, rounded down: u128 Q32.96 per axis (< 2^96). */
+    void (*centre)(const void *cfg, unsigned l, unsigned i, np_u128 *su, np_u128 *sv);
+} np_unit_strokes;
 
 /* The engine's configuration inside a unit's configuration block cfg. */
 static inline const void *np_unit_span_cfg(const np_unit_span *s, const void *cfg)
@@ -344,6 +433,11 @@ typedef struct np_unit {
      * resolve, for the G-buffer renderer (np_unit_samples).
      */
     const np_unit_samples *samples;
+    /*
+     * Optional (NULL: not a hatching unit): what the hatching renderer needs
+     * besides eval, ref and the pipe (np_unit_strokes).
+     */
+    const np_unit_strokes *strokes;
 } np_unit;
 
 /*

@@ -9,6 +9,7 @@
  */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "np_aacount.h"
@@ -331,8 +332,103 @@ static int cfg_scene(void *cfg, const np_unit_scene *sc, char *err, size_t errle
     return 1;
 }
 
-/* The sample order (the paper's B_m) and the resolve, one definition for the G-buffer renderer too. */
-static const np_unit_samples samples = { np_aacount_mask, np_aacount_resolve };
+/* --- The adaptive count for the renderer (np_unit_samples) --- */
+
+_Static_assert((int)NP_UNIT_WIN_SAMPLES == (int)NP_AAC_N_MAX && (int)NP_UNIT_WIN_LUMAS == (int)NP_AAC_LUMAS,
+               "window shapes differ");
+_Static_assert(sizeof(np_aacount_regs) <= NP_UNIT_CFG_MAX, "register block too large");
+
+static void win_of(const np_unit_window *u, np_aacount_win *w)
+{
+    memcpy(w->d, u->d, sizeof w->d);
+    memcpy(w->nrm, u->nrm, sizeof w->nrm);
+    memcpy(w->luma, u->luma, sizeof w->luma);
+}
+
+static void aa_cfg_scene(void *cfg, const np_unit_scene *sc, unsigned m, double depth_range)
+{
+    np_aacount_cfg_scene(sc->aa, m, depth_range, &((aac_cfg *)cfg)->c);
+}
+
+static void aa_set_m(void *cfg, unsigned m) { ((aac_cfg *)cfg)->c.m = (uint8_t)m; }
+
+static void aa_regs(const void *cfg, void *regs) { np_aacount_regs_compute(&((const aac_cfg *)cfg)->c, regs); }
+
+static void aa_count(const void *cfg, const void *regs, const np_unit_window *uw, np_unit_count *o)
+{
+    np_aacount_win w;
+    np_aacount_out r;
+    win_of(uw, &w);
+    np_aacount_eval_regs(&((const aac_cfg *)cfg)->c, regs, &w, &r);
+    o->s = r.s;
+    o->sd = r.sd;
+    o->sn = r.sn;
+    o->ss = r.ss;
+}
+
+static int aa_count_pipe(const void *cfg, void (*window)(const void *ctx, size_t i, np_unit_window *w),
+                         const void *ctx, size_t n, const uint8_t *want, uint64_t *cycles, int *mismatch)
+{
+    np_pipe pipe;
+    np_aacount_sig *sig = malloc(sizeof *sig);
+    if (!sig || np_aacount_pipe_init(&pipe, &((const aac_cfg *)cfg)->c) != 0) {
+        free(sig);
+        return -1;
+    }
+    size_t in = 0, out = 0;
+    while (out < n) {
+        np_pipe_port port;
+        memset(&port, 0, sizeof port);
+        if (in < n) {
+            np_unit_window uw;
+            np_aacount_win w;
+            window(ctx, in, &uw);
+            win_of(&uw, &w);
+            np_aacount_sig_in(sig, &w);
+            port.in_valid = 1;
+            port.in_sig = sig;
+        }
+        port.out_ready = 1;
+        np_pipe_eval(&pipe, &port);
+        if (port.out_valid) {
+            const np_aacount_sig *o = port.out_sig;
+            *mismatch |= o->s != want[out];
+            out++;
+        }
+        if (port.in_valid && port.in_ready)
+            in++;
+        np_pipe_clock(&pipe, &port);
+    }
+    *cycles = pipe.stats.cycles;
+    np_pipe_free(&pipe);
+    free(sig);
+    return 0;
+}
+
+static unsigned aa_serial_latency(const void *cfg) { return np_aacount_serial_latency(&((const aac_cfg *)cfg)->c); }
+
+static void aa_post(const void *cfg, uint8_t *s, unsigned w, unsigned h)
+{
+    if (((const aac_cfg *)cfg)->c.tile)
+        np_aacount_tile_max(s, w, h);
+}
+
+/*
+ * The sample order (the paper's B_m) and the resolve, one definition for the
+ * G-buffer renderer too; the count with its registers, cycle model and tile
+ * maximum for the adaptive renderer (regs: an np_aacount_regs).
+ */
+static const np_unit_samples samples = {
+    .mask = np_aacount_mask,
+    .resolve = np_aacount_resolve,
+    .cfg_scene = aa_cfg_scene,
+    .set_m = aa_set_m,
+    .regs = aa_regs,
+    .count = aa_count,
+    .count_pipe = aa_count_pipe,
+    .serial_latency = aa_serial_latency,
+    .post = aa_post,
+};
 
 const np_unit np_unit_aacount = {
     .name = "aacount",

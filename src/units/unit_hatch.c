@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* The hatching unit (rtl_model/np_hatch.h, docs/hatch.md) in the unit registry. */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "np_hatch.h"
@@ -463,6 +464,109 @@ static int cfg_scene(void *cfg, const np_unit_scene *sc, char *err, size_t errle
     return 1;
 }
 
+/* --- The hatching renderer's interface (np_unit_strokes) --- */
+
+_Static_assert((int)NP_HATCH_LAYERS_MAX <= (int)NP_UNIT_STROKE_LAYERS_MAX, "more layers than the interface's lists");
+
+static void st_info(const void *cfgv, np_unit_stroke_info *i)
+{
+    const np_hatch_cfg *cfg = cfgv;
+    i->layers = cfg->layers;
+    i->seeds = np_hatch_n(cfg);
+    i->brute_cycles = cfg->layers * np_hatch_n(cfg) / cfg->lanes;
+}
+
+static void *st_cover_new(const void *cfg, char *err, size_t errlen)
+{
+    np_hatch_cover *cv = calloc(1, sizeof *cv);
+    if (!cv) {
+        snprintf(err, errlen, "out of memory");
+        return NULL;
+    }
+    if (np_hatch_cover_build(cfg, cv) != 0) {
+        snprintf(err, errlen, "hatch: a coverage list holds more than %d seeds (strokes too large)",
+                 NP_HATCH_COVER_MAX);
+        np_hatch_cover_free(cv);
+        free(cv);
+        return NULL;
+    }
+    return cv;
+}
+
+static void st_cover_free(void *cv)
+{
+    if (cv)
+        np_hatch_cover_free(cv);
+    free(cv);
+}
+
+static void st_cover_cfg(void *cfgv, const void *cv)
+{
+    np_hatch_cfg *cfg = cfgv;
+    cfg->cover_slots = np_hatch_cover_slots(cfg, cv);
+    cfg->cover = cv;
+}
+
+/* The list of layer l at seed-space point (xu, xv): its texel's (the top bits of each axis). */
+static unsigned cover_len(const np_hatch_cover *cv, unsigned l, uint64_t xu, uint64_t xv)
+{
+    unsigned bits = 0;
+    while ((1u << bits) < cv->t)
+        bits++;
+    unsigned tu = (unsigned)((xu >> (32u - bits)) & (cv->t - 1u)), tv = (unsigned)((xv >> (32u - bits)) & (cv->t - 1u));
+    return cv->len[((size_t)l * cv->t + tv) * cv->t + tu];
+}
+
+static uint64_t st_eval_cover(const void *cfgv, const void *cvv, const uint64_t *in, unsigned *cycles, unsigned *len)
+{
+    const np_hatch_cfg *cfg = cfgv;
+    const np_hatch_cover *cv = cvv;
+    uint32_t out = np_hatch_eval_cover(cfg, cv, in[0], in[1], (uint32_t)in[2], (uint32_t)in[3], (uint32_t)in[4], cycles);
+    for (unsigned l = 0; l < cfg->layers; l++)
+        len[l] = cover_len(cv, l, in[0], in[1]);
+    return out;
+}
+
+static void st_stroke(const void *cfg, const uint64_t *in, unsigned l, unsigned i, np_unit_stroke *z)
+{
+    np_hatch_sig sg;
+    np_hatch_seed_sig o;
+    memset(&sg, 0, sizeof sg);
+    sg.xu = in[0];
+    sg.xv = in[1];
+    sg.tone = (uint32_t)in[2];
+    sg.pm = (uint32_t)in[3];
+    sg.om = (uint32_t)in[4];
+    np_hatch_setup(cfg, &sg);
+    np_hatch_seed(cfg, &sg, l, i, &o);
+    z->alpha = o.alpha;
+    z->am = o.am;
+    z->ru = o.ru;
+    z->rv = o.rv;
+}
+
+/* Seed i of layer l: rotl_N(b, i) / (2^N - 1), exactly, as Q0.96 rounded down. */
+static void st_centre(const void *cfg, unsigned l, unsigned i, np_u128 *su, np_u128 *sv)
+{
+    unsigned n = np_hatch_n(cfg);
+    uint64_t bu, bv;
+    np_hatch_layer_b(cfg, l, &bu, &bv);
+    np_u128 D = ((np_u128)1 << n) - 1u;
+    *su = ((np_u128)np_hatch_rotl(bu, i, n) << 96) / D;
+    *sv = ((np_u128)np_hatch_rotl(bv, i, n) << 96) / D;
+}
+
+static const np_unit_strokes strokes = {
+    .xs = np_hatch_xs,
+    .info = st_info,
+    .cover_new = st_cover_new,
+    .cover_free = st_cover_free,
+    .cover_cfg = st_cover_cfg,
+    .eval_cover = st_eval_cover,
+    .stroke = st_stroke,
+    .centre = st_centre,
+};
+
 const np_unit np_unit_hatch = {
     .name = "hatch",
     .summary = "procedural hatching, de Bruijn seeds, 4 layers (Szecsi & Sziranyi, RPTAM)",
@@ -482,4 +586,5 @@ const np_unit np_unit_hatch = {
     .timing = timing,
     .conformance_configs = conformance_configs,
     .cfg_scene = cfg_scene,
+    .strokes = &strokes,
 };

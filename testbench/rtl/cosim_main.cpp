@@ -8,7 +8,11 @@
 // configuration its -G parameters were made from, that --unit and --cfg must
 // repeat) clock by clock beside the C cycle model (np_pipe, through
 // np_cosim.h) with the same stimulus, and compares in_ready, out_valid and,
-// when valid, every output word, every cycle.
+// when valid, every output word, every cycle. np_texel (a stream unit: span
+// descriptors in, pixels out) builds with NP_COSIM_TEXEL=<its N_OCT> on top
+// of NP_COSIM_NDIM=texel and NP_COSIM_KEYS (every key, texture= first): its
+// register inputs get the texture's registers (np_cosim_tex_regs), its
+// descriptor the stream model's (y = x0 = 0), and cr cg cb are compared.
 //
 //   cosim --unit classic3 --cfg 8,12,11 [--in-reg] [--out-skid] [--cycles N]
 //         [--seed S] [--no-traffic] [--bench] [--trace FILE]
@@ -43,6 +47,9 @@
 #include "verilated.h"
 #ifdef NP_COSIM_WAVE
 #include "np_wave.h"
+#endif
+#ifdef NP_COSIM_TEXEL
+#include "np_texture.h"
 #endif
 
 namespace {
@@ -121,6 +128,24 @@ struct Rtl {
         top->gcap = r.gcap;
     }
 #endif
+#ifdef NP_COSIM_TEXEL
+    // The texture's registers on the register inputs (np_texel.v's layout), held for the run.
+    void regs(const np_tex_regs &r)
+    {
+        for (unsigned i = 0; i < 10; i++) put_bits(top->k_reg, 48 * i, 48, (uint64_t)r.k[i]);
+        for (unsigned o = 0; o < NP_COSIM_TEXEL; o++) {
+            for (unsigned a = 0; a < 3; a++) {
+                for (unsigned b = 0; b < 3; b++) put_bits(top->m_reg, 24 * (9 * o + 3 * a + b), 24, (uint64_t)r.oct[o].m[a][b]);
+                put_bits(top->o_reg, 48 * (3 * o + a), 48, (uint64_t)r.oct[o].o[a]);
+            }
+            put_bits(top->amp_reg, 32 * o, 32, (uint64_t)(uint32_t)r.oct[o].amp);
+        }
+        for (unsigned e = 0; e < 256; e++)
+            for (unsigned ch = 0; ch < 3; ch++) put_bits(top->cmap, 24 * e + 8 * ch, 8, e < r.cmap_n ? r.cmap[e][ch] : 0u);
+        top->cmap_n = r.cmap_n;
+        top->cmap_rep = r.cmap_repeat ? 1 : 0;
+    }
+#endif
     void reset()
     {
         top->clk = 0;
@@ -155,6 +180,16 @@ struct Rtl {
         top->g = (uint16_t)c.win[7];
 #elif defined(NP_COSIM_AACOUNT)
         put_bus(top->bus, c.bus, bus_bits);
+#elif defined(NP_COSIM_TEXEL)
+        top->in_s = c.in[0];
+        top->in_t = c.in[1];
+        top->in_r = c.in[2];
+        top->in_ds = c.in[3];
+        top->in_dt = c.in[4];
+        top->in_dr = c.in[5];
+        top->in_n = (uint32_t)c.in[6];
+        top->in_y = 0;
+        top->in_x0 = 0;
 #elif defined(NP_COSIM_NDIM)
         for (unsigned a = 0; a < nin; a++)  // field a at [16 (n - 1 - a) +: 16]: x at the top
             put_bits(top->x, 16 * (nin - 1 - a), 16, c.in[a]);
@@ -188,6 +223,11 @@ struct Rtl {
         o[2] = top->sd;
         o[3] = top->sn;
         o[4] = top->ss;
+#elif defined(NP_COSIM_TEXEL)
+        (void)normals;
+        o[0] = top->cr;
+        o[1] = top->cg;
+        o[2] = top->cb;
 #elif defined(NP_COSIM_SIMPLEX)
         (void)normals;
         o[0] = top->f;
@@ -304,6 +344,15 @@ int main(int argc, char **argv)
     rtl.nin = nin;
 #ifdef NP_COSIM_WAVE
     rtl.regs(*np_cosim_wave_regs(m));
+#endif
+#ifdef NP_COSIM_TEXEL
+    // The texture's octaves must be the RTL's lanes.
+    if (!np_cosim_tex_regs(m) || np_cosim_tex_regs(m)->n_oct != NP_COSIM_TEXEL) {
+        std::fprintf(stderr, "cosim: this binary is np_texel with N_OCT=%d: the texture has %u octaves\n", NP_COSIM_TEXEL,
+                     np_cosim_tex_regs(m) ? np_cosim_tex_regs(m)->n_oct : 0u);
+        return 2;
+    }
+    rtl.regs(*np_cosim_tex_regs(m));
 #endif
     rtl.reset();
 
@@ -429,6 +478,9 @@ int main(int argc, char **argv)
         r2.nin = nin;
 #ifdef NP_COSIM_WAVE
         r2.regs(*np_cosim_wave_regs(g));
+#endif
+#ifdef NP_COSIM_TEXEL
+        r2.regs(*np_cosim_tex_regs(g));
 #endif
         r2.reset();
         np_cosim_cycle e{};

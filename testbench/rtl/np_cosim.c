@@ -10,7 +10,9 @@
 #include "np_pipe.h"
 #include "np_rng.h"
 #include "np_simplex.h"
+#include "np_stream.h"
 #include "np_unit.h"
+#include "unit_span.h"
 #include "np_wave.h"
 #include "unit_ndim.h"
 
@@ -21,6 +23,11 @@ enum { PHASE_MIN = 16, PHASE_SPAN = 256 };
 struct np_cosim {
     int simplex, wave, aacount;
     const np_unit *unit;         /* a registry unit (np_cosim_open_spec), else NULL */
+    const np_unit_stream *stream; /* its stream model, when it is a stream unit (texel, fdiff), else NULL */
+    void *sstate;                /* the stream model's state */
+    np_unit_stream_port sport;
+    const np_tex_regs *tregs;    /* a span unit's texture registers (the RTL's register inputs) */
+    uint64_t s_cycles, s_accepted, s_delivered;
     np_unit_cfg ucfg;            /* its configuration (the pipe keeps it by reference) */
     np_unit_fields uf;
     void *usig;                  /* its input bundle, the pipe's sig_size bytes */
@@ -134,6 +141,58 @@ static const np_unit *cosim_unit_find(const char *name)
     return np_unit_find(name);
 }
 
+/*
+ * A stream unit (a span unit: texel, fdiff): its stream model (np_unit.stream,
+ * np_span_sim behind it) with descriptors from its random_desc, 1 in 16 of
+ * them made empty (n = 0), and the registers of the spec's texture.
+ */
+static np_cosim *cosim_open_stream(const np_unit *u, const char *spec, uint64_t seed, char *err, unsigned errn)
+{
+    const char *t = strstr(spec, "texture=");
+    char name[80];
+    unsigned tex = 0;
+    size_t len = t ? strcspn(t + 8, ",") : 0;
+    if (!t || len == 0 || len >= sizeof name) {
+        snprintf(err, errn, "%s: the spec must name its texture (texture=NAME)", u->name);
+        return NULL;
+    }
+    memcpy(name, t + 8, len);
+    name[len] = 0;
+    const char *tn;
+    while ((tn = np_ut_texture_name(tex)) != NULL && strcmp(tn, name) != 0)
+        tex++;
+    if (!tn) {
+        snprintf(err, errn, "%s: no texture '%s'", u->name, name);
+        return NULL;
+    }
+    np_cosim *c = calloc(1, sizeof *c);
+    if (!c) {
+        snprintf(err, errn, "out of memory");
+        return NULL;
+    }
+    c->unit = u;
+    c->stream = u->stream;
+    c->tregs = np_ut_regs(tex);
+    if (np_unit_configure_all(u, &c->ucfg, spec, err, errn) != 0) {
+        free(c);
+        return NULL;
+    }
+    u->fields(&c->ucfg, &c->uf);
+    if (c->uf.n_in > NP_COSIM_INS || c->uf.n_out > NP_COSIM_OUTS || c->stream->n_desc > NP_COSIM_INS) {
+        snprintf(err, errn, "%s: more fields than np_cosim carries", u->name);
+        free(c);
+        return NULL;
+    }
+    if (!(c->sstate = calloc(1, c->stream->state_size)) || c->stream->init(c->sstate, &c->ucfg) != 0) {
+        snprintf(err, errn, "out of memory");
+        free(c->sstate);
+        free(c);
+        return NULL;
+    }
+    np_rng_seed(&c->rng, seed);
+    return c;
+}
+
 np_cosim *np_cosim_open_spec(const char *unit, const char *spec, int in_reg, int out_skid, uint64_t seed, char *err,
                              unsigned errn)
 {
@@ -142,7 +201,9 @@ np_cosim *np_cosim_open_spec(const char *unit, const char *spec, int in_reg, int
         snprintf(err, errn, "%s: not a unit of the registry (noisepipe units)", unit);
         return NULL;
     }
-    if (!u->pipe_init || !u->sig_set_in || !u->sig_get_out || u->stream) {
+    if (u->stream)
+        return cosim_open_stream(u, spec, seed, err, errn);
+    if (!u->pipe_init || !u->sig_set_in || !u->sig_get_out) {
         snprintf(err, errn, "%s: no one-input-one-output cycle model (np_pipe) to co-simulate", unit);
         return NULL;
     }
@@ -200,7 +261,9 @@ int np_cosim_spec_is(const np_cosim *c, const char *spec, char *err, unsigned er
     return 0;
 }
 
-unsigned np_cosim_inputs(const np_cosim *c) { return c->unit ? c->uf.n_in : 0u; }
+unsigned np_cosim_inputs(const np_cosim *c) { return c->stream ? c->stream->n_desc : c->unit ? c->uf.n_in : 0u; }
+
+const struct np_tex_regs *np_cosim_tex_regs(const np_cosim *c) { return c->stream ? c->tregs : NULL; }
 
 unsigned np_cosim_in_bits(const np_cosim *c, unsigned k) { return c->unit && k < c->uf.n_in ? c->uf.in[k].bits : 0u; }
 
@@ -208,6 +271,12 @@ void np_cosim_close(np_cosim *c)
 {
     if (!c)
         return;
+    if (c->stream) {
+        c->stream->free(c->sstate);
+        free(c->sstate);
+        free(c);
+        return;
+    }
     np_pipe_free(&c->pipe);
     free(c->usig);
     free(c);
@@ -458,7 +527,14 @@ void np_cosim_drive(np_cosim *c, np_cosim_cycle *cy, int traffic)
             cy->in_valid = 0;
         } else {
             cy->in_valid = 1;
-            if (c->unit) {
+            if (c->stream) {
+                uint64_t d[NP_UNIT_MAX_FIELDS] = { 0 };
+                c->stream->random_desc(&c->ucfg, &c->rng, d);
+                if (np_rng_below(&c->rng, 16) == 0)
+                    d[c->stream->length_field] = 0; /* an empty span: accepted, no pixels */
+                for (unsigned k = 0; k < c->stream->n_desc; k++)
+                    cy->in[k] = d[k];
+            } else if (c->unit) {
                 random_fields(&c->rng, &c->uf, cy->in);
             } else if (c->wave) {
                 random_wave(&c->rng, &c->wu.r, cy->win);
@@ -477,6 +553,19 @@ void np_cosim_drive(np_cosim *c, np_cosim_cycle *cy, int traffic)
 
 void np_cosim_eval(np_cosim *c, np_cosim_cycle *cy)
 {
+    if (c->stream) {
+        c->sport.in_valid = cy->in_valid;
+        c->sport.in = cy->in;
+        c->sport.out_ready = cy->out_ready;
+        c->stream->eval(c->sstate, &c->sport);
+        cy->in_ready = c->sport.in_ready;
+        cy->out_valid = c->sport.out_valid;
+        memset(cy->out, 0, sizeof cy->out);
+        if (cy->out_valid)
+            for (unsigned k = 0; k < c->uf.n_out; k++)
+                cy->out[k] = (uint32_t)c->sport.out[k];
+        return;
+    }
     /* Only the inputs change: the rest of the bundle stays as calloc left it (the stages write banks, never in_sig). */
     if (c->unit) {
         c->unit->sig_set_in(c->usig, cy->in);
@@ -559,14 +648,21 @@ void np_cosim_accept(np_cosim *c, const np_cosim_cycle *cy)
 void np_cosim_clock(np_cosim *c, const np_cosim_cycle *cy)
 {
     np_cosim_accept(c, cy);
+    if (c->stream) {
+        c->s_cycles++;
+        c->s_accepted += cy->in_valid && cy->in_ready;
+        c->s_delivered += cy->out_valid && cy->out_ready;
+        c->stream->clock(c->sstate, &c->sport);
+        return;
+    }
     np_pipe_clock(&c->pipe, &c->port);
 }
 
 void np_cosim_counts(const np_cosim *c, uint64_t counts[5])
 {
-    counts[0] = c->pipe.stats.cycles;
-    counts[1] = c->pipe.stats.accepted;
-    counts[2] = c->pipe.stats.delivered;
+    counts[0] = c->stream ? c->s_cycles : c->pipe.stats.cycles;
+    counts[1] = c->stream ? c->s_accepted : c->pipe.stats.accepted;
+    counts[2] = c->stream ? c->s_delivered : c->pipe.stats.delivered;
     counts[3] = c->bubbles;
     counts[4] = c->stalls;
 }

@@ -69,6 +69,17 @@ np_cosim *np_cosim_open(const char *unit, const unsigned *p, unsigned np, int in
  */
 np_cosim *np_cosim_open_spec(const char *unit, const char *spec, int in_reg, int out_skid, uint64_t seed, char *err,
                              unsigned errn);
+/*
+ * A stream unit of the registry (np_unit.stream: the span units texel and
+ * fdiff) opens the same way: its stream model (np_span_sim) against the RTL,
+ * inputs the descriptor's fields (np_unit_stream.n_desc: s t r ds dt dr n)
+ * from its random_desc, 1 in 16 made empty (n = 0); outputs the pixel's
+ * fields (cr cg cb); counts: descriptors accepted, pixels delivered. The spec
+ * must name the texture (texture=NAME); np_cosim_tex_regs gives its
+ * registers, the RTL's register inputs (NULL for another unit).
+ */
+struct np_tex_regs;
+const struct np_tex_regs *np_cosim_tex_regs(const np_cosim *c);
 /* A registry unit's configuration is spec (0, or -1: another one, or a bad spec; why in err). */
 int np_cosim_spec_is(const np_cosim *c, const char *spec, char *err, unsigned errn);
 /* Number of inputs of a registry unit and the width of input k (0 for another unit). */
