@@ -182,15 +182,18 @@ static const char *const names[NP_CLASSICN_MAX][4] = {
     { "diff4", "prod4", "sum4", "l4" }, { "diff5", "prod5", "sum5", "l5" }
 };
 
-/* count adder trees of m operands, w bits below the last level and wl at it; the first free level. */
+/*
+ * count adder trees of m operands, priced at w bits below the last level and
+ * wl at it; the last level's signal sig traced at out bits. The first free level.
+ */
 static unsigned tree(np_dp *d, const char *stage, const char *sig, unsigned count, unsigned m, unsigned w,
-                     unsigned wl, int sgn, unsigned level0)
+                     unsigned wl, unsigned out, int sgn, unsigned level0)
 {
     unsigned lv = level0;
     while (m > 1u) {
         unsigned adders = m / 2u;
         m -= adders;
-        np_dp_op(d, stage, m == 1u ? sig : NULL, NP_OP_ADD, count * adders, m == 1u ? wl : w, 0, m == 1u ? wl : 0u,
+        np_dp_op(d, stage, m == 1u ? sig : NULL, NP_OP_ADD, count * adders, m == 1u ? wl : w, 0, m == 1u ? out : 0u,
                  m == 1u ? sgn : 0, lv++);
     }
     return lv;
@@ -222,11 +225,7 @@ size_t np_classicn_datapath(const np_classicn_cfg *cfg, np_op *ops, size_t max)
     unsigned hb = np_gradn_index_bits(n);
     np_dp_op(&d, "L", NULL, NP_OP_INC, n, 8, 0, 0, 0, 0);
     np_dp_op(&d, "L", NULL, NP_OP_LUT, nc * lookups, 3, hb, 0, 0, 1);
-    for (unsigned m = lookups, lv = 2; m > 1u; lv++) {
-        unsigned adders = m / 2u;
-        m -= adders;
-        np_dp_op(&d, "L", m == 1u ? "h" : NULL, NP_OP_ADD, nc * adders, hb, 0, m == 1u ? 6u : 0u, 0, lv);
-    }
+    tree(&d, "L", "h", nc, lookups, hb, hb, 6, 0, 2);
     np_dp_op(&d, "L", "s2", NP_OP_SQR, n, 8, 0, 16, 0, 0);
     np_dp_op(&d, "L", NULL, NP_OP_REG, 1, n * 8 + nc * hb + n * 16 + 1, 0, 0, 0, 0);
     /*
@@ -239,16 +238,29 @@ size_t np_classicn_datapath(const np_classicn_cfg *cfg, np_op *ops, size_t max)
      * NAND2 at n = 2, 624-628 at n = 4, 616-622 at n = 5, against 218, 516
      * and 674 so declared, and 326, 732, 944 with a 3:1 select per axis).
      */
+    /*
+     * At n = 5 every coefficient is +-1, so g_c's bit 0 is the parity of the
+     * u_a's bits 0 at every corner: one XOR tree and one flip-flop for all 2^n
+     * corners (Yosys merges them: classic5's H bank 31 bits under the
+     * declaration); the negates and the sums start at bit 1.
+     */
+    unsigned lsb = n == 5u ? 1u : 0u;
     if (n == 3u)
         np_dp_op(&d, "H", NULL, NP_OP_MUX, nc * n, 9, 3, 0, 0, 0);
-    np_dp_op(&d, "H", NULL, NP_OP_NEG, nc * n, 10, 0, 0, 0, 1);
-    tree(&d, "H", "g", nc, n, 10, gb, 1, 2);
+    np_dp_op(&d, "H", NULL, NP_OP_NEG, nc * n, 10 - lsb, 0, 0, 0, 1);
+    if (lsb)
+        for (unsigned m = n, lv = 1; m > 1u; lv++) { /* the shared parity: n - 1 XORs as 2:1 selects of one bit */
+            unsigned x = m / 2u;
+            m -= x;
+            np_dp_op(&d, "H", NULL, NP_OP_MUX, x, 1, 2, 0, 0, lv);
+        }
+    tree(&d, "H", "g", nc, n, 10 - lsb, gb - lsb, gb, 1, 2); /* the traced g keeps its word's gb bits */
     /* S second half: 768 - 2u (a constant minus x: an incrementer), the product, + half an LSB. */
     np_dp_op(&d, "H", NULL, NP_OP_INC, n, 10, 0, 0, 0, 0);
     np_dp_op(&d, "H", "snum", NP_OP_MUL, n, 16, 10, NP_CLASSICN_SNUM_BITS, 0, 1);
     if (ws < NP_CLASSICN_SNUM_BITS)
         np_dp_op(&d, "H", "s", NP_OP_INC, n, sw, 0, sw, 0, 2);
-    np_dp_op(&d, "H", NULL, NP_OP_REG, 1, nc * gb + n * sw + 1, 0, 0, 0, 0);
+    np_dp_op(&d, "H", NULL, NP_OP_REG, 1, nc * (gb - lsb) + lsb + n * sw + 1, 0, 0, 0, 0);
     /* I: n levels; |l_m| <= m/2 + (n - m), the operands of level m are level m - 1's (|g| <= n). */
     static const char *const mst[NP_CLASSICN_MAX] = { "I1m", "I2m", "I3m", "I4m", "I5m" };
     static const char *const ast[NP_CLASSICN_MAX] = { "I1a", "I2a", "I3a", "I4a", "I5a" };
