@@ -182,15 +182,18 @@ static const char *const names[NP_CLASSICN_MAX][4] = {
     { "diff4", "prod4", "sum4", "l4" }, { "diff5", "prod5", "sum5", "l5" }
 };
 
-/* count adder trees of m operands, w bits below the last level and wl at it; the first free level. */
+/*
+ * count adder trees of m operands, priced at w bits below the last level and
+ * wl at it; the last level's signal sig traced at out bits. The first free level.
+ */
 static unsigned tree(np_dp *d, const char *stage, const char *sig, unsigned count, unsigned m, unsigned w,
-                     unsigned wl, int sgn, unsigned level0)
+                     unsigned wl, unsigned out, int sgn, unsigned level0)
 {
     unsigned lv = level0;
     while (m > 1u) {
         unsigned adders = m / 2u;
         m -= adders;
-        np_dp_op(d, stage, m == 1u ? sig : NULL, NP_OP_ADD, count * adders, m == 1u ? wl : w, 0, m == 1u ? wl : 0u,
+        np_dp_op(d, stage, m == 1u ? sig : NULL, NP_OP_ADD, count * adders, m == 1u ? wl : w, 0, m == 1u ? out : 0u,
                  m == 1u ? sgn : 0, lv++);
     }
     return lv;
@@ -211,22 +214,53 @@ size_t np_classicn_datapath(const np_classicn_cfg *cfg, np_op *ops, size_t max)
     unsigned n = cfg->dims, nc = 1u << n, ws = cfg->s_frac, wl = cfg->lerp_frac, nb = cfg->out_bits;
     unsigned f = np_classicn_out_frac(cfg), sw = ws + 1u, lookups = np_hashn_lookups(n);
     unsigned gb = np_bits_for_range(-(int64_t)np_gradn_max_terms(n) * 256, (int64_t)np_gradn_max_terms(n) * 256, 1);
-    /* L: cell + 1 (n 8-bit incrementers), the lookups, an adder tree per corner; u * u per axis (a squarer). */
+    /*
+     * L: cell + 1 (n 8-bit incrementers), the lookups, an adder tree per
+     * corner; u * u per axis (a squarer). The gradient reads only the hash's
+     * low hb bits (np_gradn_index_bits: 3 at n = 2, 5 at n = 4, 5): the tree
+     * is a sum mod 2^hb and the bank holds hb bits a corner (Yosys drops the
+     * rest; classic2's L was 31 % over synthesis with 6-bit adders). The
+     * traced h keeps the index's 6 bits (the value np_hashn specifies).
+     */
+    unsigned hb = np_gradn_index_bits(n);
     np_dp_op(&d, "L", NULL, NP_OP_INC, n, 8, 0, 0, 0, 0);
-    np_dp_op(&d, "L", NULL, NP_OP_LUT, nc * lookups, 3, 6, 0, 0, 1);
-    tree(&d, "L", "h", nc, lookups, 6, 6, 0, 2);
+    np_dp_op(&d, "L", NULL, NP_OP_LUT, nc * lookups, 3, hb, 0, 0, 1);
+    tree(&d, "L", "h", nc, lookups, hb, hb, 6, 0, 2);
     np_dp_op(&d, "L", "s2", NP_OP_SQR, n, 8, 0, 16, 0, 0);
-    np_dp_op(&d, "L", NULL, NP_OP_REG, 1, n * 8 + nc * 6 + n * 16 + 1, 0, 0, 0, 0);
-    /* H: per corner and axis a 3:1 select of the s9 offset, a 10-bit negate; the sum over n axes. */
-    np_dp_op(&d, "H", NULL, NP_OP_MUX, nc * n, 9, 3, 0, 0, 0);
-    np_dp_op(&d, "H", NULL, NP_OP_NEG, nc * n, 10, 0, 0, 0, 1);
-    tree(&d, "H", "g", nc, n, 10, gb, 1, 2);
+    np_dp_op(&d, "L", NULL, NP_OP_REG, 1, n * 8 + nc * hb + n * 16 + 1, 0, 0, 0, 0);
+    /*
+     * H: the sum over n axes of G_ca d_ca. n = 3 is classic3's circuit: a
+     * 3:1 select of the offset for each of p, q, r, a 10-bit negate, two
+     * additions (np_classic_datapath). np_classicn.v at n = 2, 4, 5 adds,
+     * subtracts or skips each axis's s9 offset as its coefficient in
+     * {-1, 0, 1} says: a 10-bit conditional negate per axis, whose zero case
+     * folds into its XOR stage (no select; measured per corner alone: 235-248
+     * NAND2 at n = 2, 624-628 at n = 4, 616-622 at n = 5, against 218, 516
+     * and 674 so declared, and 326, 732, 944 with a 3:1 select per axis).
+     */
+    /*
+     * At n = 5 every coefficient is +-1, so g_c's bit 0 is the parity of the
+     * u_a's bits 0 at every corner: one XOR tree and one flip-flop for all 2^n
+     * corners (Yosys merges them: classic5's H bank 31 bits under the
+     * declaration); the negates and the sums start at bit 1.
+     */
+    unsigned lsb = n == 5u ? 1u : 0u;
+    if (n == 3u)
+        np_dp_op(&d, "H", NULL, NP_OP_MUX, nc * n, 9, 3, 0, 0, 0);
+    np_dp_op(&d, "H", NULL, NP_OP_NEG, nc * n, 10 - lsb, 0, 0, 0, 1);
+    if (lsb)
+        for (unsigned m = n, lv = 1; m > 1u; lv++) { /* the shared parity: n - 1 XORs as 2:1 selects of one bit */
+            unsigned x = m / 2u;
+            m -= x;
+            np_dp_op(&d, "H", NULL, NP_OP_MUX, x, 1, 2, 0, 0, lv);
+        }
+    tree(&d, "H", "g", nc, n, 10 - lsb, gb - lsb, gb, 1, 2); /* the traced g keeps its word's gb bits */
     /* S second half: 768 - 2u (a constant minus x: an incrementer), the product, + half an LSB. */
     np_dp_op(&d, "H", NULL, NP_OP_INC, n, 10, 0, 0, 0, 0);
     np_dp_op(&d, "H", "snum", NP_OP_MUL, n, 16, 10, NP_CLASSICN_SNUM_BITS, 0, 1);
     if (ws < NP_CLASSICN_SNUM_BITS)
         np_dp_op(&d, "H", "s", NP_OP_INC, n, sw, 0, sw, 0, 2);
-    np_dp_op(&d, "H", NULL, NP_OP_REG, 1, nc * gb + n * sw + 1, 0, 0, 0, 0);
+    np_dp_op(&d, "H", NULL, NP_OP_REG, 1, nc * (gb - lsb) + lsb + n * sw + 1, 0, 0, 0, 0);
     /* I: n levels; |l_m| <= m/2 + (n - m), the operands of level m are level m - 1's (|g| <= n). */
     static const char *const mst[NP_CLASSICN_MAX] = { "I1m", "I2m", "I3m", "I4m", "I5m" };
     static const char *const ast[NP_CLASSICN_MAX] = { "I1a", "I2a", "I3a", "I4a", "I5a" };

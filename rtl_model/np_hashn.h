@@ -102,6 +102,15 @@ uint8_t np_hashn_table(unsigned n, const uint8_t *c);
  */
 void np_gradn_decode(unsigned n, uint8_t h, int8_t *coef);
 
+/*
+ * The low bits of h that np_gradn_decode reads: 3 at n = 2 (h[2:0]), 6 at
+ * n = 3 (Appendix B's fields), 5 at n = 4 and 5 (h[4:0]). Only these bits of
+ * the hash reach a gradient, so the hash's adder tree (a sum mod 64) needs
+ * only its low bits' part: a sum mod 2^b (the carries go upward only).
+ * ndim.grad_index_bits checks that no higher bit changes a coefficient.
+ */
+static inline unsigned np_gradn_index_bits(unsigned n) { return n == 2u ? 3u : n == 3u ? 6u : 5u; }
+
 /* Largest number of non-zero coefficients K and largest |G|^2 of the n-D set. */
 unsigned np_gradn_max_terms(unsigned n);
 unsigned np_gradn_max_norm2(unsigned n);

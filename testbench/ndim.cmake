@@ -2,7 +2,7 @@
 # Noise in n = 2..5 dimensions (testbench/test_ndim.c; docs/noise-nd.md has the figures).
 np_test_program(test_ndim test_ndim.c pipe_drive.c)
 np_add_cases(test_ndim ndim
-  hash3_is_seed hash_tables hash_distribution grad_sets sorting_networks
+  hash3_is_seed hash_tables hash_distribution grad_sets grad_index_bits sorting_networks
   simplex3_bit_exact classic3_bit_exact classic3_same_datapath
   error_bound_defaults error_simplex error_classic kernel_continuity output_range
   cycle_simplex_1e6 cycle_classic_1e6 registry)

@@ -36,8 +36,7 @@ np_synth_test(synth.simplex3_cheap "synth;nosan"
   --unit simplex3 --per-stage --config deriv=0,out_bits=4,t_frac=9,p_frac=9,k_frac=6 --tolerance 10)
 # The n-D classic RTL (np_classicn.v, by --unit only) at classic2's default, about 25 s of Yosys:
 # every stage's bank found (its row has Yosys flip-flops and gates; the banks are selected by
-# name, report_synth.c classicn_bank_sel). No --tolerance: its L and H are 31 % and 17 % over
-# synthesis (docs/rtl.md). classic4/5 and simplex2/4/5 are not synthesised in CTest.
+# name, report_synth.c classicn_bank_sel). Its tolerance is checked by synth.dims_classic2 below.
 set(row "\\| [0-9]+ \\| [0-9]+ \\([0-9]+\\) \\| [0-9]+ \\| [1-9][0-9]* \\| [1-9][0-9]* \\|")
 set(cn2 "")
 foreach(st L H I1m I1a I2m I2a O)
@@ -67,3 +66,23 @@ np_synth_test(synth.classic3_variant "synth;nosan"
 np_synth_test(synth.classic3_under_10k "synth;nosan"
   "\\| \\*\\*total\\*\\* \\| \\*\\*[0-9]+\\*\\* \\| \\*\\*[1-9][0-9]?[0-9]?[0-9]?\\*\\* \\|"
   --unit classic3 --rtl-param LERP_SERIAL=1)
+# report dims --synth (report_dims.c) on its cheapest row, classic2 (about 15 s of Yosys's CPU): the
+# synthesis runs, every classic2 stage within 10 % of the cost model (--tolerance 10: exit 1
+# otherwise), its per-stage table in DIR/dims-synth.md, its figures cached in DIR/synth-cache/;
+# a second run with no yosys on PATH must take them from the cache (and say so), a third with
+# the cache's key altered must try to synthesise again (and so fail without yosys: exit 2).
+add_test(NAME synth.dims_classic2
+  COMMAND sh -c "command -v yosys > /dev/null || { echo 'yosys not installed: skipped'; exit 77; }
+                 d=\"$1\"; rm -rf \"$d\"
+                 \"$0\" report dims --synth --unit classic2 --tolerance 10 -o \"$d\" || { echo \"first run: exit $?\"; exit 1; }
+                 grep -q '^| 2 | classic2 | [0-9]* | [0-9]* | .* | synthesised in this run |' \"$d/dims-synth.md\" || { echo 'no synthesised classic2 row'; exit 1; }
+                 grep -q '^## classic2 (' \"$d/dims-synth.md\" && grep -q '^| I2a | ' \"$d/dims-synth.md\" || { echo 'no per-stage table'; exit 1; }
+                 grep -q '^key [0-9a-f]*$' \"$d/synth-cache/classic2.txt\" || { echo 'no cache'; exit 1; }
+                 PATH=/nonexistent \"$0\" report dims --synth --unit classic2 --tolerance 10 -o \"$d\" > /dev/null || { echo \"cached run: exit $?\"; exit 1; }
+                 grep -q '^| 2 | classic2 | .* | cached |' \"$d/dims-synth.md\" || { echo 'second run did not use the cache'; exit 1; }
+                 sed -i 's/^key .*/key 0000000000000000/' \"$d/synth-cache/classic2.txt\"
+                 PATH=/nonexistent \"$0\" report dims --synth --unit classic2 -o \"$d\" > /dev/null 2>&1; s=$?
+                 test $s -eq 2 || { echo \"stale cache: exit $s, want 2 (a new synthesis)\"; exit 1; }
+                 echo 'dims --synth: synthesised, within 10 %, cached, stale cache refused'"
+          $<TARGET_FILE:noisepipe> ${CMAKE_CURRENT_BINARY_DIR}/dims-synth-test)
+set_tests_properties(synth.dims_classic2 PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 900 LABELS "synth;nosan")

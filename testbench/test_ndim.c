@@ -106,6 +106,28 @@ static int hash_distribution(void)
     return 0;
 }
 
+/*
+ * The cost model prices the hash's adder tree and bank at the low
+ * np_gradn_index_bits(n) bits of h (np_classicn_datapath): no higher bit may
+ * change a coefficient, and the top one of them must (else the count is loose).
+ */
+static int grad_index_bits(void)
+{
+    for (unsigned n = 2; n <= 5; n++) {
+        unsigned b = np_gradn_index_bits(n), top_matters = 0;
+        for (unsigned h = 0; h < 64; h++) {
+            int8_t c[5], lo[5], flip[5];
+            np_gradn_decode(n, (uint8_t)h, c);
+            np_gradn_decode(n, (uint8_t)(h & ((1u << b) - 1u)), lo);
+            np_gradn_decode(n, (uint8_t)(h ^ (1u << (b - 1u))), flip);
+            NP_CHECK(memcmp(c, lo, n) == 0, "n=%u h=%u: a bit above bit %u changes the gradient", n, h, b - 1u);
+            top_matters |= memcmp(c, flip, n) != 0;
+        }
+        NP_CHECK(top_matters, "n=%u: bit %u of h never changes the gradient (index bits %u too many)", n, b - 1u, b);
+    }
+    return 0;
+}
+
 static int grad_sets(void)
 {
     np_rng r;
@@ -652,6 +674,7 @@ static const np_test_case cases[] = {
     { "hash_tables", hash_tables },
     { "hash_distribution", hash_distribution },
     { "grad_sets", grad_sets },
+    { "grad_index_bits", grad_index_bits },
     { "sorting_networks", sorting_networks },
     { "simplex3_bit_exact", simplex3_bit_exact },
     { "classic3_bit_exact", classic3_bit_exact },

@@ -44,6 +44,9 @@ static const char usage_text[] =
     "       noisepipe report tradeoff --scene SCENE.json [-o DIR]   (fdiff against texel at <= 1 LSB: gates x cycles\n"
     "                                     against image size and octave count; DIR/tradeoff-NAME.{md,svg})\n"
     "       noisepipe report dims   [-o DIR]      (noise in n = 2..5 dimensions: gates against n, Perlin's claims)\n"
+    "       noisepipe report dims   --synth -o DIR [--unit U] [--rtl DIR] [--per-stage] [--tolerance PCT]\n"
+    "                                     (the n-D RTL through Yosys beside the model: DIR/dims-synth.md; each\n"
+    "                                     synthesis cached in DIR/synth-cache/, reused while the RTL is unchanged)\n"
     "       noisepipe report anim4d [--frames N] -o DIR  (a time-varying solid texture through simplex4: PNG frames)\n"
     "\n"
     "gates: per unit and per stage, the operators, register bits, gate estimate (NAND2\n"
@@ -972,11 +975,13 @@ int np_cmd_report(int argc, char **argv)
         return np_report_fpga(unit, spec, &fpga);
     }
     if (strcmp(what, "dims") == 0) {
-        if (unit || spec || scene) {
-            np_err("report", "dims takes only -o DIR (it configures every n-D unit itself)");
+        if (spec || scene || rtl_param || (!synth && (unit || rtl || per_stage || tolerance >= 0.0))) {
+            np_err("report", "dims takes -o DIR, and --synth with --unit, --rtl, --per-stage, --abc-full, --tolerance "
+                             "(it configures every n-D unit itself)");
             return NP_EXIT_USAGE;
         }
-        return np_report_dims(dir);
+        np_report_dims_synth ds = { unit, rtl, per_stage, tolerance };
+        return np_report_dims(dir, synth ? &ds : NULL);
     }
     if ((synth || rtl || per_stage || tolerance >= 0.0) && (strcmp(what, "gates") != 0 || scene || dir || !synth)) {
         np_err("report", "--synth (with --rtl, --per-stage, --abc-full, --tolerance) goes with gates, without --scene or -o (Markdown on stdout)");

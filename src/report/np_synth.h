@@ -91,6 +91,17 @@ const char *np_synth_stage_of(const np_unit *u, const char *reg);
 const char *np_synth_rtl_param_spec(void);
 unsigned np_synth_rtl_clocks_per_result(const np_unit *u);
 
+/*
+ * What report dims (report_dims.c) needs to cache syntheses: the model's
+ * stage as np_synth_print compares it (without its valid bit); a key (16 hex
+ * digits) over u's RTL files by name and content, its includes, the chparam
+ * line of cfg and the flow (flags, ABC's script): equal keys, equal netlists.
+ * 0, or -1 with a message in err.
+ */
+double np_synth_model_stage(const np_stage_cost *m);
+int np_synth_key(const np_unit *u, const void *cfg, const char *rtl_dir, int flags, char key[17], char *err,
+                 size_t errlen);
+
 /* The RTL folder compiled in (the source tree's rtl_model/verilog). */
 const char *np_synth_default_rtl_dir(void);
 

@@ -27,6 +27,7 @@
  */
 #include <ctype.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -166,6 +167,8 @@ static const rtl_desc rtl_units[] = {
     /* The n-D units (np_simplexn.v, np_classicn.v; every key, DIMS included, is a parameter). */
     NP_CLASSICN_RTL("classic2"), NP_CLASSICN_RTL("classic4"), NP_CLASSICN_RTL("classic5"),
     NP_SIMPLEXN_RTL("simplex2"), NP_SIMPLEXN_RTL("simplex4"), NP_SIMPLEXN_RTL("simplex5"),
+    /* np_simplexn.v at DIMS = 3 (the unregistered unit simplexn3, report dims' 3-D simplex row). */
+    NP_SIMPLEXN_RTL("simplexn3"),
 };
 
 static const rtl_desc *rtl_of(const np_unit *u)
@@ -546,6 +549,80 @@ int np_synth_run(const np_unit *u, const void *cfg, const np_unit_cost *c, const
 static double model_stage(const np_stage_cost *m, double ff)
 {
     return m->logic + m->regs - (m->reg_bits > 0 ? ff : 0.0);
+}
+
+double np_synth_model_stage(const np_stage_cost *m)
+{
+    return model_stage(m, np_cost_default.ff_bit);
+}
+
+/* FNV-1a, 64 bits, continued from h over n bytes. */
+static uint64_t fnv1a(uint64_t h, const void *p, size_t n)
+{
+    const unsigned char *b = p;
+    for (size_t i = 0; i < n; i++)
+        h = (h ^ b[i]) * UINT64_C(0x100000001b3);
+    return h;
+}
+
+int np_synth_key(const np_unit *u, const void *cfg, const char *rtl_dir, int flags, char key[17], char *err,
+                 size_t errlen)
+{
+    const rtl_desc *d = rtl_of(u);
+    if (!d) {
+        snprintf(err, errlen, "unit %s has no reference RTL", u->name);
+        return -1;
+    }
+    uint64_t h = UINT64_C(0xcbf29ce484222325);
+    char buf[4096];
+    /* The files by name and content (not by folder: a worktree's copy is the same RTL). */
+    for (unsigned i = 0; i < 6 && d->files[i]; i++) {
+        char path[4096];
+        snprintf(path, sizeof path, "%s/%s", rtl_dir, d->files[i]);
+        FILE *f = fopen(path, "rb");
+        if (!f) {
+            snprintf(err, errlen, "%s: cannot read the RTL (--rtl DIR names rtl_model/verilog)", path);
+            return -1;
+        }
+        h = fnv1a(h, d->files[i], strlen(d->files[i]) + 1u);
+        size_t n;
+        while ((n = fread(buf, 1, sizeof buf, f)) > 0)
+            h = fnv1a(h, buf, n);
+        fclose(f);
+    }
+    /* np_hashn.vh and np_hash.vh are included by the n-D RTL: part of it too. */
+    static const char *const includes[] = { "np_hashn.vh", "np_hash.vh" };
+    for (unsigned i = 0; i < 2; i++) {
+        char path[4096];
+        snprintf(path, sizeof path, "%s/%s", rtl_dir, includes[i]);
+        FILE *f = fopen(path, "rb");
+        if (!f)
+            continue;
+        h = fnv1a(h, includes[i], strlen(includes[i]) + 1u);
+        size_t n;
+        while ((n = fread(buf, 1, sizeof buf, f)) > 0)
+            h = fnv1a(h, buf, n);
+        fclose(f);
+    }
+    /* The chparam line (every parameter the configuration sets) and the flow. */
+    FILE *t = tmpfile();
+    if (!t) {
+        snprintf(err, errlen, "cannot create a temporary file");
+        return -1;
+    }
+    if (write_read(t, d, u, cfg, rtl_dir, err, errlen) != 0) {
+        fclose(t);
+        return -1;
+    }
+    rewind(t);
+    while (fgets(buf, sizeof buf, t))
+        if (strncmp(buf, "chparam", 7) == 0)
+            h = fnv1a(h, buf, strlen(buf));
+    fclose(t);
+    h = fnv1a(h, &flags, sizeof flags);
+    h = fnv1a(h, abc_script_bounded, sizeof abc_script_bounded);
+    snprintf(key, 17, "%016llx", (unsigned long long)h);
+    return 0;
 }
 
 double np_synth_print(FILE *f, const np_unit_cost *c, const np_synth_result *r)
