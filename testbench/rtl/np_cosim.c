@@ -146,6 +146,29 @@ static const np_unit *cosim_unit_find(const char *name)
  * np_span_sim behind it) with descriptors from its random_desc, 1 in 16 of
  * them made empty (n = 0), and the registers of the spec's texture.
  */
+/* What both opens share: the cosim, its unit configured from spec, its fields within np_cosim's. */
+static np_cosim *cosim_new(const np_unit *u, const char *spec, char *err, unsigned errn)
+{
+    np_cosim *c = calloc(1, sizeof *c);
+    if (!c) {
+        snprintf(err, errn, "out of memory");
+        return NULL;
+    }
+    c->unit = u;
+    if (np_unit_configure_all(u, &c->ucfg, spec, err, errn) != 0) {
+        free(c);
+        return NULL;
+    }
+    u->fields(&c->ucfg, &c->uf);
+    if (c->uf.n_in > NP_COSIM_INS || c->uf.n_out > NP_COSIM_OUTS) {
+        snprintf(err, errn, "%s: %u inputs, %u outputs: more than np_cosim carries", u->name, c->uf.n_in,
+                 c->uf.n_out);
+        free(c);
+        return NULL;
+    }
+    return c;
+}
+
 static np_cosim *cosim_open_stream(const np_unit *u, const char *spec, uint64_t seed, char *err, unsigned errn)
 {
     const char *t = strstr(spec, "texture=");
@@ -165,21 +188,13 @@ static np_cosim *cosim_open_stream(const np_unit *u, const char *spec, uint64_t 
         snprintf(err, errn, "%s: no texture '%s'", u->name, name);
         return NULL;
     }
-    np_cosim *c = calloc(1, sizeof *c);
-    if (!c) {
-        snprintf(err, errn, "out of memory");
+    np_cosim *c = cosim_new(u, spec, err, errn);
+    if (!c)
         return NULL;
-    }
-    c->unit = u;
     c->stream = u->stream;
     c->tregs = np_ut_regs(tex);
-    if (np_unit_configure_all(u, &c->ucfg, spec, err, errn) != 0) {
-        free(c);
-        return NULL;
-    }
-    u->fields(&c->ucfg, &c->uf);
-    if (c->uf.n_in > NP_COSIM_INS || c->uf.n_out > NP_COSIM_OUTS || c->stream->n_desc > NP_COSIM_INS) {
-        snprintf(err, errn, "%s: more fields than np_cosim carries", u->name);
+    if (c->stream->n_desc > NP_COSIM_INS) {
+        snprintf(err, errn, "%s: %u descriptor fields: more than np_cosim carries", u->name, c->stream->n_desc);
         free(c);
         return NULL;
     }
@@ -207,22 +222,9 @@ np_cosim *np_cosim_open_spec(const char *unit, const char *spec, int in_reg, int
         snprintf(err, errn, "%s: no one-input-one-output cycle model (np_pipe) to co-simulate", unit);
         return NULL;
     }
-    np_cosim *c = calloc(1, sizeof *c);
-    if (!c) {
-        snprintf(err, errn, "out of memory");
+    np_cosim *c = cosim_new(u, spec, err, errn);
+    if (!c)
         return NULL;
-    }
-    c->unit = u;
-    if (np_unit_configure_all(u, &c->ucfg, spec, err, errn) != 0) {
-        free(c);
-        return NULL;
-    }
-    u->fields(&c->ucfg, &c->uf);
-    if (c->uf.n_in > NP_COSIM_INS || c->uf.n_out > NP_COSIM_OUTS) {
-        snprintf(err, errn, "%s: %u inputs, %u outputs: more than np_cosim carries", unit, c->uf.n_in, c->uf.n_out);
-        free(c);
-        return NULL;
-    }
     for (unsigned k = 0; k < c->uf.n_out; k++)
         if (c->uf.out[k].bits > 32) {
             snprintf(err, errn, "%s: output %s is wider than 32 bits", unit, c->uf.out[k].name);
