@@ -260,18 +260,24 @@ static unsigned clog2(unsigned v)
     return b;
 }
 
-/* Non-zero digits of k's canonical signed-digit form: a constant multiply is that many terms. */
-static unsigned csd_digits(uint64_t k)
+/* Trailing zero bits of k mod 2^w (w when k mod 2^w is 0): the low bits a product by k never sets. */
+static unsigned ctz_below(uint64_t k, unsigned w)
 {
-    unsigned d = 0;
-    while (k) {
-        if (k & 1u) {
-            d++;
-            k = (k & 2u) ? k + 1u : k - 1u;
-        }
-        k >>= 1;
-    }
-    return d;
+    unsigned z = 0;
+    while (z < w && ((k >> z) & 1u) == 0u)
+        z++;
+    return z;
+}
+
+/*
+ * count adders of an out-bit sum (modulo 2^out) whose operands' lowest set
+ * bits are at most lo: below lo the sum is one operand's bits (wiring).
+ */
+static void span_add(np_dp *d, const char *stage, const char *sig, unsigned count, unsigned lo, unsigned out,
+                     unsigned sig_out, int sgn, unsigned level)
+{
+    if (out > lo)
+        np_dp_op(d, stage, sig, NP_OP_ADD, count, out - lo, 0, sig_out, sgn, level);
 }
 
 /* count adder trees of m operands of w bits (modulo 2^w) from level0; returns the first free level. */
@@ -288,21 +294,7 @@ static unsigned tree(np_dp *d, const char *stage, const char *sig, unsigned coun
 }
 
 /*
- * A multiply by the constant k of an operand of w bits into an out-bit
- * result: digits - 1 adders of out bits in a tree (none for a power of two).
- * Returns the levels it takes.
- */
-static unsigned const_mul(np_dp *d, const char *stage, const char *sig, unsigned count, uint64_t k, unsigned out,
-                          int sgn, unsigned level)
-{
-    unsigned terms = csd_digits(k);
-    if (terms <= 1u)
-        return 0;
-    return tree(d, stage, sig, count, terms, out, sgn, level) - level;
-}
-
-/*
- * The same multiply with each adder priced over the bits where its two
+ * A multiply by the constant k (its canonical signed digits) with each adder priced over the bits where its two
  * operands overlap: the CSD digit at position p makes an operand of bits
  * [p, p + win); below the higher operand's lowest bit the sum is the lower
  * operand's bits (wiring); a sum is kept to out bits (modulo 2^out). When the
@@ -416,64 +408,101 @@ size_t np_simplexn_datapath(const np_simplexn_cfg *cfg, np_op *ops, size_t max)
     np_dp_op(&d, "SK", NULL, NP_OP_REG, 1, n * (xw + cellw) + 1u, 0, 0, 0, 0);
     /*
      * RK. n_sum (n - 1 adders), U = wx X - W i + wc n_sum mod 2^12 (s12:
-     * |U| < W, W <= 1536 < 2048): the constant multiplies as shift-adds, two
-     * adders per axis; the cells + 1 for the far corners; then the sorting
-     * network: per comparator a (12 + 3)-bit comparison (value, then axis)
-     * and two 2:1 selects of (value, axis).
+     * |U| < W, W <= 1536 < 2048); the cells + 1 for the far corners; then the
+     * sorting network on (U, axis).
+     *
+     * Live widths (as simplex3's declaration, docs/cost-model.md): U's low tz
+     * bits are 0 at every input (tz = the fewest trailing zeros of wx, W and
+     * wc mod 2^12: 2 at n = 2, 1 at n = 3, 0 at n = 4, 5), and so are every
+     * corner's D and G . D; R2 and T then have 2 tz. Yosys drops those
+     * constant flip-flops and the logic on them, so the operators below are
+     * priced at the live widths (the traced signals keep their full widths).
+     * The constant multiplies are shift-adds whose adders span only their
+     * operands' overlap (const_mul_span), and so do U's two adders: bit p of
+     * a sum is wiring below the higher of its operands' lowest bits.
      */
-    enum { OFFW = 12, AXW = 3, HBITS = 6 };
-    lv = tree(&d, "RK", NULL, 1, n, cellw + clog2(n), 0, 0);
-    unsigned lw = const_mul(&d, "RK", NULL, 1, g->wc, OFFW, 1, lv);
-    unsigned lx = const_mul(&d, "RK", NULL, n, g->wx, OFFW, 1, 0);
-    unsigned li = const_mul(&d, "RK", NULL, n, g->w, OFFW, 1, 0);
+    enum { OFFW = 12, HBITS = 6 };
+    unsigned tz = ctz_below(g->wx, OFFW), lo_w = ctz_below(g->w, OFFW), lo_c = ctz_below(g->wc, OFFW);
+    tz = tz < lo_w ? tz : lo_w;
+    tz = tz < lo_c ? tz : lo_c;
+    unsigned uw = OFFW - tz, axw = clog2(n); /* U's live bits; an axis index's */
+    unsigned nsw = cellw + clog2(n);
+    lv = tree(&d, "RK", NULL, 1, n, nsw, 0, 0);
+    unsigned lw = const_mul_span(&d, "RK", NULL, 1, g->wc, nsw, OFFW, 0, 1, lv);
+    unsigned lx = const_mul_span(&d, "RK", NULL, n, g->wx, xw, OFFW, 0, 1, 0);
+    unsigned li = const_mul_span(&d, "RK", NULL, n, g->w, cellw, OFFW, 0, 1, 0);
     lv = lv + lw > lx ? lv + lw : lx;
     lv = lv > li ? lv : li;
-    np_dp_op(&d, "RK", NULL, NP_OP_ADD, n, OFFW, 0, 0, 0, lv++);
-    np_dp_op(&d, "RK", "off", NP_OP_ADD, n, OFFW, 0, OFFW, 1, lv++);
+    unsigned lo_x = ctz_below(g->wx, OFFW);
+    span_add(&d, "RK", NULL, n, lo_x > lo_w ? lo_x : lo_w, OFFW, 0, 0, lv++);
+    unsigned lo_xw = lo_x < lo_w ? lo_x : lo_w;
+    span_add(&d, "RK", "off", n, lo_xw > lo_c ? lo_xw : lo_c, OFFW, OFFW, 1, lv++);
     np_dp_op(&d, "RK", NULL, NP_OP_INC, n, NP_HASHN_COORD, 0, 0, 0, 0); /* cell + 1 mod 256 */
+    /*
+     * The network: a comparator of the first layer sees constant axes (its
+     * inputs' own, i < j), so its tie-break is wiring and it compares U alone;
+     * later ones compare (U, axis) and select both.
+     */
     unsigned layer[16], depth = network_layers(n, layer);
     for (unsigned k = 0; k < depth; k++) {
-        np_dp_op(&d, "RK", NULL, NP_OP_CMP, layer[k], OFFW + AXW, 0, 0, 0, lv + 2u * k);
-        np_dp_op(&d, "RK", NULL, NP_OP_MUX, 2u * layer[k], OFFW + AXW, 2, 0, 0, lv + 2u * k + 1u);
+        unsigned cw = k == 0 ? uw : uw + axw;
+        np_dp_op(&d, "RK", NULL, NP_OP_CMP, layer[k], cw, 0, 0, 0, lv + 2u * k);
+        np_dp_op(&d, "RK", NULL, NP_OP_MUX, 2u * layer[k], k == 0 ? uw : uw + axw, 2, 0, 0, lv + 2u * k + 1u);
     }
-    np_dp_op(&d, "RK", NULL, NP_OP_REG, 1, n * OFFW + n * AXW + 2u * n * NP_HASHN_COORD + 1u, 0, 0, 0, 0);
+    np_dp_op(&d, "RK", NULL, NP_OP_REG, 1, n * uw + n * axw + 2u * n * NP_HASHN_COORD + 1u, 0, 0, 0, 0);
     /*
      * CH, per corner c = 0..n: the mask (the first c axes of the ranking: a
      * decoder, as in 3-D not counted), D = U - W A + wc c (corner 0: U),
-     * |D| < 1.6 W (|d_a| < 1 + n G): s12; the corner's cells (cell or
-     * cell + 1: corners 1..n-1 select, corner n is all cell + 1), the hash
-     * (lookups and a six-bit adder tree), -D beside the hash, then per axis a
-     * 3:1 select of D, -D, 0 and the sum over n axes, |gd| <= K |D|max.
+     * |D| < 1.6 W (|d_a| < 1 + n G): s12. D differs from U only from bit
+     * dlo_c = min(ctz W, ctz (wc c)) on: one adder over those bits, its
+     * constant picked by the mask bit (simplex3's D[11:8]). The corner's
+     * cells (cell or cell + 1: corners 1..n-1 select, corner n is all
+     * cell + 1), the hash (lookups and a six-bit adder tree), -D beside the
+     * hash, then per axis a 3:1 select of D, -D, 0 and the sum over n axes,
+     * |gd| <= K |D|max.
      */
     /* |gd| <= |G| |d| W <= sqrt(K edge2) W (n = 3: sqrt(3) 1536 = 2660, simplex3's s13). */
     unsigned gdw = sbits((uint64_t)ceil(sqrt((double)kmax * g->edge2) * g->w));
+    unsigned gdl = gdw - tz, dshare = OFFW;
     np_dp_op(&d, "CH", NULL, NP_OP_MUX, (n - 1u) * n, NP_HASHN_COORD, 2, 0, 0, 0);
-    np_dp_op(&d, "CH", "d", NP_OP_ADD, n * n, OFFW, 0, OFFW, 1, 0);
+    for (unsigned c = 1; c <= n; c++) {
+        unsigned lo = ctz_below(((uint64_t)g->wc * c) & 0xfffu, OFFW);
+        lo = lo < lo_w ? lo : lo_w;
+        dshare = lo < dshare ? lo : dshare;
+        span_add(&d, "CH", "d", n, lo, OFFW, OFFW, 1, 0);
+    }
     np_dp_op(&d, "CH", NULL, NP_OP_LUT, nc * lookups, 3, HBITS, 0, 0, 1);
     unsigned lh = tree(&d, "CH", "h", nc, lookups, HBITS, 0, 2);
-    np_dp_op(&d, "CH", NULL, NP_OP_NEG, nc * n, OFFW, 0, 0, 0, 2);
-    np_dp_op(&d, "CH", NULL, NP_OP_MUX, nc * n, OFFW, 3, 0, 0, lh);
-    tree(&d, "CH", "gd", nc, n, gdw, 1, lh + 1u);
-    np_dp_op(&d, "CH", NULL, NP_OP_REG, 1, nc * (n * OFFW + gdw) + 1u, 0, 0, 0, 0);
-    /* KT: n squares per corner (u24), their sum (R2 <= edge2 W^2), k R2, Tv - k R2, the clamp. */
+    np_dp_op(&d, "CH", NULL, NP_OP_NEG, nc * n, uw, 0, 0, 0, 2);
+    np_dp_op(&d, "CH", NULL, NP_OP_MUX, nc * n, uw, 3, 0, 0, lh);
+    tree(&d, "CH", "gd", nc, n, gdl, 1, lh + 1u);
+    /* D's bits below dshare equal U's at every corner: one register holds their live bits for the nc corners. */
+    unsigned dreg = n * ((dshare > tz ? dshare - tz : 0u) + nc * (OFFW - (dshare > tz ? dshare : tz)));
+    np_dp_op(&d, "CH", NULL, NP_OP_REG, 1, dreg + nc * gdl + 1u, 0, 0, 0, 0);
+    /*
+     * KT: per corner and axis |D_a| (a negate of the live bits), its square
+     * (|D_a| < 2^11: 11 - tz live bits), their sum (R2 <= edge2 W^2), k R2,
+     * Tv - k R2, the clamp; R2 and T at 2 tz fewer bits.
+     */
     uint64_t r2max = (uint64_t)ceil(g->edge2 * (double)g->w * (double)g->w);
     unsigned r2w = ubits(r2max), tdw = sbits((uint64_t)g->k * r2max > g->tv ? (uint64_t)g->k * r2max : g->tv);
-    unsigned tw = ubits(g->tv);
-    np_dp_op(&d, "KT", NULL, NP_OP_SQR, nc * n, OFFW, 0, 2u * OFFW, 0, 0); /* d_a^2: squarers */
-    lv = tree(&d, "KT", "r2", nc, n, r2w, 0, 1);
-    lv += const_mul(&d, "KT", NULL, nc, g->k, tdw, 0, lv);
-    np_dp_op(&d, "KT", NULL, NP_OP_INC, nc, tdw, 0, 0, 1, lv++); /* a constant minus k R2 */
-    np_dp_op(&d, "KT", "t", NP_OP_MUX, nc, tw, 2, tw, 0, lv);
-    np_dp_op(&d, "KT", NULL, NP_OP_REG, 1, nc * (tw + gdw) + 1u, 0, 0, 0, 0);
+    unsigned tw = ubits(g->tv), tl = tw - 2u * tz;
+    np_dp_op(&d, "KT", NULL, NP_OP_NEG, nc * n, uw, 0, 0, 0, 0);
+    np_dp_op(&d, "KT", NULL, NP_OP_SQR, nc * n, OFFW - 1u - tz, 0, 2u * OFFW, 0, 1); /* |d_a|^2: squarers */
+    lv = tree(&d, "KT", "r2", nc, n, r2w - 2u * tz, 0, 2);
+    lv += const_mul_span(&d, "KT", NULL, nc, g->k, r2w - 2u * tz, tdw - 2u * tz, 0, 0, lv);
+    np_dp_op(&d, "KT", NULL, NP_OP_INC, nc, tdw - 2u * tz, 0, 0, 1, lv++); /* a constant minus k R2 */
+    np_dp_op(&d, "KT", "t", NP_OP_MUX, nc, tl, 2, tw, 0, lv);
+    np_dp_op(&d, "KT", NULL, NP_OP_REG, 1, nc * (tl + gdl) + 1u, 0, 0, 0, 0);
     /* P2, P4: squarers; roundings are incrementers (as simplex3); the largest words are at T = Tv. */
     uint64_t t2 = np_simplexn_tau2(g, cfg, g->tv), t4 = np_simplexn_tau4(cfg, (uint32_t)t2);
     unsigned t2w = ubits(t2), t4w = ubits(t4);
-    np_dp_op(&d, "P2", NULL, NP_OP_SQR, nc, tw, 0, 2u * tw, 0, 0);
+    np_dp_op(&d, "P2", NULL, NP_OP_SQR, nc, tl, 0, 2u * tw, 0, 0);
     np_dp_op(&d, "P2", "tau2", NP_OP_INC, nc, t2w + 1u, 0, t2w, 0, 1);
-    np_dp_op(&d, "P2", NULL, NP_OP_REG, 1, nc * (t2w + gdw) + 1u, 0, 0, 0, 0);
+    np_dp_op(&d, "P2", NULL, NP_OP_REG, 1, nc * (t2w + gdl) + 1u, 0, 0, 0, 0);
     np_dp_op(&d, "P4", NULL, NP_OP_SQR, nc, t2w, 0, 2u * t2w, 0, 0);
     np_dp_op(&d, "P4", "tau4", NP_OP_INC, nc, t4w + 1u, 0, t4w, 0, 1);
-    np_dp_op(&d, "P4", NULL, NP_OP_REG, 1, nc * (t4w + gdw) + 1u, 0, 0, 0, 0);
+    np_dp_op(&d, "P4", NULL, NP_OP_REG, 1, nc * (t4w + gdl) + 1u, 0, 0, 0, 0);
     /*
      * M: fc = round(tau4 gd): |tau^4 G.d| <= fcmax where T > 0, plus tau4's
      * error e4 times |gd| <= gmax and fc's own rounding (ERROR BOUND).
@@ -481,22 +510,35 @@ size_t np_simplexn_datapath(const np_simplexn_cfg *cfg, np_op *ops, size_t max)
     double e = np_pow2i(-(int)wt - 1), e4 = e * (2.0 * g->tau0 * g->tau0 + e) + e;
     uint64_t fcmax = (uint64_t)ceil((g->fcmax + e4 * g->gmax) * np_pow2i((int)wp)) + 1u;
     unsigned fcw = sbits(fcmax);
-    np_dp_op(&d, "M", NULL, NP_OP_MUL, nc, t4w, gdw, t4w + gdw, 1, 0);
+    /*
+     * The RTL holds fc at FW = WP + GDW - GDF + 1 bits and S at FW + 3 (the
+     * header's bound at every configuration, np_simplexn.v), wider than the
+     * error argument's fcw; Yosys cannot narrow them, so M's rounding and
+     * bank, A and O are priced at the RTL's widths (the traced fc keeps fcw).
+     */
+    unsigned rfw = wp + gdw - g->gdf + 1u;
+    np_dp_op(&d, "M", NULL, NP_OP_MUL, nc, t4w, gdl, t4w + gdw, 1, 0);
     if (wt + g->gdf > wp)
-        np_dp_op(&d, "M", "fc", NP_OP_INC, nc, fcw + 1u, 0, fcw, 1, 1);
-    np_dp_op(&d, "M", NULL, NP_OP_REG, 1, nc * fcw + 1u, 0, 0, 0, 0);
-    /* A: the sum of n + 1 terms, |S| <= smax + errors < (n + 1) max |fc|: s(fcw + ceil log2 (n+1)). */
-    unsigned sw = fcw + clog2(nc);
+        np_dp_op(&d, "M", "fc", NP_OP_INC, nc, rfw + 1u, 0, fcw, 1, 1);
+    np_dp_op(&d, "M", NULL, NP_OP_REG, 1, nc * rfw + 1u, 0, 0, 0, 0);
+    /* A: the sum of n + 1 terms, |S| <= smax + errors < (n + 1) max |fc|: s(fcw + ceil log2 (n+1)); the RTL's FW + 3. */
+    unsigned sw = rfw + 3u;
     tree(&d, "A", NULL, 1, nc, sw, 1, 0);
     np_dp_op(&d, "A", NULL, NP_OP_REG, 1, sw + 1u, 0, 0, 0, 0);
-    /* O: Kf' S as shift-adds, rounding (an incrementer), the saturation (2 constant compares, a 3:1 select). */
+    /*
+     * O: Kf' S as shift-adds whose adders span their operands' overlap and
+     * whose bits under the rounding's round bit only carry (as simplex3's O);
+     * the rounding (an incrementer above them); the saturation as simplex3
+     * prices it: one check that the bits from the output's sign bit up are
+     * all equal, and a 2:1 select of the word or the largest value.
+     */
     uint64_t kf = (uint64_t)np_simplexn_kf(g, cfg);
-    unsigned pw = sw + ubits(kf);
-    lv = const_mul(&d, "O", NULL, 1, kf, pw, 1, 0);
-    if (wk + wp > nb)
-        np_dp_op(&d, "O", NULL, NP_OP_INC, 1, pw - (wk + wp - nb) + 1u, 0, 0, 1, lv++);
-    np_dp_op(&d, "O", NULL, NP_OP_CMPK, 2, pw - (wk + wp > nb ? wk + wp - nb : 0u), 0, 0, 0, lv++);
-    np_dp_op(&d, "O", NULL, NP_OP_MUX, 1, nb, 3, 0, 1, lv); /* the port sN: untraced, see np_simplexn.h */
+    unsigned pw = sw + ubits(kf), shift = wk + wp > nb ? wk + wp - nb : 0u;
+    lv = const_mul_span(&d, "O", NULL, 1, kf, sw, pw, shift > 0u ? shift - 1u : 0u, 1, 0);
+    if (shift > 0u)
+        np_dp_op(&d, "O", NULL, NP_OP_INC, 1, pw - shift + 1u, 0, 0, 1, lv++);
+    np_dp_op(&d, "O", NULL, NP_OP_CMPK, 1, pw - shift - nb + 1u, 0, 0, 0, lv++);
+    np_dp_op(&d, "O", NULL, NP_OP_MUX, 1, nb, 2, 0, 1, lv); /* the port sN: untraced, see np_simplexn.h */
     np_dp_op(&d, "O", NULL, NP_OP_REG, 1, nb + 1u, 0, 0, 0, 0);
     return d.n;
 }
