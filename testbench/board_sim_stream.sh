@@ -12,6 +12,9 @@
 #   kill    the first run (the SIM ARGUMENTS, e.g. --pace) is killed (SIGKILL) once its journal
 #           holds 3 verified frames; the simulator must see end of input and exit; then --resume
 #   fail    one run against a faulty board: must exit 1 with failing vectors
+#   reconnect  one run with the SIM ARGUMENTS (e.g. --fault reset:N) and --reconnect 2 must verify
+#           every vector (exit 0) in more than one session on the same board_sim process (one
+#           summary line, the fault applied): the board answered a new HELLO after its fault
 #   backpressure  as clean, and board_sim's summary must show rts_n high and host bytes held back
 #           by it (> 0 clocks) with no overflow: the flow control was exercised and honoured
 #   overflow  the first run with the SIM ARGUMENTS (--fault ignore-rts:N) must end in a detected
@@ -72,8 +75,11 @@ run() {
   runs=$((runs + 1))
   echo "--- run $runs: noisepipe stream --sim $sim --timeout 1 --quiet --journal $j $vec $* => exit $rc" >> "$log"
   cat "$out" >> "$log"
-  v=$(sed -n 's/^session: [0-9]* vectors sent, \([0-9]*\) verified;.*/\1/p' "$out")
-  [ -n "$v" ] || v=0
+  # one "session:" line a session (more than one with --reconnect)
+  v=0
+  for x in $(sed -n 's/^session: [0-9]* vectors sent, \([0-9]*\) verified;.*/\1/p' "$out"); do
+    v=$((v + x))
+  done
   verified_sum=$((verified_sum + v))
   sums="$sums${sums:+ + }$v"
 }
@@ -127,6 +133,23 @@ kill)
   [ -n "$before" ] && [ "$before" -gt 0 ] || fail "the resumed run found nothing verified before"
   verified_sum=$((verified_sum + before))
   sums="$before (killed run, from the journal) + $sums"
+  ;;
+reconnect)
+  run "$work/$case.1" --reconnect 2 -- "$@"
+  cat "$log"
+  [ $rc -eq 0 ] || fail "exit $rc, expected 0 (--reconnect)"
+  grep -q "^In $n tests, no errors found in " "$work/$case.1" || fail "no clean verdict"
+  sessions=$(grep -c '^session: ' "$work/$case.1")
+  [ "$sessions" -ge 2 ] || fail "$sessions session, expected a new one after the fault"
+  grep -q ': a new session on the same link (--reconnect, 1 of 2)$' "$work/$case.1" || fail "no reconnect line"
+  [ "$(grep -c '^board_sim: ' "$work/$case.1")" -eq 1 ] || fail "not one board_sim process (its summary lines)"
+  grep -q ' 1 faults applied, 1 resets,' "$work/$case.1" || grep -q ' 1 faults applied,' "$work/$case.1" ||
+    fail "the fault was not applied"
+  # the board counts the new session from 0: its BYE_ACK holds the last session's vectors, not all
+  last=$(sed -n 's/^session: [0-9]* vectors sent, \([0-9]*\) verified; the simulator.*/\1/p' "$work/$case.1")
+  grep -q "; $last records in [0-9]* clocks" "$work/$case.1" || fail "the last session's BYE_ACK does not count its $last records"
+  [ "$last" -lt "$n" ] || fail "the last session verified all $n: the fault hit nothing"
+  echo "board_sim stream $case: $sessions sessions on one board_sim process ($(sed -n 's/^session: \([0-9]*\) vectors sent, \([0-9]*\) verified.*/\1 sent, \2 verified/p' "$work/$case.1" | tr '\n' ';' | sed 's/;$//; s/;/; /g')); the last BYE_ACK counts $last records"
   ;;
 backpressure)
   run "$work/$case.1" -- "$@"

@@ -151,6 +151,8 @@ np_board_run(rtl.board.e2e.fault_flip e2e_fault_flip fail "In 2000 records, 2000
 #   rtl.board.sim.stall_{out,in}             the bridge stops (shorter than the time-out): one run
 #   rtl.board.sim.stall_long                 the IN side held longer than the time-out: --resume
 #   rtl.board.sim.reset                      the gateware reset mid-stream: time-out, --resume
+#   rtl.board.sim.reset_reconnect            the same with --reconnect 2: the same board_sim process
+#                                            answers a new HELLO; one run verifies every vector once
 #   rtl.board.sim.kill_resume                the command SIGKILLed mid-stream, then --resume
 #   rtl.board.sim.fault_flip                 classic3 with NP_FAULT_FLIP: the verdict must fail
 #   rtl.board.board_sim_bp.build             the gateware at MAX_PAYLOAD 2000: a frame of 2,028 bytes
@@ -187,6 +189,7 @@ np_board_sim_test(stall_out board_sim fault --fault stall-out:10000:400ms)
 np_board_sim_test(stall_in board_sim fault --fault stall-in:6000:200000)
 np_board_sim_test(stall_long board_sim fault --fault stall-in:6000:2500ms)
 np_board_sim_test(reset board_sim fault --fault reset:15000)
+np_board_sim_test(reset_reconnect board_sim reconnect --fault reset:15000)
 np_board_sim_test(kill_resume board_sim kill --pace 600000)
 np_board_sim_test(fault_flip board_sim_fault_flip fail)
 np_board_verilate(board_sim_bp np_board_top board_sim.cpp "-GMAX_PAYLOAD=2000" ${NP_BOARD_TOP_SRC})

@@ -26,6 +26,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <termios.h>
 #include <stdio.h>
 
 #include "np_crc32.h"
@@ -611,6 +612,28 @@ void np_link_child_status(const np_link_child *c, char *buf, size_t len);
  * 0 when it exited by itself, 1 when it had to be signalled.
  */
 int np_link_child_close(np_link_child *c, double grace);
+
+/*
+ * A kernel tty (link_tty.c): opened O_RDWR | O_NOCTTY, raw 8N1 (cfmakeraw),
+ * CLOCAL | CREAD | CRTSCTS, the baud rate, both buffers flushed; the old
+ * settings kept for close. The session then runs on fd with np_link_fd_stream.
+ */
+typedef struct np_tty {
+    int fd;                /* -1: not open */
+    unsigned baud;
+    int rtscts;            /* CRTSCTS as the driver reports it back */
+    int have_old;
+    struct termios old;
+} np_tty;
+
+/* 1 when termios has a rate for baud. */
+int np_link_tty_baud_ok(unsigned baud);
+/* "9600, 19200, ..." into buf. */
+void np_link_tty_rates(char *buf, size_t len);
+/* 0, or -1 with err naming the device (missing, not a tty, a rate it cannot set). */
+int np_link_tty_open(np_tty *t, const char *path, unsigned baud, char *err, size_t errlen);
+/* Restore the settings and close (a closed one is fine). */
+void np_link_tty_close(np_tty *t);
 
 /* The FTDI FT2232H's UART channel through libftdi1 (link_ftdi.c; only with NOISEPIPE_HAVE_FTDI). */
 typedef struct np_ftdi_opts {
