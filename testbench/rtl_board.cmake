@@ -195,6 +195,24 @@ np_board_sim_test(fault_flip board_sim_fault_flip fail)
 np_board_verilate(board_sim_bp np_board_top board_sim.cpp "-GMAX_PAYLOAD=2000" ${NP_BOARD_TOP_SRC})
 np_board_sim_test(backpressure board_sim_bp backpressure)
 np_board_sim_test(ignore_rts board_sim_bp overflow --fault ignore-rts:0)
+# --tty through a pseudo-terminal with board_sim on its master side (pty_board, tty_stream.sh;
+# link_fd.cmake has the emulator's and the refusals):
+#   rtl.board.sim.tty             the golden set through /dev/pts/N, --resume on it: 0 to send
+#   rtl.board.sim.tty_reconnect   a dropped OUT byte: --reconnect 2 completes the one run
+foreach(c tty tty_reconnect)
+  if(c STREQUAL "tty")
+    set(tcase sim)
+    set(targs)
+  else()
+    set(tcase reconnect)
+    set(targs --fault drop-out:9000)
+  endif()
+  add_test(NAME rtl.board.sim.${c}
+    COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/tty_stream.sh $<TARGET_FILE:noisepipe> $<TARGET_FILE:pty_board>
+            ${NP_BOARD_WORK}/sim_runs/${c} ${tcase} ${np_sim_vec} ${NP_BOARD_WORK}/board_sim/board_sim ${targs})
+  set_tests_properties(rtl.board.sim.${c} PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 120 LABELS "rtl;board;nosan"
+    FIXTURES_REQUIRED rtl_board_board_sim PASS_REGULAR_EXPRESSION "tty stream ${tcase}: 4224 vectors verified")
+endforeach()
 add_test(NAME link.sim_refusals
   COMMAND sh ${np_sim_driver} $<TARGET_FILE:noisepipe> none ${NP_BOARD_WORK}/sim_runs/refuse refuse ${np_sim_vec})
 set_tests_properties(link.sim_refusals PROPERTIES LABELS "link;board" TIMEOUT 60
