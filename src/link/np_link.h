@@ -16,6 +16,7 @@
  *   link_usb.c     the libusb transport (built only with NOISEPIPE_USB)
  *   link_fd.c      a byte stream on file descriptors (a tty, the pipes of a
  *                  board simulator run as a child: stream --sim)
+ *   link_tty.c     a kernel tty set up for link_fd.c (stream --tty)
  *
  * The host engine and the board are byte-stream state machines: the
  * transport moves bytes between them (np_host_pull -> OUT -> np_board_rx,
@@ -579,7 +580,7 @@ void np_link_usb_close(np_usb_board *b);
  * poll(), partial reads and writes; silence for timeout seconds while the host
  * waits, or OUT bytes not taken that long, is NP_FAULT_TIMEOUT; end of file,
  * EPIPE or EIO is NP_FAULT_NO_DEVICE. SIGPIPE is ignored during the session.
- * A tty is the caller's to set up (raw, baud, CRTSCTS, VMIN >= 1: link_fd.c).
+ * A tty is the caller's to set up (raw, baud, CRTSCTS, VMIN >= 1): np_link_tty_open.
  */
 typedef struct np_fd_opts {
     double timeout;        /* seconds; 0: 2 */
