@@ -12,6 +12,14 @@
 #   kill    the first run (the SIM ARGUMENTS, e.g. --pace) is killed (SIGKILL) once its journal
 #           holds 3 verified frames; the simulator must see end of input and exit; then --resume
 #   fail    one run against a faulty board: must exit 1 with failing vectors
+#   reconnect  one run with the SIM ARGUMENTS (e.g. --fault reset:N) and --reconnect 2 must verify
+#           every vector (exit 0) in more than one session on the same board_sim process (one
+#           summary line, the fault applied): the board answered a new HELLO after its fault
+#   backpressure  as clean, and board_sim's summary must show rts_n high and host bytes held back
+#           by it (> 0 clocks) with no overflow: the flow control was exercised and honoured
+#   overflow  the first run with the SIM ARGUMENTS (--fault ignore-rts:N) must end in a detected
+#           failure: exit 1 with a link fault, board_sim's overflow 1; then --resume (a plain
+#           board) until exit 0
 # Every case but fail ends with the check that nothing was lost or counted twice: the runs'
 # "session: S vectors sent, V verified" add up to the vector count, the journal's R lines cover
 # 0..N-1 once each (sorted, no gap, no overlap), and one more --resume finds nothing to send;
@@ -67,8 +75,11 @@ run() {
   runs=$((runs + 1))
   echo "--- run $runs: noisepipe stream --sim $sim --timeout 1 --quiet --journal $j $vec $* => exit $rc" >> "$log"
   cat "$out" >> "$log"
-  v=$(sed -n 's/^session: [0-9]* vectors sent, \([0-9]*\) verified;.*/\1/p' "$out")
-  [ -n "$v" ] || v=0
+  # one "session:" line a session (more than one with --reconnect)
+  v=0
+  for x in $(sed -n 's/^session: [0-9]* vectors sent, \([0-9]*\) verified;.*/\1/p' "$out"); do
+    v=$((v + x))
+  done
   verified_sum=$((verified_sum + v))
   sums="$sums${sums:+ + }$v"
 }
@@ -123,6 +134,51 @@ kill)
   verified_sum=$((verified_sum + before))
   sums="$before (killed run, from the journal) + $sums"
   ;;
+reconnect)
+  run "$work/$case.1" --reconnect 2 -- "$@"
+  cat "$log"
+  [ $rc -eq 0 ] || fail "exit $rc, expected 0 (--reconnect)"
+  grep -q "^In $n tests, no errors found in " "$work/$case.1" || fail "no clean verdict"
+  sessions=$(grep -c '^session: ' "$work/$case.1")
+  [ "$sessions" -ge 2 ] || fail "$sessions session, expected a new one after the fault"
+  grep -q ': a new session on the same link (--reconnect, 1 of 2)$' "$work/$case.1" || fail "no reconnect line"
+  [ "$(grep -c '^board_sim: ' "$work/$case.1")" -eq 1 ] || fail "not one board_sim process (its summary lines)"
+  grep -q ' 1 faults applied, 1 resets,' "$work/$case.1" || grep -q ' 1 faults applied,' "$work/$case.1" ||
+    fail "the fault was not applied"
+  # the board counts the new session from 0: its BYE_ACK holds the last session's vectors, not all
+  last=$(sed -n 's/^session: [0-9]* vectors sent, \([0-9]*\) verified; the simulator.*/\1/p' "$work/$case.1")
+  grep -q "; $last records in [0-9]* clocks" "$work/$case.1" || fail "the last session's BYE_ACK does not count its $last records"
+  [ "$last" -lt "$n" ] || fail "the last session verified all $n: the fault hit nothing"
+  echo "board_sim stream $case: $sessions sessions on one board_sim process ($(sed -n 's/^session: \([0-9]*\) vectors sent, \([0-9]*\) verified.*/\1 sent, \2 verified/p' "$work/$case.1" | tr '\n' ';' | sed 's/;$//; s/;/; /g')); the last BYE_ACK counts $last records"
+  ;;
+backpressure)
+  run "$work/$case.1" -- "$@"
+  cat "$log"
+  [ $rc -eq 0 ] || fail "exit $rc, expected 0"
+  grep -q "^In $n tests, no errors found in " "$work/$case.1" || fail "no clean verdict"
+  grep -q "; $n records in [0-9]* clocks" "$work/$case.1" || fail "the board's BYE_ACK does not count $n records"
+  high=$(sed -n 's/.*, rts_n high \([0-9]*\) clocks, .*/\1/p' "$work/$case.1")
+  held=$(sed -n 's/.*, host bytes held back by rts_n \([0-9]*\) clocks (at most \([0-9]*\) waiting).*/\1 \2/p' "$work/$case.1")
+  [ -n "$high" ] && [ -n "$held" ] || fail "board_sim printed no rts_n figures"
+  [ "$high" -gt 0 ] || fail "rts_n was never high: the back-pressure was not exercised"
+  [ "${held% *}" -gt 0 ] || fail "no host byte was held back by rts_n"
+  echo "board_sim stream $case: rts_n high $high clocks; host bytes held back ${held% *} clocks, at most ${held#* } waiting"
+  ;;
+overflow)
+  run "$work/$case.1" -- "$@"
+  [ $rc -eq 1 ] || { cat "$log"; fail "exit $rc with the bridge ignoring rts_n, expected 1 (a detected failure)"; }
+  grep -q ', overflow 1$' "$work/$case.1" || { cat "$log"; fail "board_sim saw no overflow: the buffer never filled"; }
+  grep -q " 0 OUT bytes sent against rts_n" "$work/$case.1" && { cat "$log"; fail "no byte was sent against rts_n"; }
+  grep -q "^In [0-9]* tests, no errors found in " "$work/$case.1" || { cat "$log"; fail "the overflowed run's verified vectors are not all good"; }
+  first_fault=$(grep -m1 '^noisepipe stream: ' "$work/$case.1")
+  [ -n "$first_fault" ] || { cat "$log"; fail "the first run named no link fault"; }
+  while [ $rc -eq 1 ] && [ $runs -lt 4 ]; do
+    run "$work/$case.$((runs + 1))" --resume
+  done
+  cat "$log"
+  [ $rc -eq 0 ] || fail "exit $rc after $runs runs"
+  echo "board_sim stream $case: the first run was stopped by a link fault ($first_fault) with overflow 1"
+  ;;
 fail)
   run "$work/$case.1" -- "$@"
   cat "$log"
@@ -137,7 +193,12 @@ fail)
 esac
 
 # Nothing lost, nothing counted twice; and the bridge honoured rts_n (the board never lost a byte).
-grep -q ', overflow 1$' "$log" && fail "the board lost OUT bytes (overflow): rts_n not honoured"
+# (in the overflow case the first run is meant to overflow: the runs after it must not)
+if [ "$case" = overflow ]; then
+  sed '1,/^--- run 2:/d' "$log" | grep -q ', overflow 1$' && fail "the board lost OUT bytes (overflow) after the first run"
+else
+  grep -q ', overflow 1$' "$log" && fail "the board lost OUT bytes (overflow): rts_n not honoured"
+fi
 grep -q "^In $n tests, no errors found in " "$work/$case.$runs" || fail "the last run's verdict is not clean"
 [ $verified_sum -eq "$n" ] || fail "the runs verified $sums = $verified_sum vectors, not $n"
 next=0 lines=0

@@ -78,13 +78,13 @@ endforeach()
 set(np_board_ldflags "$<TARGET_FILE:np_link> $<TARGET_FILE:np_tools> $<TARGET_FILE:np_rtl_model> -lm -lpthread")
 
 # np_board_verilate(name top cpp defines sources...): a Verilated harness ${NP_BOARD_WORK}/<name>/<name>,
-# built by the test rtl.board.<name>.build (fixture rtl_board_<name>). A fault copy (defines set)
-# is compiled at -O0: it runs once.
+# built by the test rtl.board.<name>.build (fixture rtl_board_<name>). A fault copy (an NP_FAULT_
+# define) is compiled at -O0: it runs once. defs may also set the top's parameters (-GNAME=V).
 function(np_board_verilate name top cpp defs)
   set(dir ${NP_BOARD_WORK}/${name})
   file(MAKE_DIRECTORY ${dir})
   set(vopt)
-  if(defs)
+  if(defs MATCHES "NP_FAULT")
     set(vopt -MAKEFLAGS OPT_FAST=-O0 -MAKEFLAGS OPT_SLOW=-O0 -MAKEFLAGS OPT_GLOBAL=-O0)
   endif()
   np_rtl_test(rtl.board.${name}.build "${NP_VERILATOR}" pass "" "rtl;board;nosan"
@@ -151,8 +151,17 @@ np_board_run(rtl.board.e2e.fault_flip e2e_fault_flip fail "In 2000 records, 2000
 #   rtl.board.sim.stall_{out,in}             the bridge stops (shorter than the time-out): one run
 #   rtl.board.sim.stall_long                 the IN side held longer than the time-out: --resume
 #   rtl.board.sim.reset                      the gateware reset mid-stream: time-out, --resume
+#   rtl.board.sim.reset_reconnect            the same with --reconnect 2: the same board_sim process
+#                                            answers a new HELLO; one run verifies every vector once
 #   rtl.board.sim.kill_resume                the command SIGKILLed mid-stream, then --resume
 #   rtl.board.sim.fault_flip                 classic3 with NP_FAULT_FLIP: the verdict must fail
+#   rtl.board.board_sim_bp.build             the gateware at MAX_PAYLOAD 2000: a frame of 2,028 bytes
+#                                            in the 2,048-byte OUT buffer, so the next frame's bytes
+#                                            meet rts_n high while a RESULT goes out
+#   rtl.board.sim.backpressure               on it: rts_n high, host bytes held back, every vector
+#                                            verified once, no overflow
+#   rtl.board.sim.ignore_rts                 on it, the bridge ignoring rts_n: overflow and a link
+#                                            fault must be seen (not silent loss), then --resume
 #   link.sim_refusals                        a program that cannot run or ends at once: exit 2
 np_board_verilate(board_sim np_board_top board_sim.cpp "" ${NP_BOARD_TOP_SRC})
 np_board_verilate(board_sim_fault_flip np_board_top board_sim.cpp "-DNP_FAULT_FLIP" ${NP_BOARD_TOP_SRC})
@@ -180,8 +189,30 @@ np_board_sim_test(stall_out board_sim fault --fault stall-out:10000:400ms)
 np_board_sim_test(stall_in board_sim fault --fault stall-in:6000:200000)
 np_board_sim_test(stall_long board_sim fault --fault stall-in:6000:2500ms)
 np_board_sim_test(reset board_sim fault --fault reset:15000)
+np_board_sim_test(reset_reconnect board_sim reconnect --fault reset:15000)
 np_board_sim_test(kill_resume board_sim kill --pace 600000)
 np_board_sim_test(fault_flip board_sim_fault_flip fail)
+np_board_verilate(board_sim_bp np_board_top board_sim.cpp "-GMAX_PAYLOAD=2000" ${NP_BOARD_TOP_SRC})
+np_board_sim_test(backpressure board_sim_bp backpressure)
+np_board_sim_test(ignore_rts board_sim_bp overflow --fault ignore-rts:0)
+# --tty through a pseudo-terminal with board_sim on its master side (pty_board, tty_stream.sh;
+# link_fd.cmake has the emulator's and the refusals):
+#   rtl.board.sim.tty             the golden set through /dev/pts/N, --resume on it: 0 to send
+#   rtl.board.sim.tty_reconnect   a dropped OUT byte: --reconnect 2 completes the one run
+foreach(c tty tty_reconnect)
+  if(c STREQUAL "tty")
+    set(tcase sim)
+    set(targs)
+  else()
+    set(tcase reconnect)
+    set(targs --fault drop-out:9000)
+  endif()
+  add_test(NAME rtl.board.sim.${c}
+    COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/tty_stream.sh $<TARGET_FILE:noisepipe> $<TARGET_FILE:pty_board>
+            ${NP_BOARD_WORK}/sim_runs/${c} ${tcase} ${np_sim_vec} ${NP_BOARD_WORK}/board_sim/board_sim ${targs})
+  set_tests_properties(rtl.board.sim.${c} PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 120 LABELS "rtl;board;nosan"
+    FIXTURES_REQUIRED rtl_board_board_sim PASS_REGULAR_EXPRESSION "tty stream ${tcase}: 4224 vectors verified")
+endforeach()
 add_test(NAME link.sim_refusals
   COMMAND sh ${np_sim_driver} $<TARGET_FILE:noisepipe> none ${NP_BOARD_WORK}/sim_runs/refuse refuse ${np_sim_vec})
 set_tests_properties(link.sim_refusals PROPERTIES LABELS "link;board" TIMEOUT 60

@@ -21,8 +21,9 @@
 #include "np_vec.h"
 
 static const char usage_text[] =
-    "usage: noisepipe stream (--device VID:PID | --ftdi [VID:PID] | --emulate |\n"
-    "                        --sim PROGRAM) [options] (VECTORS | --random N)\n"
+    "usage: noisepipe stream (--device VID:PID | --ftdi [VID:PID] | --tty DEVICE |\n"
+    "                        --emulate | --sim PROGRAM) [options]\n"
+    "                        (VECTORS | --random N)\n"
     "                        [-- SIMULATOR ARGUMENTS]\n"
     "\n"
     "Stream the vectors to a board running the unit, verify every result bit for\n"
@@ -44,8 +45,11 @@ static const char usage_text[] =
     "                      default 0403:6010\n"
     "  --ftdi-interface C  the FT2232H's channel A..D (default B: the FPGA's UART)\n"
     "  --ftdi-serial S     the FTDI chip with this serial number (default: the first)\n"
-    "  --baud N            the UART's rate (default 3000000: the gateware's); 8N1,\n"
-    "                      RTS/CTS flow control\n"
+    "  --tty DEVICE        the board behind a kernel tty, e.g. /dev/ttyUSB1 (the\n"
+    "                      FT2232H's channel B through ftdi_sio): raw 8N1, RTS/CTS,\n"
+    "                      --baud; the journal binds \"tty DEVICE\"\n"
+    "  --baud N            with --ftdi or --tty: the UART's rate (default 3000000:\n"
+    "                      the gateware's); 8N1, RTS/CTS flow control\n"
     "  --emulate           no USB: the board emulator (cycle-accurate models) in process\n"
     "  --inject F:INDEX[:BIT]  with --emulate: make the emulated board fail at vector\n"
     "                      INDEX; F = wrong-bit, corrupt, short, drop, silent\n"
@@ -59,7 +63,8 @@ static const char usage_text[] =
     "  --resume            continue the journal: send only what it does not hold; it\n"
     "                      must be of these vectors (unit, configuration, file size\n"
     "                      and contents) and this target (the emulator, the same\n"
-    "                      --sim PROGRAM, or the same VID:PID and serial number)\n"
+    "                      --sim PROGRAM or --tty DEVICE, or the same VID:PID and\n"
+    "                      serial number)\n"
     "  --force             without --resume: replace an existing journal (only once\n"
     "                      the target is open); without it an existing journal is\n"
     "                      never overwritten\n"
@@ -67,6 +72,10 @@ static const char usage_text[] =
     "  --timeout SEC       a silent board with work outstanding is a fault (default 2)\n"
     "  --frame N           vectors per frame (default: as many as the board takes)\n"
     "  --window N          DATA frames outstanding at most (default: the board's)\n"
+    "  --reconnect N       with --sim or --tty: after a link fault (time-out, a\n"
+    "                      damaged frame, an ERROR from the board) start a new\n"
+    "                      session (HELLO) on the same link, at most N times;\n"
+    "                      what was verified stays verified (default 0)\n"
     "  --quiet             no per-vector failure lines\n"
     "\n"
     "Exit status: 0 every vector verified; 1 a result differed, or the link failed\n"
@@ -80,6 +89,8 @@ typedef struct stream_args {
     const char *vectors, *unit, *config, *device, *journal, *inject;
     const char *ftdi, *ftdi_serial; /* ftdi: "" for the default VID:PID */
     const char *sim;                /* --sim PROGRAM */
+    const char *tty;                /* --tty DEVICE */
+    uint64_t reconnect;             /* --reconnect N */
     char **sim_args;                /* the words after "--" (sim_nargs of them) */
     int sim_nargs, have_dashdash;
     uint64_t random_n, seed, max_errors, frame, window, in_flight, baud;
@@ -158,6 +169,17 @@ static int parse_args(int argc, char **argv, stream_args *a)
                 return -1;
             }
             a->sim = v;
+        } else if ((r = opt(argc, argv, &i, "--tty", &v)) != 0) {
+            if (r < 0)
+                return -1;
+            if (!v[0] || strlen(v) > 180) {
+                np_err("stream", "--tty '%s': expected the tty's path (at most 180 characters), e.g. /dev/ttyUSB1", v);
+                return -1;
+            }
+            a->tty = v;
+        } else if ((r = opt(argc, argv, &i, "--reconnect", &v)) != 0) {
+            if (r < 0 || num("--reconnect", v, 0, 1000, &a->reconnect) != 0)
+                return -1;
         } else if (strcmp(arg, "--emulate") == 0) {
             a->emulate = 1;
         } else if (strcmp(arg, "--ftdi") == 0) {
@@ -267,8 +289,9 @@ static int parse_args(int argc, char **argv, stream_args *a)
         np_err("stream", "give a vector file or --random N (noisepipe stream --help)");
         return -1;
     }
-    if (!!a->device + !!a->emulate + !!a->ftdi + !!a->sim != 1) {
-        np_err("stream", "give one of --device VID:PID, --ftdi [VID:PID], --emulate or --sim PROGRAM (noisepipe stream --help)");
+    if (!!a->device + !!a->emulate + !!a->ftdi + !!a->sim + !!a->tty != 1) {
+        np_err("stream", "give one of --device VID:PID, --ftdi [VID:PID], --tty DEVICE, --emulate or --sim PROGRAM "
+                         "(noisepipe stream --help)");
         return -1;
     }
     if (a->have_dashdash && !a->sim) {
@@ -283,8 +306,16 @@ static int parse_args(int argc, char **argv, stream_args *a)
         np_err("stream", "--random needs --unit");
         return -1;
     }
-    if (!a->ftdi && (a->ftdi_interface >= 0 || a->ftdi_serial || a->have_baud)) {
-        np_err("stream", "%s goes with --ftdi", a->ftdi_serial ? "--ftdi-serial" : a->have_baud ? "--baud" : "--ftdi-interface");
+    if (!a->ftdi && (a->ftdi_interface >= 0 || a->ftdi_serial)) {
+        np_err("stream", "%s goes with --ftdi", a->ftdi_serial ? "--ftdi-serial" : "--ftdi-interface");
+        return -1;
+    }
+    if (a->have_baud && !a->ftdi && !a->tty) {
+        np_err("stream", "--baud goes with --ftdi or --tty");
+        return -1;
+    }
+    if (a->reconnect && !a->sim && !a->tty) {
+        np_err("stream", "--reconnect goes with --sim or --tty (the transports on a byte stream)");
         return -1;
     }
     if (a->resume && a->force) {
@@ -527,6 +558,48 @@ static void close_all(np_board *board, np_usb_board *ub, np_ftdi_board *fb)
 #endif
 }
 
+/* Faults after which a new session on the same byte stream can go on: the board is still there. */
+static int reconnectable(np_link_fault f)
+{
+    return f == NP_FAULT_TIMEOUT || f == NP_FAULT_CORRUPT || f == NP_FAULT_SHORT || f == NP_FAULT_SEQ ||
+           f == NP_FAULT_BOARD;
+}
+
+/*
+ * The sessions on a byte stream (--sim, --tty): the first, then with
+ * --reconnect N up to N more after a link fault, each a new host (a new HELLO
+ * and nonce: the board's stale answers to the old one are dropped before
+ * INFO) on the same job and journal, so a new session sends only what the
+ * journal does not hold. Each ended session but the last prints its
+ * "session:" line here. The last host is returned (NULL: out of memory).
+ */
+static np_host *fd_sessions(int rfd, int wfd, np_host *h, const stream_args *a, const np_link_job *j,
+                            np_journal *jn, const np_host_opts *ho, report *rp)
+{
+    np_fd_opts fo;
+    memset(&fo, 0, sizeof fo);
+    fo.timeout = a->timeout;
+    for (uint64_t n = 0;; n++) {
+        np_link_fd_stream(rfd, wfd, h, &fo);
+        np_link_fault f = np_host_get_fault(h);
+        if (n >= a->reconnect || !reconnectable(f) || np_host_complete(h) ||
+            (a->max_errors && jn->n_errors >= a->max_errors))
+            return h;
+        const np_host_stats *s = np_host_get_stats(h);
+        np_err("stream", "%s", np_host_fault_msg(h));
+        printf("session: %llu vectors sent, %llu verified; %s: a new session on the same link (--reconnect, %llu of %llu)\n",
+               (unsigned long long)s->sent, (unsigned long long)s->verified, np_link_fault_name(f),
+               (unsigned long long)n + 1, (unsigned long long)a->reconnect);
+        fflush(stdout);
+        np_host_free(h);
+        if (!(h = np_host_new(j, jn, ho))) {
+            rp->h = NULL;
+            return NULL;
+        }
+        rp->h = h;
+    }
+}
+
 static double cpu_seconds(void)
 {
     struct rusage ru;
@@ -634,7 +707,18 @@ int np_cmd_stream(int argc, char **argv)
     np_link_child sim;
     memset(&sim, 0, sizeof sim);
     sim.pid = sim.rfd = sim.wfd = -1;
-    if (a.sim) {
+    np_tty tty;
+    memset(&tty, 0, sizeof tty);
+    tty.fd = -1;
+    if (a.tty) {
+        if (np_link_tty_open(&tty, a.tty, (unsigned)a.baud, err, sizeof err) != 0) {
+            np_err("stream", "%s", err);
+            np_link_job_free(&j);
+            return NP_EXIT_USAGE;
+        }
+        /* bound to the device's path as given (the rate is not bound: a resume may run at another) */
+        snprintf(tg.target, sizeof tg.target, "tty %.*s", (int)(sizeof tg.target - 8), a.tty);
+    } else if (a.sim) {
         /* argv for exec: the program, then the words after "--" */
         char **sargv = calloc((size_t)a.sim_nargs + 2, sizeof *sargv);
         if (!sargv) {
@@ -705,6 +789,7 @@ int np_cmd_stream(int argc, char **argv)
         np_err("stream", "%s", err);
         np_journal_close(&jn);
         np_link_child_close(&sim, 2.0);
+        np_link_tty_close(&tty);
         close_all(board, ub, fb);
         np_link_job_free(&j);
         return NP_EXIT_USAGE;
@@ -721,8 +806,8 @@ int np_cmd_stream(int argc, char **argv)
     rp.todo = j.n - jn.prior_checked;
     printf("stream: %s %s, %llu vectors (%s, %016llx) to %s%s\n", j.unit->name, j.cfg_text,
            (unsigned long long)j.n, source, (unsigned long long)j.hash,
-           a.emulate ? "the board emulator" : a.ftdi ? "the FT2232H" : a.sim ? "the simulator " : a.device,
-           a.sim ? a.sim : "");
+           a.emulate ? "the board emulator" : a.ftdi ? "the FT2232H" : a.sim ? "the simulator " : a.tty ? "the tty " : a.device,
+           a.sim ? a.sim : a.tty ? a.tty : "");
     if (!a.emulate)
         printf("target: %s\n", tg.target);
     if (journal)
@@ -751,6 +836,7 @@ int np_cmd_stream(int argc, char **argv)
         np_interrupt_note(NULL);
         np_journal_close(&jn);
         np_link_child_close(&sim, 2.0);
+        np_link_tty_close(&tty);
         close_all(board, ub, fb);
         np_link_job_free(&j);
         return NP_EXIT_USAGE;
@@ -777,12 +863,13 @@ int np_cmd_stream(int argc, char **argv)
 #endif
     int sim_early = 0; /* the simulator ended before it answered HELLO: not a board (usage) */
     char sim_status[128] = "";
+    if (a.tty) {
+        h = fd_sessions(tty.fd, tty.fd, h, &a, &j, &jn, &ho, &rp);
+        np_link_tty_close(&tty);
+    }
     if (a.sim) {
-        np_fd_opts fo;
-        memset(&fo, 0, sizeof fo);
-        fo.timeout = a.timeout;
-        np_link_fd_stream(sim.rfd, sim.wfd, h, &fo);
-        if (np_host_get_fault(h) == NP_FAULT_NO_DEVICE && np_host_get_stats(h)->info.board_id[0] == '\0') {
+        h = fd_sessions(sim.rfd, sim.wfd, h, &a, &j, &jn, &ho, &rp);
+        if (h && np_host_get_fault(h) == NP_FAULT_NO_DEVICE && np_host_get_stats(h)->info.board_id[0] == '\0') {
             /* its end of the pipes closed before INFO: a program that exited (give it a second to be reaped) */
             double t0 = np_now();
             while (!np_link_child_exited(&sim) && np_now() - t0 < 1.0) {
@@ -798,6 +885,13 @@ int np_cmd_stream(int argc, char **argv)
                    a.sim, sim_status);
     }
     close_all(board, ub, fb);
+    if (!h) {
+        np_err("stream", "out of memory for a new session");
+        np_interrupt_note(NULL);
+        np_journal_close(&jn);
+        np_link_job_free(&j);
+        return NP_EXIT_USAGE;
+    }
     double cpu = cpu_seconds() - cpu0 - board_cpu;
     char jerr[512];
     int jsync = np_journal_sync(&jn, jerr, sizeof jerr);
@@ -846,6 +940,10 @@ int np_cmd_stream(int argc, char **argv)
         if (a.sim)
             printf("session: %llu vectors sent, %llu verified; the simulator: %s\n", (unsigned long long)s->sent,
                    (unsigned long long)s->verified, sim_status);
+        if (a.tty)
+            printf("session: %llu vectors sent, %llu verified; tty %s at %u baud, RTS/CTS %s\n",
+                   (unsigned long long)s->sent, (unsigned long long)s->verified, a.tty, tty.baud,
+                   tty.rtscts ? "on" : "not kept by the driver");
         if (jsync != 0 && fault == NP_FAULT_NONE) {
             np_err("stream", "%s", jerr);
             fault = NP_FAULT_JOURNAL;

@@ -18,8 +18,8 @@
  * is seen as an error, not as a signal that ends the process) and its old
  * action restored after it.
  *
- * A tty must be set up by the caller: raw, the baud rate, CRTSCTS, and VMIN at
- * least 1 (cfmakeraw's): with VMIN = VTIME = 0 a non-blocking read() of a tty
+ * A tty must be set up by the caller (link_tty.c's np_link_tty_open does): raw,
+ * the baud rate, CRTSCTS, and VMIN at least 1 (cfmakeraw's): with VMIN = VTIME = 0 a non-blocking read() of a tty
  * with no bytes returns 0, which this transport takes for the end of the stream.
  */
 #include "np_link.h"

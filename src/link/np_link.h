@@ -16,6 +16,7 @@
  *   link_usb.c     the libusb transport (built only with NOISEPIPE_USB)
  *   link_fd.c      a byte stream on file descriptors (a tty, the pipes of a
  *                  board simulator run as a child: stream --sim)
+ *   link_tty.c     a kernel tty set up for link_fd.c (stream --tty)
  *
  * The host engine and the board are byte-stream state machines: the
  * transport moves bytes between them (np_host_pull -> OUT -> np_board_rx,
@@ -26,6 +27,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <termios.h>
 #include <stdio.h>
 
 #include "np_crc32.h"
@@ -578,7 +580,7 @@ void np_link_usb_close(np_usb_board *b);
  * poll(), partial reads and writes; silence for timeout seconds while the host
  * waits, or OUT bytes not taken that long, is NP_FAULT_TIMEOUT; end of file,
  * EPIPE or EIO is NP_FAULT_NO_DEVICE. SIGPIPE is ignored during the session.
- * A tty is the caller's to set up (raw, baud, CRTSCTS, VMIN >= 1: link_fd.c).
+ * A tty is the caller's to set up (raw, baud, CRTSCTS, VMIN >= 1): np_link_tty_open.
  */
 typedef struct np_fd_opts {
     double timeout;        /* seconds; 0: 2 */
@@ -611,6 +613,28 @@ void np_link_child_status(const np_link_child *c, char *buf, size_t len);
  * 0 when it exited by itself, 1 when it had to be signalled.
  */
 int np_link_child_close(np_link_child *c, double grace);
+
+/*
+ * A kernel tty (link_tty.c): opened O_RDWR | O_NOCTTY, raw 8N1 (cfmakeraw),
+ * CLOCAL | CREAD | CRTSCTS, the baud rate, both buffers flushed; the old
+ * settings kept for close. The session then runs on fd with np_link_fd_stream.
+ */
+typedef struct np_tty {
+    int fd;                /* -1: not open */
+    unsigned baud;
+    int rtscts;            /* CRTSCTS as the driver reports it back */
+    int have_old;
+    struct termios old;
+} np_tty;
+
+/* 1 when termios has a rate for baud. */
+int np_link_tty_baud_ok(unsigned baud);
+/* "9600, 19200, ..." into buf. */
+void np_link_tty_rates(char *buf, size_t len);
+/* 0, or -1 with err naming the device (missing, not a tty, a rate it cannot set). */
+int np_link_tty_open(np_tty *t, const char *path, unsigned baud, char *err, size_t errlen);
+/* Restore the settings and close (a closed one is fine). */
+void np_link_tty_close(np_tty *t);
 
 /* The FTDI FT2232H's UART channel through libftdi1 (link_ftdi.c; only with NOISEPIPE_HAVE_FTDI). */
 typedef struct np_ftdi_opts {

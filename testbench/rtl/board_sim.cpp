@@ -29,11 +29,16 @@
 //                       input ends a stall: the host is gone)
 //   reset:N             the gateware's rst high for 16 clocks before OUT byte N goes on the line:
 //                       the engine forgets its session (it hunts, halted, for a HELLO)
+//   ignore-rts:N        from OUT byte N on, the bridge starts bytes whatever rts_n says (a host
+//                       or bridge without flow control): applied at the first byte started while
+//                       rts_n is high; the board then loses bytes (overflow) once its buffer is full
 // Other options: --pace HZ (at most HZ simulated clocks a second of wall time; 0, the default:
 // as fast as it runs), --quiet (no summary line on stderr at exit).
 //
 // On exit it prints one line on stderr: bytes each way, clocks, faults applied, framing errors,
-// overflow (a byte the board lost: never while rts_n is honoured).
+// the clocks rts_n was high and the clocks host bytes waited in the bridge because of it (with
+// the most that waited), the OUT bytes started against rts_n, and overflow (a byte the board
+// lost: never while rts_n is honoured).
 #include <poll.h>
 #include <signal.h>
 #include <time.h>
@@ -60,8 +65,9 @@ const uint64_t kBatch = 2048;     // clocks between looks at stdin while the boa
 const unsigned kResetClocks = 16;
 const uint64_t kAfterEof = 50000000;  // at most this many clocks after end of input (about 20 s)
 
-enum Kind { DROP_OUT, DROP_IN, FLIP_OUT, FLIP_IN, STALL_OUT, STALL_IN, RESET, N_KINDS };
-const char *const kNames[N_KINDS] = {"drop-out", "drop-in", "flip-out", "flip-in", "stall-out", "stall-in", "reset"};
+enum Kind { DROP_OUT, DROP_IN, FLIP_OUT, FLIP_IN, STALL_OUT, STALL_IN, RESET, IGNORE_RTS, N_KINDS };
+const char *const kNames[N_KINDS] = {"drop-out", "drop-in", "flip-out", "flip-in", "stall-out", "stall-in", "reset",
+                                     "ignore-rts"};
 
 struct Fault {
     Kind kind;
@@ -106,6 +112,14 @@ struct Sim {
                 return &f;
         return nullptr;
     }
+    // An ignore-rts fault in force at OUT byte i (it holds from its byte on).
+    Fault *ignoring_rts(uint64_t i)
+    {
+        for (Fault &f : faults)
+            if (f.kind == IGNORE_RTS && i >= f.at)
+                return &f;
+        return nullptr;
+    }
 };
 
 // The bridge's side of the OUT line: a UART transmitter that starts a byte only while rts_n is low.
@@ -116,13 +130,30 @@ struct LineOut {
     uint64_t sent = 0;   // bytes taken from q (the OUT byte index)
     Stall stall;
     unsigned reset_left = 0;  // clocks of rst still to hold
+    uint64_t held_clocks = 0;   // clocks a host byte waited, the line free, because rts_n was high
+    size_t held_max = 0;        // the most host bytes waiting at such a clock
+    uint64_t against_rts = 0;   // bytes started while rts_n was high (ignore-rts)
     // One clock; the line level.
     int step(int rts_n, Sim &s, uint64_t clock)
     {
         if (bit == 0) {
-            if (q.empty() || rts_n || stall.active(clock) || reset_left)
+            if (q.empty() || stall.active(clock) || reset_left)
                 return 1;
             uint64_t idx = sent;
+            if (rts_n) {
+                Fault *f = s.ignoring_rts(idx);
+                if (!f) {
+                    held_clocks++;
+                    if (q.size() > held_max)
+                        held_max = q.size();
+                    return 1;
+                }
+                if (!f->done) {
+                    f->done = true;
+                    s.applied++;
+                }
+                against_rts++;
+            }
             if (Fault *f = s.find(STALL_OUT, idx)) {
                 f->done = true;
                 s.applied++;
@@ -305,7 +336,7 @@ bool parse_fault(const char *a, Fault *f)
         }
         return parse_u64(arg.c_str(), &f->clocks) && f->clocks >= 1;
     }
-    return arg.empty();  // drops and reset take no argument
+    return arg.empty();  // drops, reset and ignore-rts take no argument
 }
 
 }  // namespace
@@ -322,7 +353,7 @@ int main(int argc, char **argv)
             if (!parse_fault(argv[++i], &f)) {
                 fprintf(stderr,
                         "board_sim: --fault '%s': want drop-out:N, drop-in:N, flip-out:N[:BIT], flip-in:N[:BIT], "
-                        "stall-out:N:CLOCKS, stall-in:N:CLOCKS (or :MSms), reset:N\n",
+                        "stall-out:N:CLOCKS, stall-in:N:CLOCKS (or :MSms), reset:N, ignore-rts:N\n",
                         argv[i]);
                 return 2;
             }
@@ -455,11 +486,13 @@ int main(int argc, char **argv)
         fprintf(stderr,
                 "board_sim: %s; %llu OUT bytes on the line, %llu IN bytes (%llu to the host), %llu clocks "
                 "(%.3f s of board time at 12 MHz), %.2f s wall; %llu faults applied, %llu resets, "
-                "%llu framing errors at the host, rts_n high %llu clocks, overflow %d\n",
+                "%llu framing errors at the host, rts_n high %llu clocks, host bytes held back by rts_n %llu "
+                "clocks (at most %zu waiting), %llu OUT bytes sent against rts_n, overflow %d\n",
                 host_gone ? "the host is gone (EPIPE)" : "end of input", (unsigned long long)lo.sent,
                 (unsigned long long)br.index, (unsigned long long)br.written, (unsigned long long)clock,
                 (double)clock / 12e6, wall, (unsigned long long)s.applied, (unsigned long long)resets,
-                (unsigned long long)li.framing, (unsigned long long)rts_high, (int)t->overflow);
+                (unsigned long long)li.framing, (unsigned long long)rts_high, (unsigned long long)lo.held_clocks,
+                lo.held_max, (unsigned long long)lo.against_rts, (int)t->overflow);
     t->final();
     delete t;
     return 0;

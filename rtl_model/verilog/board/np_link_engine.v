@@ -7,7 +7,8 @@
 // Parameters:
 //   MAX_PAYLOAD  the board's max_payload (INFO): a multiple of 4, 292..65532
 //   WINDOW       the window announced in INFO (>= 1)
-//   RXB_AW       the OUT buffer holds 2^RXB_AW bytes; >= one whole frame (28 + MAX_PAYLOAD)
+//   RXB_AW       the OUT buffer holds 2^RXB_AW bytes; >= one whole frame and ROOM_LOW
+//                (28 + MAX_PAYLOAD + ROOM_LOW)
 //   IN_STRIDE, OUT_STRIDE   bytes of the slot's input and output record (section 5)
 //   BOARD_ID     INFO's board_id, <= 32 characters
 //   SLOT_UNIT    the slot's unit name, <= 16 characters
@@ -638,12 +639,14 @@ module np_link_engine #(
                 c_stalls <= c_stalls + 64'd1;
         end
 
-    // The buffer must hold a whole frame, or a long one would never be complete.
+    // The buffer must hold a whole frame with ROOM_LOW to spare: a sender that honours
+    // in_room_low stops when fewer than ROOM_LOW bytes are free, and a frame that needed those
+    // bytes would never be complete (the buffer is freed a frame at a time: a deadlock).
     initial begin
-        if ((1 << RXB_AW) < HDR + CRCB + MAX_PAYLOAD || MAX_PAYLOAD % 4 != 0 ||
+        if ((1 << RXB_AW) < HDR + CRCB + MAX_PAYLOAD + ROOM_LOW || MAX_PAYLOAD % 4 != 0 ||
             MAX_PAYLOAD < 292 || MAX_PAYLOAD > 65532) begin
-            $display("np_link_engine: MAX_PAYLOAD %0d and RXB_AW %0d: need a multiple of 4 in 292..65532 and 2^RXB_AW >= 28 + MAX_PAYLOAD",
-                     MAX_PAYLOAD, RXB_AW);
+            $display("np_link_engine: MAX_PAYLOAD %0d, RXB_AW %0d, ROOM_LOW %0d: need a multiple of 4 in 292..65532 and 2^RXB_AW >= 28 + MAX_PAYLOAD + ROOM_LOW",
+                     MAX_PAYLOAD, RXB_AW, ROOM_LOW);
             $finish;
         end
     end
