@@ -277,8 +277,8 @@ function(np_rtl_cosim_build unit name top defs gparams)
     endforeach()
     string(JOIN "," acfg ${acfg})
     string(APPEND cflags " -DNP_COSIM_AACOUNT -DNP_COSIM_AAC_CFG=${acfg}")
-  elseif(unit STREQUAL "texel")
-    # np_texel.v against the registry's stream model of texel (np_cosim_open_spec: np_span_sim):
+  elseif(unit STREQUAL "texel" OR unit STREQUAL "fdiff")
+    # np_texel.v (np_fdiff.v: the same ports) against the registry's stream model of texel (np_cosim_open_spec: np_span_sim):
     # gparams give every key of the unit as the parameter of its name in capitals, N_OCT (the
     # RTL's octave lanes: the texture's n_oct, which the harness checks) and -GTEXTURE=<name>,
     # which is not a parameter (the texture whose registers drive the register inputs): taken
@@ -304,12 +304,12 @@ function(np_rtl_cosim_build unit name top defs gparams)
       endif()
     endforeach()
     if(NOT tex)
-      message(FATAL_ERROR "np_rtl_cosim_build(texel ${name}): gparams must name -GTEXTURE=<texture>")
+      message(FATAL_ERROR "np_rtl_cosim_build(${unit} ${name}): gparams must name -GTEXTURE=<texture>")
     endif()
     set(gparams ${vg})
     string(JOIN "," keys texture=${tex} ${keys})
-    set(model texel)
-    string(APPEND cflags " -DNP_COSIM_NDIM=texel -DNP_COSIM_TEXEL=${noct} -DNP_COSIM_KEYS=${keys} -I${PROJECT_SOURCE_DIR}/rtl_model")
+    set(model ${unit})
+    string(APPEND cflags " -DNP_COSIM_NDIM=${unit} -DNP_COSIM_TEXEL=${noct} -DNP_COSIM_KEYS=${keys} -I${PROJECT_SOURCE_DIR}/rtl_model")
     if(name MATCHES "^fault_")
       set(vopt -MAKEFLAGS OPT_FAST=-O0 -MAKEFLAGS OPT_SLOW=-O0 -MAKEFLAGS OPT_GLOBAL=-O0)
     endif()
