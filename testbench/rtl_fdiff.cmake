@@ -48,7 +48,7 @@ if(NOISEPIPE_FULL_RTL_TESTS)
   np_rtl_cosim(rtl.fdiff.cosim.marble_full fdiff marble pass "1000000 cycles, .* 0 mismatches" --cycles 1000000)
 endif()
 foreach(f flip stall setup drop)
-  np_rtl_cosim(rtl.fdiff.cosim.fault_${f} fdiff fault_${f} fail "[1-9][0-9]* mismatches" --cycles 100000)
+  np_rtl_cosim(rtl.fdiff.cosim.fault_${f} fdiff fault_${f} fail "[1-9][0-9]* mismatches" --cycles 30000)
 endforeach()
 
 # The golden bench: the texel bench's source, built for fdiff. The texture registers are texel's

@@ -36,7 +36,9 @@
 `define NP_TB "rtl_fdiff_tb"
 `define NP_TB_UNIT "fdiff"
 `define NP_TB_KEY5 "resetup"
+/* verilator lint_off DECLFILENAME */  // the fdiff build of this file: its module is rtl_fdiff_tb
 module rtl_fdiff_tb;
+/* verilator lint_on DECLFILENAME */
 `else
 `define NP_TB "rtl_texel_tb"
 `define NP_TB_UNIT "texel"
