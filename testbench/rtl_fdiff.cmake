@@ -78,8 +78,8 @@ endfunction()
 
 set(fd_golden ${PROJECT_SOURCE_DIR}/vectors/fdiff/fdiff-l1-seed1.vec)
 # The bench's traffic (bubbles 2/8, stalls 2/8, seed 1) on the golden set's 24 runs (133,113 pixels
-# simulated, 977 compared) takes 182,155 cycles: the RTL's count, whose timing the co-simulation
-# checks clock for clock against np_span_sim; pinned, so a change of the timing shows here too.
+# simulated, 977 compared) takes 182,155 cycles: np_span_sim's count under the same traffic
+# (rtl.fdiff.bench_cycles, below), pinned, so the timing is checked with the bits.
 set(fd_cycles 182155)
 set(fd_pass "${fd_cycles} cycles: In 977 tests, no errors found\\.")
 foreach(sim icarus verilator)
@@ -107,3 +107,17 @@ endforeach()
 file(READ ${fd_golden} fd_text)
 string(REGEX REPLACE "[^\n]+\n$" "" fd_short "${fd_text}")
 file(WRITE ${fd_work}/fdiff-golden-short.vec "${fd_short}")
+
+# The pinned counts from the C cycle model: span_bench_cycles replays the bench's traffic on
+# np_span_sim (texel's pin too, which checks the replay itself).
+add_executable(span_bench_cycles ${NP_RTL_TB}/span_bench_cycles.c)
+target_link_libraries(span_bench_cycles PRIVATE np_tools)
+np_project_target(span_bench_cycles)
+add_test(NAME rtl.fdiff.bench_cycles COMMAND span_bench_cycles fdiff wood ${fd_golden})
+set_tests_properties(rtl.fdiff.bench_cycles PROPERTIES LABELS "rtl"
+  PASS_REGULAR_EXPRESSION "^fdiff: 24 runs, ${fd_cycles} cycles")
+if(DEFINED tx_cycles)
+  add_test(NAME rtl.texel.bench_cycles COMMAND span_bench_cycles texel wood ${tx_golden})
+  set_tests_properties(rtl.texel.bench_cycles PROPERTIES LABELS "rtl"
+    PASS_REGULAR_EXPRESSION "^texel: 24 runs, ${tx_cycles} cycles")
+endif()
