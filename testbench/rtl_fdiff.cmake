@@ -46,6 +46,10 @@ np_rtl_cosim(rtl.fdiff.cosim.default fdiff default pass "1000000 cycles, .* 0 mi
 np_rtl_cosim(rtl.fdiff.cosim.marble fdiff marble pass "400000 cycles, .* 0 mismatches" --cycles 400000)
 if(NOISEPIPE_FULL_RTL_TESTS)
   np_rtl_cosim(rtl.fdiff.cosim.marble_full fdiff marble pass "1000000 cycles, .* 0 mismatches" --cycles 1000000)
+  # wood with three multipliers of latency 1 (slots split between jobs) and 20 guard bits.
+  np_rtl_cosim_build(fdiff p3 np_fdiff ""
+    "-GTEXTURE=wood;-GIDX_INT=10;-GW_FRAC=12;-GGUARD=20;-GRESETUP=0;-GSETUP_MULTS=3;-GMULT_LAT=1;-GN_OCT=1" ${NP_RTL_FD_RTL})
+  np_rtl_cosim(rtl.fdiff.cosim.p3 fdiff p3 pass "1000000 cycles, .* 0 mismatches" --cycles 1000000)
 endif()
 foreach(f flip stall setup drop)
   np_rtl_cosim(rtl.fdiff.cosim.fault_${f} fdiff fault_${f} fail "[1-9][0-9]* mismatches" --cycles 30000)
