@@ -27,12 +27,32 @@
 // descriptor buffer, latency) under the bench's traffic.
 // Lint: a bench, not hardware: its clocked process is procedural code that
 // reads files and keeps counts, so blocking assignments are intended there.
+//
+// The same bench runs the forward-difference unit fdiff (np_fdiff.v) when built
+// with -DNP_TB_FDIFF: module rtl_fdiff_tb, sets of unit fdiff (vectors/fdiff/),
+// whose config line has resetup= where texel's has weight_frac= (the fifth key).
 /* verilator lint_off BLKSEQ */
+`ifdef NP_TB_FDIFF
+`define NP_TB "rtl_fdiff_tb"
+`define NP_TB_UNIT "fdiff"
+`define NP_TB_KEY5 "resetup"
+/* verilator lint_off DECLFILENAME */  // the fdiff build of this file: its module is rtl_fdiff_tb
+module rtl_fdiff_tb;
+/* verilator lint_on DECLFILENAME */
+`else
+`define NP_TB "rtl_texel_tb"
+`define NP_TB_UNIT "texel"
+`define NP_TB_KEY5 "weight_frac"
 module rtl_texel_tb;
+`endif
     localparam integer MAX_ERRORS = 20;
     localparam integer MAXV = 65536;       // transactions a set may hold
     // The DUT's configuration (np_texel.v's parameters).
-    localparam integer IDX_INT = 10, W_FRAC = 12, GUARD = 20, WEIGHT_FRAC = 16, SETUP_MULTS = 2, MULT_LAT = 2;
+`ifdef NP_TB_FDIFF
+    localparam integer IDX_INT = 10, W_FRAC = 12, GUARD = 44, KEY5 = 0, SETUP_MULTS = 2, MULT_LAT = 2;  // KEY5: RESETUP
+`else
+    localparam integer IDX_INT = 10, W_FRAC = 12, GUARD = 20, KEY5 = 16, SETUP_MULTS = 2, MULT_LAT = 2;  // KEY5: WEIGHT_FRAC
+`endif
     localparam integer N_OCT = 1;
 
     reg clk = 1'b0;
@@ -57,7 +77,11 @@ module rtl_texel_tb;
     wire [15:0] px, py;
     wire [7:0] cr, cg, cb;
 
-    np_texel #(.IDX_INT(IDX_INT), .W_FRAC(W_FRAC), .GUARD(GUARD), .WEIGHT_FRAC(WEIGHT_FRAC),
+`ifdef NP_TB_FDIFF
+    np_fdiff #(.IDX_INT(IDX_INT), .W_FRAC(W_FRAC), .GUARD(GUARD), .RESETUP(KEY5),
+`else
+    np_texel #(.IDX_INT(IDX_INT), .W_FRAC(W_FRAC), .GUARD(GUARD), .WEIGHT_FRAC(KEY5),
+`endif
                .SETUP_MULTS(SETUP_MULTS), .MULT_LAT(MULT_LAT), .N_OCT(N_OCT)) dut (
         .clk(clk), .rst(rst), .k_reg(k_reg), .m_reg(m_reg), .o_reg(o_reg), .amp_reg(amp_reg), .cmap(cmap),
         .cmap_n(cmap_n), .cmap_rep(cmap_rep),
@@ -110,8 +134,8 @@ module rtl_texel_tb;
     endfunction
 
     initial begin
-        if (!$value$plusargs("vectors=%s", vec_path)) $fatal(1, "rtl_texel_tb: +vectors=FILE missing");
-        if (!$value$plusargs("regs=%s", regs_path)) $fatal(1, "rtl_texel_tb: +regs=FILE missing");
+        if (!$value$plusargs("vectors=%s", vec_path)) $fatal(1, "%0s: +vectors=FILE missing", `NP_TB);
+        if (!$value$plusargs("regs=%s", regs_path)) $fatal(1, "%0s: +regs=FILE missing", `NP_TB);
         if (!$value$plusargs("bubble=%d", bubble)) bubble = 2;
         if (!$value$plusargs("stall=%d", stall)) stall = 2;
         if (!$value$plusargs("seed=%d", seed)) seed = 1;
@@ -119,7 +143,7 @@ module rtl_texel_tb;
         rng = seed == 0 ? 32'h9e3779b9 : seed[31:0];
         // --- registers
         fd = $fopen(regs_path, "r");
-        if (fd == 0) $fatal(1, "rtl_texel_tb: cannot open %0s", regs_path);
+        if (fd == 0) $fatal(1, "%0s: cannot open %0s", `NP_TB, regs_path);
         n_oct_regs = -1;
         nregs = 0;
         cont = 0;
@@ -147,12 +171,12 @@ module rtl_texel_tb;
             if (rr > 0) cont = `NP_LAST_CHAR != 8'h0a ? 1 : 0;
         end
         $fclose(fd);
-        if (nregs != 1) $fatal(1, "rtl_texel_tb: %0s has no 'texture NAME' line", regs_path);
+        if (nregs != 1) $fatal(1, "%0s: %0s has no 'texture NAME' line", `NP_TB, regs_path);
         if (n_oct_regs != N_OCT)
-            $fatal(1, "rtl_texel_tb: %0s has n_oct %0d; the DUT is built for N_OCT=%0d", regs_path, n_oct_regs, N_OCT);
+            $fatal(1, "%0s: %0s has n_oct %0d; the DUT is built for N_OCT=%0d", `NP_TB, regs_path, n_oct_regs, N_OCT);
         // --- the vector set
         fd = $fopen(vec_path, "r");
-        if (fd == 0) $fatal(1, "rtl_texel_tb: cannot open %0s", vec_path);
+        if (fd == 0) $fatal(1, "%0s: cannot open %0s", `NP_TB, vec_path);
         nv = 0;
         n_hdr = -1;
         c_i = -1; c_fw = -1; c_g = -1; c_wt = -1; c_p = -1; c_lm = -1;
@@ -164,12 +188,17 @@ module rtl_texel_tb;
             if (rr > 0 && cont == 0) begin
                 if ($sscanf(line, "# count %d", i1) == 1) n_hdr = i1;
                 else if ($sscanf(line, "# unit %s", tex_set) == 1) begin
-                    if (tex_set != "texel") $fatal(1, "rtl_texel_tb: %0s is a set of unit %0s, not texel", vec_path, tex_set);
+                    if (tex_set != `NP_TB_UNIT) $fatal(1, "%0s: %0s is a set of unit %0s, not %0s", `NP_TB, vec_path, tex_set, `NP_TB_UNIT);
                     has_unit = 1;
+`ifdef NP_TB_FDIFF
+                end else if ($sscanf(line, "# config texture=%s idx_int=%d w_frac=%d guard=%d resetup=%d setup_mults=%d mult_lat=%d",
+                                     tex_set, c_i, c_fw, c_g, c_wt, c_p, c_lm) == 7) begin
+`else
                 end else if ($sscanf(line, "# config texture=%s idx_int=%d w_frac=%d guard=%d weight_frac=%d setup_mults=%d mult_lat=%d",
                                      tex_set, c_i, c_fw, c_g, c_wt, c_p, c_lm) == 7) begin
+`endif
                 end else if ($sscanf(line, "%h %h %h %h %h %h %h %h %h %h %h", h1, h2, h3, h4, h5, h6, h7, h8, h9, h10, h11) == 11) begin
-                    if (nv >= MAXV) $fatal(1, "rtl_texel_tb: %0s holds more than %0d transactions", vec_path, MAXV);
+                    if (nv >= MAXV) $fatal(1, "%0s: %0s holds more than %0d transactions", `NP_TB, vec_path, MAXV);
                     v_s[nv] = h1[47:0]; v_t[nv] = h2[47:0]; v_r[nv] = h3[47:0];
                     v_ds[nv] = h4[40:0]; v_dt[nv] = h5[40:0]; v_dr[nv] = h6[40:0];
                     v_n[nv] = h7[16:0]; v_k[nv] = h8[15:0];
@@ -180,14 +209,14 @@ module rtl_texel_tb;
             if (rr > 0) cont = `NP_LAST_CHAR != 8'h0a ? 1 : 0;
         end
         $fclose(fd);
-        if (n_hdr < 0) $fatal(1, "rtl_texel_tb: %0s has no '# count N' header line", vec_path);
-        if (n_hdr != nv) $fatal(1, "rtl_texel_tb: the header's count is %0d but the file holds %0d vectors", n_hdr, nv);
-        if (nv == 0) $fatal(1, "rtl_texel_tb: no vectors in %0s", vec_path);
-        if (has_unit == 0) $fatal(1, "rtl_texel_tb: %0s has no '# unit' header line", vec_path);
-        if (c_i != IDX_INT || c_fw != W_FRAC || c_g != GUARD || c_wt != WEIGHT_FRAC || c_p != SETUP_MULTS || c_lm != MULT_LAT)
-            $fatal(1, "rtl_texel_tb: %0s is for idx_int=%0d w_frac=%0d guard=%0d weight_frac=%0d setup_mults=%0d mult_lat=%0d, not for the DUT's %0d %0d %0d %0d %0d %0d",
-                   vec_path, c_i, c_fw, c_g, c_wt, c_p, c_lm, IDX_INT, W_FRAC, GUARD, WEIGHT_FRAC, SETUP_MULTS, MULT_LAT);
-        if (tex_set != tex_regs) $fatal(1, "rtl_texel_tb: %0s is for texture=%0s but %0s holds texture %0s", vec_path, tex_set, regs_path, tex_regs);
+        if (n_hdr < 0) $fatal(1, "%0s: %0s has no '# count N' header line", `NP_TB, vec_path);
+        if (n_hdr != nv) $fatal(1, "%0s: the header's count is %0d but the file holds %0d vectors", `NP_TB, n_hdr, nv);
+        if (nv == 0) $fatal(1, "%0s: no vectors in %0s", `NP_TB, vec_path);
+        if (has_unit == 0) $fatal(1, "%0s: %0s has no '# unit' header line", `NP_TB, vec_path);
+        if (c_i != IDX_INT || c_fw != W_FRAC || c_g != GUARD || c_wt != KEY5 || c_p != SETUP_MULTS || c_lm != MULT_LAT)
+            $fatal(1, "%0s: %0s is for idx_int=%0d w_frac=%0d guard=%0d %0s=%0d setup_mults=%0d mult_lat=%0d, not for the DUT's %0d %0d %0d %0d %0d %0d", `NP_TB,
+                   vec_path, c_i, c_fw, c_g, `NP_TB_KEY5, c_wt, c_p, c_lm, IDX_INT, W_FRAC, GUARD, KEY5, SETUP_MULTS, MULT_LAT);
+        if (tex_set != tex_regs) $fatal(1, "%0s: %0s is for texture=%0s but %0s holds texture %0s", `NP_TB, vec_path, tex_set, regs_path, tex_regs);
         // --- runs
         nruns = 0;
         for (i1 = 0; i1 < nv; i1 = i1 + 1) begin
@@ -204,7 +233,7 @@ module rtl_texel_tb;
         end
         for (i1 = 0; i1 < nruns; i1 = i1 + 1)
             if (r_k0[i1] + r_m[i1] > {15'd0, v_n[r_first[i1]]})
-                $fatal(1, "rtl_texel_tb: run %0d (transaction %0d) reaches pixel %0d of a %0d-pixel span", i1, r_first[i1],
+                $fatal(1, "%0s: run %0d (transaction %0d) reaches pixel %0d of a %0d-pixel span", `NP_TB, i1, r_first[i1],
                        r_k0[i1] + r_m[i1] - 1, v_n[r_first[i1]]);
         errors = 0;
         cycles = 0;
@@ -221,7 +250,7 @@ module rtl_texel_tb;
         end else begin
             // output side: the transfer of this edge
             if (out_valid && out_ready) begin
-                if (orun >= nruns) $fatal(1, "rtl_texel_tb: the DUT delivered more pixels than the runs hold");
+                if (orun >= nruns) $fatal(1, "%0s: the DUT delivered more pixels than the runs hold", `NP_TB);
                 if (px != opix[15:0] || py != orun[15:0]) begin
                     errors = errors + 1;
                     if (errors <= MAX_ERRORS)
@@ -269,18 +298,21 @@ module rtl_texel_tb;
             rng = xorshift(rng);
             out_ready <= {29'd0, rng[5:3]} >= stall;
             if (orun == nruns && sent == nruns) begin
-                if (errors > MAX_ERRORS) $display("rtl_texel_tb: (only the first %0d errors are shown)", MAX_ERRORS);
+                if (errors > MAX_ERRORS) $display("%0s: (only the first %0d errors are shown)", `NP_TB, MAX_ERRORS);
                 if (errors != 0)
-                    $fatal(1, "rtl_texel_tb: texture=%0s: In %0d tests, %0d errors found.", tex_set, checked, errors);
+                    $fatal(1, "%0s: texture=%0s: In %0d tests, %0d errors found.", `NP_TB, tex_set, checked, errors);
                 if (want_cycles >= 0 && cycles != want_cycles)
-                    $fatal(1, "rtl_texel_tb: all %0d tests right, but in %0d cycles, not the %0d of the C cycle model's timing",
+                    $fatal(1, "%0s: all %0d tests right, but in %0d cycles, not the %0d of the C cycle model's timing", `NP_TB,
                            checked, cycles, want_cycles);
-                $display("rtl_texel_tb: texture=%0s idx_int=%0d w_frac=%0d guard=%0d weight_frac=%0d setup_mults=%0d mult_lat=%0d, %0d runs, %0d pixels, %0d cycles: In %0d tests, no errors found.",
-                         tex_set, IDX_INT, W_FRAC, GUARD, WEIGHT_FRAC, SETUP_MULTS, MULT_LAT, nruns, pixels, cycles, checked);
+                $display("%0s: texture=%0s idx_int=%0d w_frac=%0d guard=%0d %0s=%0d setup_mults=%0d mult_lat=%0d, %0d runs, %0d pixels, %0d cycles: In %0d tests, no errors found.", `NP_TB,
+                         tex_set, IDX_INT, W_FRAC, GUARD, `NP_TB_KEY5, KEY5, SETUP_MULTS, MULT_LAT, nruns, pixels, cycles, checked);
                 $finish;
             end
             if (idle > 1000)
-                $fatal(1, "rtl_texel_tb: no output for 1000 cycles after %0d of %0d runs (%0d errors)", orun, nruns, errors);
+                $fatal(1, "%0s: no output for 1000 cycles after %0d of %0d runs (%0d errors)", `NP_TB, orun, nruns, errors);
         end
     end
 endmodule
+`undef NP_TB
+`undef NP_TB_UNIT
+`undef NP_TB_KEY5

@@ -1,0 +1,127 @@
+# SPDX-License-Identifier: MIT
+# Reference RTL of the forward-difference unit fdiff (rtl_model/verilog/np_fdiff.v with the span
+# sequencer np_span_seq.v) under Verilator (co-simulation) and Icarus/Verilator (golden bench),
+# with rtl.cmake's mechanisms; docs/rtl.md and docs/fdiff.md ("Reference RTL of fdiff") say what
+# each test checks. Names:
+#   rtl.fdiff.lint.<cfg>               verilator --lint-only -Wall at the default and at four octaves
+#   rtl.fdiff.cosim.<name>             co-simulation against np_span_sim with np_fdiff_engine
+#   rtl.fdiff.<sim>.build[.<fault>]    the golden bench (testbench/rtl/rtl_texel_tb.v built with
+#                                      -DNP_TB_FDIFF: module rtl_fdiff_tb; fixtures)
+#   rtl.fdiff.<sim>.golden.default     the checked-in set vectors/fdiff/fdiff-l1-seed1.vec, its cycle
+#                                      count pinned
+#   rtl.fdiff.<sim>.count_short, .wrong_regs   a set cut short, another texture's registers: refused
+#   rtl.fdiff.<sim>.fault_<f>          (NOISEPIPE_FULL_RTL_TESTS) the fault copies fail, for their reason
+if(NOT COMMAND np_rtl_builds)
+  return()
+endif()
+set(NP_RTL_FD_RTL ${NP_RTL_SRC}/np_fdiff.v ${NP_RTL_SRC}/np_span_seq.v)
+set(fd_work ${NP_RTL_WORK}/fdiff)
+file(MAKE_DIRECTORY ${fd_work})
+
+# Lint at the default and at marble's four octaves with the numeric keys off their defaults
+# (resetup stays 0: the interval is not built).
+foreach(l "default;-GN_OCT=1" "oct4;-GN_OCT=4;-GIDX_INT=9;-GW_FRAC=10;-GGUARD=30;-GSETUP_MULTS=1;-GMULT_LAT=3"
+          "wide;-GIDX_INT=1;-GW_FRAC=24;-GGUARD=100;-GSETUP_MULTS=64;-GMULT_LAT=16")
+  list(GET l 0 lname)
+  list(REMOVE_AT l 0)
+  np_rtl_test(rtl.fdiff.lint.${lname} "${NP_VERILATOR}" pass "" "rtl;nosan"
+    ${NP_VERILATOR} --lint-only -Wall -I${NP_RTL_SRC} ${l} --top-module np_fdiff ${NP_RTL_FD_RTL})
+endforeach()
+
+# Co-simulation against the registry's stream model of fdiff (np_cosim_open_spec: np_span_sim with
+# np_fdiff_engine): every cycle in_ready, out_valid and, when valid, cr cg cb, with random bubbles
+# and stalls and random descriptors (np_cosim.c). default: wood at the default keys; marble: four
+# octaves with the numeric keys off their defaults.
+set(fd_def "-GTEXTURE=wood;-GIDX_INT=10;-GW_FRAC=12;-GGUARD=44;-GRESETUP=0;-GSETUP_MULTS=2;-GMULT_LAT=2;-GN_OCT=1")
+set(fd_marble "-GTEXTURE=marble;-GIDX_INT=9;-GW_FRAC=10;-GGUARD=30;-GRESETUP=0;-GSETUP_MULTS=1;-GMULT_LAT=3;-GN_OCT=4")
+np_rtl_cosim_build(fdiff default np_fdiff "" "${fd_def}" ${NP_RTL_FD_RTL})
+np_rtl_cosim_build(fdiff marble np_fdiff "" "${fd_marble}" ${NP_RTL_FD_RTL})
+foreach(f flip stall setup drop)
+  string(TOUPPER ${f} F)
+  np_rtl_cosim_build(fdiff fault_${f} np_fdiff "-DNP_FAULT_${F}" "${fd_def}" ${NP_RTL_FD_RTL})
+endforeach()
+np_rtl_cosim(rtl.fdiff.cosim.default fdiff default pass "1000000 cycles, .* 0 mismatches" --cycles 1000000)
+# marble (4 octaves, 1 multiplier: 21,942 pixels in 10^6 cycles, the engine's arbiter always busy) costs
+# about 67 s per 10^6 cycles here: 400,000 in the default suite, 10^6 with NOISEPIPE_FULL_RTL_TESTS.
+np_rtl_cosim(rtl.fdiff.cosim.marble fdiff marble pass "400000 cycles, .* 0 mismatches" --cycles 400000)
+if(NOISEPIPE_FULL_RTL_TESTS)
+  np_rtl_cosim(rtl.fdiff.cosim.marble_full fdiff marble pass "1000000 cycles, .* 0 mismatches" --cycles 1000000)
+  # wood with three multipliers of latency 1 (slots split between jobs) and 20 guard bits.
+  np_rtl_cosim_build(fdiff p3 np_fdiff ""
+    "-GTEXTURE=wood;-GIDX_INT=10;-GW_FRAC=12;-GGUARD=20;-GRESETUP=0;-GSETUP_MULTS=3;-GMULT_LAT=1;-GN_OCT=1" ${NP_RTL_FD_RTL})
+  np_rtl_cosim(rtl.fdiff.cosim.p3 fdiff p3 pass "1000000 cycles, .* 0 mismatches" --cycles 1000000)
+endif()
+foreach(f flip stall setup drop)
+  np_rtl_cosim(rtl.fdiff.cosim.fault_${f} fdiff fault_${f} fail "[1-9][0-9]* mismatches" --cycles 30000)
+endforeach()
+
+# The golden bench: the texel bench's source, built for fdiff. The texture registers are texel's
+# fixture (rtl.texel.regs.<texture>: the same np_ut_regs registers).
+set(NP_RTL_FD_SRC -DNP_TB_FDIFF ${NP_RTL_TB}/rtl_texel_tb.v ${NP_RTL_FD_RTL})
+set(fd_variants ok)
+if(NOISEPIPE_FULL_RTL_TESTS)
+  list(APPEND fd_variants fault_flip fault_stall fault_setup fault_drop)
+endif()
+foreach(v ${fd_variants})
+  np_rtl_builds(fdiff ${v} rtl_fdiff_tb ${NP_RTL_FD_SRC})
+endforeach()
+
+function(np_rtl_fdiff_check name sim variant vec regs expect pattern labels)
+  set(dir ${NP_RTL_WORK}/fdiff/${variant})
+  if(sim STREQUAL "icarus")
+    set(cmd ${NP_VVP} -n ${dir}/rtl_fdiff_tb.vvp)
+    set(tool "${NP_VVP}")
+  else()
+    set(cmd ${dir}/verilator/rtl_fdiff_tb)
+    set(tool "${NP_VERILATOR}")
+  endif()
+  np_rtl_test(${name} "${tool}" ${expect} "${pattern}" "${labels}" ${cmd} +vectors=${vec}
+    +regs=${NP_RTL_WORK}/texel/regs-${regs}.txt ${ARGN})
+  set_tests_properties(${name} PROPERTIES FIXTURES_REQUIRED "rtl_fdiff_${sim}_${variant};rtl_texel_regs_${regs}")
+endfunction()
+
+set(fd_golden ${PROJECT_SOURCE_DIR}/vectors/fdiff/fdiff-l1-seed1.vec)
+# The bench's traffic (bubbles 2/8, stalls 2/8, seed 1) on the golden set's 24 runs (133,113 pixels
+# simulated, 977 compared) takes 182,155 cycles: np_span_sim's count under the same traffic
+# (rtl.fdiff.bench_cycles, below), pinned, so the timing is checked with the bits.
+set(fd_cycles 182155)
+set(fd_pass "${fd_cycles} cycles: In 977 tests, no errors found\\.")
+foreach(sim icarus verilator)
+  set(lab "rtl")
+  if(sim STREQUAL "verilator")
+    set(lab "rtl;nosan")
+  endif()
+  np_rtl_fdiff_check(rtl.fdiff.${sim}.golden.default ${sim} ok ${fd_golden} wood pass "${fd_pass}" "${lab}"
+    +cycles=${fd_cycles})
+  np_rtl_fdiff_check(rtl.fdiff.${sim}.count_short ${sim} ok ${fd_work}/fdiff-golden-short.vec wood fail
+    "the header's count is 977 but the file holds 976 vectors" "${lab}")
+  np_rtl_fdiff_check(rtl.fdiff.${sim}.wrong_regs ${sim} ok ${fd_golden} marble fail
+    "has n_oct 4; the DUT is built for N_OCT=1" "${lab}")
+  if(NOISEPIPE_FULL_RTL_TESTS)
+    np_rtl_fdiff_check(rtl.fdiff.${sim}.fault_flip ${sim} fault_flip ${fd_golden} wood fail
+      "In 977 tests, [1-9][0-9]* errors found" "${lab}" +cycles=${fd_cycles})
+    np_rtl_fdiff_check(rtl.fdiff.${sim}.fault_drop ${sim} fault_drop ${fd_golden} wood fail
+      "In 977 tests, [1-9][0-9]* errors found" "${lab}" +cycles=${fd_cycles})
+    np_rtl_fdiff_check(rtl.fdiff.${sim}.fault_stall ${sim} fault_stall ${fd_golden} wood fail
+      "no output for 1000 cycles|errors found" "${lab}" +cycles=${fd_cycles})
+    np_rtl_fdiff_check(rtl.fdiff.${sim}.fault_setup ${sim} fault_setup ${fd_golden} wood fail
+      "all 977 tests right, but in [0-9]+ cycles, not the ${fd_cycles}|errors found" "${lab}" +cycles=${fd_cycles})
+  endif()
+endforeach()
+file(READ ${fd_golden} fd_text)
+string(REGEX REPLACE "[^\n]+\n$" "" fd_short "${fd_text}")
+file(WRITE ${fd_work}/fdiff-golden-short.vec "${fd_short}")
+
+# The pinned counts from the C cycle model: span_bench_cycles replays the bench's traffic on
+# np_span_sim (texel's pin too, which checks the replay itself).
+add_executable(span_bench_cycles ${NP_RTL_TB}/span_bench_cycles.c)
+target_link_libraries(span_bench_cycles PRIVATE np_tools)
+np_project_target(span_bench_cycles)
+add_test(NAME rtl.fdiff.bench_cycles COMMAND span_bench_cycles fdiff wood ${fd_golden})
+set_tests_properties(rtl.fdiff.bench_cycles PROPERTIES LABELS "rtl"
+  PASS_REGULAR_EXPRESSION "^fdiff: 24 runs, ${fd_cycles} cycles")
+if(DEFINED tx_cycles)
+  add_test(NAME rtl.texel.bench_cycles COMMAND span_bench_cycles texel wood ${tx_golden})
+  set_tests_properties(rtl.texel.bench_cycles PROPERTIES LABELS "rtl"
+    PASS_REGULAR_EXPRESSION "^texel: 24 runs, ${tx_cycles} cycles")
+endif()
