@@ -51,7 +51,7 @@ endfunction()
 # Bench builds of <unit>: variant ok, fault_flip, fault_stall (the RTL with
 # `define NP_FAULT_FLIP / NP_FAULT_STALL), or for classic3's circuit variants
 # fault_stable, fault_serial, fault_lserial (NP_FAULT_STABLE / NP_FAULT_SERIAL / NP_FAULT_LSERIAL).
-# Fixtures rtl_<unit>_<sim>_<variant>.
+# Fixtures rtl_<unit>_<sim>_<variant>. -I${NP_RTL_TB}: the benches' shared np_tb_vec.vh.
 # A fault copy only runs the golden set (4,224 vectors), so its Verilated C++ is compiled at -O0:
 # classic3's bench (17 DUT instances) builds in 19 s instead of 27 s on an idle core.
 function(np_rtl_builds unit variant top)
@@ -69,7 +69,7 @@ function(np_rtl_builds unit variant top)
     set(sfx ".${variant}")
   endif()
   np_rtl_test(rtl.${unit}.icarus.build${sfx} "${NP_IVERILOG}" pass "" "rtl"
-    ${NP_IVERILOG} -g2012 -Wall -I${NP_RTL_SRC} ${defs} -o ${dir}/${top}.vvp -s ${top} ${ARGN})
+    ${NP_IVERILOG} -g2012 -Wall -I${NP_RTL_SRC} -I${NP_RTL_TB} ${defs} -o ${dir}/${top}.vvp -s ${top} ${ARGN})
   set_tests_properties(rtl.${unit}.icarus.build${sfx} PROPERTIES FIXTURES_SETUP rtl_${unit}_icarus_${variant})
   # The Verilator copy of a fault bench checks the same bench source Icarus checks in every
   # build: registered only with -DNOISEPIPE_FULL_RTL_TESTS=ON (np_rtl_check skips its runs too).
@@ -77,7 +77,7 @@ function(np_rtl_builds unit variant top)
     return()
   endif()
   np_rtl_test(rtl.${unit}.verilator.build${sfx} "${NP_VERILATOR}" pass "" "rtl;nosan"
-    ${NP_VERILATOR} --binary -j 1 -Wall -I${NP_RTL_SRC} ${defs} ${vopt} ${NP_VERILATOR_CACHE} --top-module ${top} -Mdir ${dir}/verilator -o ${top} ${ARGN})
+    ${NP_VERILATOR} --binary -j 1 -Wall -I${NP_RTL_SRC} -I${NP_RTL_TB} ${defs} ${vopt} ${NP_VERILATOR_CACHE} --top-module ${top} -Mdir ${dir}/verilator -o ${top} ${ARGN})
   set_tests_properties(rtl.${unit}.verilator.build${sfx} PROPERTIES
     FIXTURES_SETUP rtl_${unit}_verilator_${variant})
 endfunction()
@@ -564,7 +564,7 @@ foreach(v ok fault_flip)
   set(dir ${NP_RTL_WORK}/dpi/${v})
   file(MAKE_DIRECTORY ${dir})
   np_rtl_test(rtl.dpi.build${sfx} "${NP_VERILATOR}" pass "" "rtl;nosan"
-    ${NP_VERILATOR} --binary -j 1 -Wall -I${NP_RTL_SRC} ${defs} ${NP_VERILATOR_CACHE} --top-module dpi_classic3_tb -Mdir ${dir} -o dpi_classic3_tb
+    ${NP_VERILATOR} --binary -j 1 -Wall -I${NP_RTL_SRC} -I${NP_RTL_TB} ${defs} ${NP_VERILATOR_CACHE} --top-module dpi_classic3_tb -Mdir ${dir} -o dpi_classic3_tb
     ${NP_RTL_SRC}/dpi/np_dpi_pkg.sv ${NP_RTL_TB}/dpi_classic3_tb.sv ${NP_RTL_C3_RTL}
     $<TARGET_FILE:np_dpi> $<TARGET_FILE:np_rtl_model>)
   set_tests_properties(rtl.dpi.build${sfx} PROPERTIES FIXTURES_SETUP rtl_dpi_${v})

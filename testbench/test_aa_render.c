@@ -53,11 +53,17 @@ static np_unit_cfg cfg_all(unsigned m, uint32_t cd, uint8_t cn, uint16_t cs)
     return c;
 }
 
-/* All depth registers 0 (v >= 0 always): every pixel shades n and the image is full m x m, bit for bit. */
-static int thresholds_zero_full(void)
+/* A check on one frame of scene name at m (its NP_CHECKs count; it frees what it allocates). */
+typedef void (*frame_check)(const char *name, unsigned m, const np_aa_frame *f);
+
+/*
+ * Each scene of names[0..n) at m = 2..4 on its texel unit: check(name, m,
+ * frame). 1 when a scene does not load; a frame that cannot be built is a
+ * failed check (frame) and ends that scene's sizes.
+ */
+static int each_frame(const char *const *names, int n, frame_check check)
 {
-    const char *names[2] = { "marble", "boxes" };
-    for (int i = 0; i < 2; i++) {
+    for (int i = 0; i < n; i++) {
         np_scene sc;
         if (np_golden_scene_load(NP_SOURCE_DIR, names[i], &sc))
             return 1;
@@ -67,24 +73,68 @@ static int thresholds_zero_full(void)
             np_aa_frame f;
             if (frame(&sc, m, &us[t], NULL, &f))
                 break;
-            np_unit_cfg c = cfg_all(m, 0, 0, 0), rg;
-            np_aa_unit()->samples->regs(c.bytes, rg.bytes); /* aacount's register block: an np_aacount_regs */
-            np_aacount_regs *ar = (np_aacount_regs *)(void *)rg.bytes;
-            memset(ar->vd, 0, sizeof ar->vd);
-            np_aa_result r;
-            NP_CHECK(np_aa_run(&f, &c, &rg, 1, &r) == 0, "run");
-            size_t npx = (size_t)f.g.w * f.g.h;
-            NP_CHECK(memcmp(r.img, f.img_full, npx * 3) == 0, "%s m=%u: thresholds 0 differ from full", names[i], m);
-            NP_CHECK(r.samples == r.covered_pixels * f.g.n, "%s m=%u: %llu samples", names[i], m,
-                     (unsigned long long)r.samples);
-            printf("%s m=%u: depth registers 0: %.1f %% of samples, image = full %ux%u bit for bit\n", names[i], m,
-                   r.pct, m, m);
-            np_aa_result_free(&r);
+            check(names[i], m, &f);
             np_aa_frame_free(&f);
         }
         np_scene_free(&sc);
     }
     return 0;
+}
+
+/* A scene with its 16x16 ground truth and its frames at m = 3 and 4 against it. */
+typedef struct gt_frames {
+    np_scene sc;
+    np_render_unit_cfg us[NP_RENDER_MAX_UNITS];
+    double *gt;         /* w h 3, 0..255 */
+    np_aa_frame f3, f4; /* hold sc, us and gt by reference */
+} gt_frames;
+
+static void gt_frames_free(gt_frames *g)
+{
+    np_aa_frame_free(&g->f3);
+    np_aa_frame_free(&g->f4);
+    free(g->gt);
+    np_scene_free(&g->sc);
+}
+
+/* Load scene name into g: 0, or 1 (a failed check, nothing left to free). */
+static int gt_frames_load(const char *name, gt_frames *g)
+{
+    char err[512];
+    memset(g, 0, sizeof *g);
+    if (np_golden_scene_load(NP_SOURCE_DIR, name, &g->sc))
+        return 1;
+    int t = texel_of(&g->sc, g->us);
+    g->gt = malloc((size_t)g->sc.width * g->sc.height * 3 * sizeof *g->gt);
+    if (t < 0 || !g->gt || np_gbuf_ground_truth(&g->sc, 16, g->gt, err, sizeof err) ||
+        frame(&g->sc, 3, &g->us[t], g->gt, &g->f3) || frame(&g->sc, 4, &g->us[t], g->gt, &g->f4)) {
+        NP_CHECK(0, "%s: the ground truth and the frames at m = 3, 4", name);
+        gt_frames_free(g);
+        return 1;
+    }
+    return 0;
+}
+
+/* All depth registers 0 (v >= 0 always): every pixel shades n and the image is full m x m, bit for bit. */
+static void thresholds_zero_full_at(const char *name, unsigned m, const np_aa_frame *f)
+{
+    np_unit_cfg c = cfg_all(m, 0, 0, 0), rg;
+    np_aa_unit()->samples->regs(c.bytes, rg.bytes); /* aacount's register block: an np_aacount_regs */
+    np_aacount_regs *ar = (np_aacount_regs *)(void *)rg.bytes;
+    memset(ar->vd, 0, sizeof ar->vd);
+    np_aa_result r;
+    NP_CHECK(np_aa_run(f, &c, &rg, 1, &r) == 0, "run");
+    size_t npx = (size_t)f->g.w * f->g.h;
+    NP_CHECK(memcmp(r.img, f->img_full, npx * 3) == 0, "%s m=%u: thresholds 0 differ from full", name, m);
+    NP_CHECK(r.samples == r.covered_pixels * f->g.n, "%s m=%u: %llu samples", name, m, (unsigned long long)r.samples);
+    printf("%s m=%u: depth registers 0: %.1f %% of samples, image = full %ux%u bit for bit\n", name, m, r.pct, m, m);
+    np_aa_result_free(&r);
+}
+
+static int thresholds_zero_full(void)
+{
+    static const char *const names[2] = { "marble", "boxes" };
+    return each_frame(names, 2, thresholds_zero_full_at);
 }
 
 /* The golden hash of scene image (vectors/images/hashes.txt, np_golden_hash). */
@@ -94,69 +144,52 @@ static int golden(const char *scene, const char *image, char hex[65])
 }
 
 /* c_d = c_n = c_s = 0: s = 1 everywhere, the image is S; for m = 3 S is today's golden texel image. */
+static void c_zero_one_sample_at(const char *name, unsigned m, const np_aa_frame *f)
+{
+    np_unit_cfg c = cfg_all(m, 0, 0, 0);
+    np_aa_result r;
+    NP_CHECK(np_aa_run(f, &c, NULL, 1, &r) == 0, "run");
+    size_t npx = (size_t)f->g.w * f->g.h;
+    NP_CHECK(memcmp(r.img, f->img_s, npx * 3) == 0, "%s m=%u: c = 0 is not S", name, m);
+    NP_CHECK(r.samples == r.covered_pixels, "%s m=%u: %llu samples, %llu pixels", name, m,
+             (unsigned long long)r.samples, (unsigned long long)r.covered_pixels);
+    NP_CHECK(r.shade_extra.samples == 0, "%s m=%u: %llu extra samples shaded", name, m,
+             (unsigned long long)r.shade_extra.samples);
+    char hex[65], want[65];
+    np_image_hash(f->g.w, f->g.h, r.img, hex);
+    if (m == 3) {
+        NP_CHECK(golden(name, "texel", want) == 0, "no golden hash");
+        NP_CHECK(strcmp(hex, want) == 0, "%s m=3 c=0: %s, golden %s", name, hex, want);
+    }
+    printf("%s m=%u: c = 0: image = S (%s)%s\n", name, m, hex, m == 3 ? " = golden texel image" : "");
+    np_aa_result_free(&r);
+}
+
 static int c_zero_one_sample(void)
 {
-    const char *names[2] = { "marble", "wood" };
-    for (int i = 0; i < 2; i++) {
-        np_scene sc;
-        if (np_golden_scene_load(NP_SOURCE_DIR, names[i], &sc))
-            return 1;
-        np_render_unit_cfg us[NP_RENDER_MAX_UNITS];
-        int t = texel_of(&sc, us);
-        for (unsigned m = 2; t >= 0 && m <= 4; m++) {
-            np_aa_frame f;
-            if (frame(&sc, m, &us[t], NULL, &f))
-                break;
-            np_unit_cfg c = cfg_all(m, 0, 0, 0);
-            np_aa_result r;
-            NP_CHECK(np_aa_run(&f, &c, NULL, 1, &r) == 0, "run");
-            size_t npx = (size_t)f.g.w * f.g.h;
-            NP_CHECK(memcmp(r.img, f.img_s, npx * 3) == 0, "%s m=%u: c = 0 is not S", names[i], m);
-            NP_CHECK(r.samples == r.covered_pixels, "%s m=%u: %llu samples, %llu pixels", names[i], m,
-                     (unsigned long long)r.samples, (unsigned long long)r.covered_pixels);
-            NP_CHECK(r.shade_extra.samples == 0, "%s m=%u: %llu extra samples shaded", names[i], m,
-                     (unsigned long long)r.shade_extra.samples);
-            char hex[65], want[65];
-            np_image_hash(f.g.w, f.g.h, r.img, hex);
-            if (m == 3) {
-                NP_CHECK(golden(names[i], "texel", want) == 0, "no golden hash");
-                NP_CHECK(strcmp(hex, want) == 0, "%s m=3 c=0: %s, golden %s", names[i], hex, want);
-            }
-            printf("%s m=%u: c = 0: image = S (%s)%s\n", names[i], m, hex, m == 3 ? " = golden texel image" : "");
-            np_aa_result_free(&r);
-            np_aa_frame_free(&f);
-        }
-        np_scene_free(&sc);
-    }
-    return 0;
+    static const char *const names[2] = { "marble", "wood" };
+    return each_frame(names, 2, c_zero_one_sample_at);
 }
 
 /* The parallel pipe over every window: its s equal the bit-exact model's, W + 4 cycles. */
+static void cycle_model_at(const char *name, unsigned m, const np_aa_frame *f)
+{
+    np_unit_cfg c = cfg_all(m, 400000, 32, 512);
+    np_aa_result r;
+    NP_CHECK(np_aa_run(f, &c, NULL, 0, &r) == 0, "run");
+    size_t npx = (size_t)f->g.w * f->g.h;
+    NP_CHECK(!r.pipe_mismatch, "m=%u: the pipe's s differ", m);
+    NP_CHECK(r.unit_cycles == npx + NP_AAC_PIPE_STAGES, "m=%u: %llu cycles for %zu windows", m,
+             (unsigned long long)r.unit_cycles, npx);
+    printf("%s m=%u: the pipe gives the bit-exact s on %zu windows in %llu cycles (serial: %llu)\n", name, m, npx,
+           (unsigned long long)r.unit_cycles, (unsigned long long)r.unit_cycles_serial);
+    np_aa_result_free(&r);
+}
+
 static int cycle_model(void)
 {
-    np_scene sc;
-    if (np_golden_scene_load(NP_SOURCE_DIR, "boxes", &sc))
-        return 1;
-    np_render_unit_cfg us[NP_RENDER_MAX_UNITS];
-    int t = texel_of(&sc, us);
-    for (unsigned m = 2; t >= 0 && m <= 4; m++) {
-        np_aa_frame f;
-        if (frame(&sc, m, &us[t], NULL, &f))
-            break;
-        np_unit_cfg c = cfg_all(m, 400000, 32, 512);
-        np_aa_result r;
-        NP_CHECK(np_aa_run(&f, &c, NULL, 0, &r) == 0, "run");
-        size_t npx = (size_t)f.g.w * f.g.h;
-        NP_CHECK(!r.pipe_mismatch, "m=%u: the pipe's s differ", m);
-        NP_CHECK(r.unit_cycles == npx + NP_AAC_PIPE_STAGES, "m=%u: %llu cycles for %zu windows", m,
-                 (unsigned long long)r.unit_cycles, npx);
-        printf("boxes m=%u: the pipe gives the bit-exact s on %zu windows in %llu cycles (serial: %llu)\n", m, npx,
-               (unsigned long long)r.unit_cycles, (unsigned long long)r.unit_cycles_serial);
-        np_aa_result_free(&r);
-        np_aa_frame_free(&f);
-    }
-    np_scene_free(&sc);
-    return 0;
+    static const char *const names[1] = { "boxes" };
+    return each_frame(names, 1, cycle_model_at);
 }
 
 /*
@@ -164,59 +197,50 @@ static int cycle_model(void)
  * fewest samples at MSE <= 5e-5 against full m x m, and which metric drives
  * them: <= 60 % at every m on both scenes (the paper: 57.8 / 53.4 / 53.1 %).
  */
+static void mse_budget_at(const char *name, unsigned m, const np_aa_frame *f)
+{
+    double best = 101.0, best_mse = 0.0;
+    np_aa_result keep;
+    memset(&keep, 0, sizeof keep);
+    for (int k = -4; k <= 4; k++)
+        for (int kd = -2; kd <= 2; kd += 2) {
+            double sc2 = ldexp(1.0, k);
+            np_unit_cfg c = cfg_all(m, (uint32_t)fmin(4e9, 400000.0 * ldexp(1.0, kd) * sc2),
+                                       (uint8_t)fmin(255.0, 32.0 * sc2), (uint16_t)fmin(65535.0, 512.0 * sc2));
+            np_aa_result r;
+            if (np_aa_run(f, &c, NULL, 0, &r))
+                break;
+            if (r.mse_full <= 5e-5 && r.pct < best) {
+                best = r.pct;
+                best_mse = r.mse_full;
+                np_aa_result_free(&keep);
+                keep = r;
+            } else {
+                np_aa_result_free(&r);
+            }
+        }
+    if (best <= 100.0) {
+        double P = (double)keep.covered_pixels * f->g.n;
+        const char *drv = keep.samples_s >= keep.samples_d && keep.samples_s >= keep.samples_n ? "luma"
+                          : keep.samples_d >= keep.samples_n                                   ? "depth"
+                                                                                               : "normal";
+        printf("%s m=%u: %.2f %% of samples at MSE %.3fe-5 (c_d=%u c_n=%u c_s=%u); alone: depth %.1f %%, normal"
+               " %.1f %%, luma %.1f %%: %s drives the count\n",
+               name, m, best, best_mse * 1e5, np_aa_key(&keep.cfg, "c_d"), np_aa_key(&keep.cfg, "c_n"),
+               np_aa_key(&keep.cfg, "c_s"),
+               100.0 * (double)keep.samples_d / P, 100.0 * (double)keep.samples_n / P,
+               100.0 * (double)keep.samples_s / P, drv);
+    } else {
+        printf("%s m=%u: no constant of the scale reaches MSE 5e-5\n", name, m);
+    }
+    NP_CHECK(best <= 60.0, "%s m=%u: %.2f %% at MSE <= 5e-5", name, m, best);
+    np_aa_result_free(&keep);
+}
+
 static int mse_budget(void)
 {
-    const char *names[2] = { "marble", "boxes" };
-    for (int i = 0; i < 2; i++) {
-        np_scene sc;
-        if (np_golden_scene_load(NP_SOURCE_DIR, names[i], &sc))
-            return 1;
-        np_render_unit_cfg us[NP_RENDER_MAX_UNITS];
-        int t = texel_of(&sc, us);
-        for (unsigned m = 2; t >= 0 && m <= 4; m++) {
-            np_aa_frame f;
-            if (frame(&sc, m, &us[t], NULL, &f))
-                break;
-            double best = 101.0, best_mse = 0.0;
-            np_aa_result keep;
-            memset(&keep, 0, sizeof keep);
-            for (int k = -4; k <= 4; k++)
-                for (int kd = -2; kd <= 2; kd += 2) {
-                    double sc2 = ldexp(1.0, k);
-                    np_unit_cfg c = cfg_all(m, (uint32_t)fmin(4e9, 400000.0 * ldexp(1.0, kd) * sc2),
-                                               (uint8_t)fmin(255.0, 32.0 * sc2), (uint16_t)fmin(65535.0, 512.0 * sc2));
-                    np_aa_result r;
-                    if (np_aa_run(&f, &c, NULL, 0, &r))
-                        break;
-                    if (r.mse_full <= 5e-5 && r.pct < best) {
-                        best = r.pct;
-                        best_mse = r.mse_full;
-                        np_aa_result_free(&keep);
-                        keep = r;
-                    } else {
-                        np_aa_result_free(&r);
-                    }
-                }
-            if (best <= 100.0) {
-                double P = (double)keep.covered_pixels * f.g.n;
-                const char *drv = keep.samples_s >= keep.samples_d && keep.samples_s >= keep.samples_n ? "luma"
-                                  : keep.samples_d >= keep.samples_n                                   ? "depth"
-                                                                                                       : "normal";
-                printf("%s m=%u: %.2f %% of samples at MSE %.3fe-5 (c_d=%u c_n=%u c_s=%u); alone: depth %.1f %%, normal"
-                       " %.1f %%, luma %.1f %%: %s drives the count\n",
-                       names[i], m, best, best_mse * 1e5, np_aa_key(&keep.cfg, "c_d"), np_aa_key(&keep.cfg, "c_n"), np_aa_key(&keep.cfg, "c_s"),
-                       100.0 * (double)keep.samples_d / P, 100.0 * (double)keep.samples_n / P,
-                       100.0 * (double)keep.samples_s / P, drv);
-            } else {
-                printf("%s m=%u: no constant of the scale reaches MSE 5e-5\n", names[i], m);
-            }
-            NP_CHECK(best <= 60.0, "%s m=%u: %.2f %% at MSE <= 5e-5", names[i], m, best);
-            np_aa_result_free(&keep);
-            np_aa_frame_free(&f);
-        }
-        np_scene_free(&sc);
-    }
-    return 0;
+    static const char *const names[2] = { "marble", "boxes" };
+    return each_frame(names, 2, mse_budget_at);
 }
 
 /*
@@ -227,33 +251,18 @@ static int beats_full_3x3(void)
 {
     const char *names[2] = { "marble", "boxes" };
     for (int i = 0; i < 2; i++) {
-        np_scene sc;
-        if (np_golden_scene_load(NP_SOURCE_DIR, names[i], &sc))
+        gt_frames g;
+        if (gt_frames_load(names[i], &g))
             return 1;
-        np_render_unit_cfg us[NP_RENDER_MAX_UNITS];
-        int t = texel_of(&sc, us);
-        char err[512];
-        double *gt = malloc((size_t)sc.width * sc.height * 3 * sizeof *gt);
-        if (t < 0 || !gt || np_gbuf_ground_truth(&sc, 16, gt, err, sizeof err)) {
-            NP_CHECK(0, "ground truth");
-            free(gt);
-            np_scene_free(&sc);
-            return 1;
-        }
-        np_aa_frame f3, f4;
-        if (frame(&sc, 3, &us[t], gt, &f3) || frame(&sc, 4, &us[t], gt, &f4)) {
-            free(gt);
-            np_scene_free(&sc);
-            return 1;
-        }
-        double full3 = np_gbuf_mse(f3.img_full, gt, f3.covered, (size_t)f3.g.w * f3.g.h);
+        const np_aa_frame *f3 = &g.f3, *f4 = &g.f4;
+        double full3 = np_gbuf_mse(f3->img_full, g.gt, f3->covered, (size_t)f3->g.w * f3->g.h);
         double best = 1e9, best_pct = 0.0;
         for (int k = -2; k <= 3; k++) {
             double s2 = ldexp(1.0, k);
             np_unit_cfg c = cfg_all(4, (uint32_t)(400000.0 * s2), (uint8_t)fmin(255.0, 32.0 * s2),
                                        (uint16_t)(512.0 * s2));
             np_aa_result r;
-            if (np_aa_run(&f4, &c, NULL, 0, &r))
+            if (np_aa_run(f4, &c, NULL, 0, &r))
                 break;
             if (r.pct <= 56.25 && r.mse_gt < best) {
                 best = r.mse_gt;
@@ -268,10 +277,7 @@ static int beats_full_3x3(void)
         if (i == 0)
             NP_CHECK(best < full3, "marble: adaptive 4x4 %.3fe-5 does not beat full 3x3 %.3fe-5", best * 1e5,
                      full3 * 1e5);
-        np_aa_frame_free(&f3);
-        np_aa_frame_free(&f4);
-        free(gt);
-        np_scene_free(&sc);
+        gt_frames_free(&g);
     }
     return 0;
 }
@@ -377,24 +383,14 @@ static int borders(void)
  */
 static int boxes_knobs(void)
 {
-    np_scene sc;
-    if (np_golden_scene_load(NP_SOURCE_DIR, "boxes", &sc))
+    gt_frames g;
+    if (gt_frames_load("boxes", &g))
         return 1;
-    np_render_unit_cfg us[NP_RENDER_MAX_UNITS];
-    int t = texel_of(&sc, us);
-    char err[512];
-    const size_t npx = (size_t)sc.width * sc.height;
-    double *gt = malloc(npx * 3 * sizeof *gt);
-    np_aa_frame f3, f4;
-    if (t < 0 || !gt || np_gbuf_ground_truth(&sc, 16, gt, err, sizeof err) || frame(&sc, 3, &us[t], gt, &f3) ||
-        frame(&sc, 4, &us[t], gt, &f4)) {
-        NP_CHECK(0, "frames");
-        free(gt);
-        np_scene_free(&sc);
-        return 1;
-    }
-    const double full3 = np_gbuf_mse(f3.img_full, gt, f3.covered, npx);
-    const double full4 = np_gbuf_mse(f4.img_full, gt, f4.covered, npx);
+    const size_t npx = (size_t)g.sc.width * g.sc.height;
+    const double *gt = g.gt;
+    const np_aa_frame *f3 = &g.f3, *f4 = &g.f4;
+    const double full3 = np_gbuf_mse(f3->img_full, gt, f3->covered, npx);
+    const double full4 = np_gbuf_mse(f4->img_full, gt, f4->covered, npx);
     printf("boxes against 16x16: full 3x3 %.3fe-5, full 4x4 %.3fe-5\n", full3 * 1e5, full4 * 1e5);
 
     /* (2) e_p(s), on np_gbuf_mse's scale (per channel value / 255, mean over 3 covered channels). */
@@ -402,7 +398,7 @@ static int boxes_knobs(void)
     uint64_t cov = 0;
     NP_CHECK(e != NULL, "out of memory");
     for (size_t p = 0; e && p < npx; p++) {
-        if (!f4.covered[p])
+        if (!f4->covered[p])
             continue;
         cov++;
         for (unsigned s = 1; s <= 16; s++) {
@@ -412,7 +408,7 @@ static int boxes_knobs(void)
                 uint32_t sum = 0;
                 for (unsigned j = 0; j < 16; j++)
                     if (((unsigned)mk >> j) & 1u)
-                        sum += f4.rgb_full[3 * (p * 16 + j) + ch];
+                        sum += f4->rgb_full[3 * (p * 16 + j) + ch];
                 double d = ((double)np_aacount_resolve(sum, s) - gt[3 * p + ch]) / 255.0;
                 err2 += d * d;
             }
@@ -425,7 +421,7 @@ static int boxes_knobs(void)
         double sum = 0, sum_e = 0;
         uint64_t ssum = 0;
         for (size_t p = 0; p < npx; p++) {
-            if (!f4.covered[p])
+            if (!f4->covered[p])
                 continue;
             unsigned bs = 1;
             for (unsigned s = 2; s <= 16; s++)
@@ -445,7 +441,7 @@ static int boxes_knobs(void)
             alloc_spp = (double)ssum / (double)cov;
         }
     }
-    NP_CHECK(np_aa_colour_oracle(&f4, 9.0, &see_mse, &see_spp) == 0, "colour oracle");
+    NP_CHECK(np_aa_colour_oracle(f4, 9.0, &see_mse, &see_spp) == 0, "colour oracle");
     printf("a count that sees every sample's colour (np_aa_colour_oracle: the s minimising the error against full "
            "4x4 + lambda s): %.3fe-5 against 16x16 at %.2f spp\n", see_mse * 1e5, see_spp);
     printf("bound: any per-pixel count with B4's order at <= 9 spp has MSE >= %.3fe-5 (lambda %.3g); "
@@ -488,7 +484,7 @@ static int boxes_knobs(void)
                                 np_aa_key_set(&c, "t_edge", (uint8_t)tedges[c2]);
                                 np_aa_key_set(&c, "tile", (uint8_t)tiles[d]);
                                 np_aa_result r;
-                                if (np_aa_run(&f4, &c, NULL, 0, &r))
+                                if (np_aa_run(f4, &c, NULL, 0, &r))
                                     break;
                                 tried++;
                                 char txt[160];
@@ -517,10 +513,7 @@ static int boxes_knobs(void)
     NP_CHECK(see_spp > 0 && see_spp <= 9.0 && see_mse >= lb * (1.0 - 1e-9), "colour oracle %.4fe-5 at %.2f spp",
              see_mse * 1e5, see_spp);
     free(e);
-    np_aa_frame_free(&f3);
-    np_aa_frame_free(&f4);
-    free(gt);
-    np_scene_free(&sc);
+    gt_frames_free(&g);
     return 0;
 }
 

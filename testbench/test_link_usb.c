@@ -662,48 +662,46 @@ static void fault_then_resume(const char *name, np_board_fault bf, uint64_t gone
     dev_free(d);
 }
 
-static int t_disappear(void)
+/*
+ * The faults fault_then_resume runs, one CTest case each: the board's own
+ * fault, the transfer at which the device disappears, stalls its IN endpoint
+ * or NAKs OUT forever (0: never), the --timeout and the words the run must say.
+ * t_timeout_out: the board stops taking OUT data, so libusb's transfer
+ * time-out or the watchdog ends the run.
+ */
+static const struct resume_fault {
+    const char *name;
+    np_board_fault bf;
+    uint64_t gone_at, stall_at, nak_at;
+    const char *timeout, *words;
+} resume_faults[] = {
+    { "disappear", { NP_BOARD_OK, 0, 0 }, 100000, 0, 0, "10", "the board disappeared (LIBUSB_" },
+    { "timeout", { NP_BOARD_SILENT, 100000, 0 }, 0, 0, 0, "1", "timeout: the board sent nothing for 1.0 s" },
+    { "timeout_out", { NP_BOARD_OK, 0, 0 }, 0, 0, 100000, "1", "timeout: the board has taken no data for 1.0 s" },
+    { "stall", { NP_BOARD_OK, 0, 0 }, 0, 100000, 0, "10", "endpoint 0x81 (IN) stalled (LIBUSB_TRANSFER_STALL" },
+    { "corrupt", { NP_BOARD_CORRUPT, 100000, 0 }, 0, 0, 0, "10", "corrupted frame from the board" },
+    { "short", { NP_BOARD_SHORT, 100000, 0 }, 0, 0, 0, "10", "short frame from the board" },
+};
+
+static int resume_fault_case(const char *name)
 {
-    np_board_fault none = { NP_BOARD_OK, 0, 0 };
-    fault_then_resume("disappear", none, 100000, 0, 0, "10", "the board disappeared (LIBUSB_");
-    return 0;
+    for (size_t i = 0; i < sizeof resume_faults / sizeof resume_faults[0]; i++) {
+        const struct resume_fault *c = &resume_faults[i];
+        if (strcmp(c->name, name) == 0) {
+            fault_then_resume(c->name, c->bf, c->gone_at, c->stall_at, c->nak_at, c->timeout, c->words);
+            return 0;
+        }
+    }
+    NP_CHECK(0, "no resume fault '%s'", name);
+    return 1;
 }
 
-static int t_timeout(void)
-{
-    np_board_fault silent = { NP_BOARD_SILENT, 100000, 0 };
-    fault_then_resume("timeout", silent, 0, 0, 0, "1", "timeout: the board sent nothing for 1.0 s");
-    return 0;
-}
-
-/* The board stops taking OUT data (NAKs forever): libusb's transfer time-out or the watchdog. */
-static int t_timeout_out(void)
-{
-    np_board_fault none = { NP_BOARD_OK, 0, 0 };
-    fault_then_resume("timeout_out", none, 0, 0, 100000, "1", "timeout: the board has taken no data for 1.0 s");
-    return 0;
-}
-
-static int t_stall(void)
-{
-    np_board_fault none = { NP_BOARD_OK, 0, 0 };
-    fault_then_resume("stall", none, 0, 100000, 0, "10", "endpoint 0x81 (IN) stalled (LIBUSB_TRANSFER_STALL");
-    return 0;
-}
-
-static int t_corrupt(void)
-{
-    np_board_fault f = { NP_BOARD_CORRUPT, 100000, 0 };
-    fault_then_resume("corrupt", f, 0, 0, 0, "10", "corrupted frame from the board");
-    return 0;
-}
-
-static int t_short(void)
-{
-    np_board_fault f = { NP_BOARD_SHORT, 100000, 0 };
-    fault_then_resume("short", f, 0, 0, 0, "10", "short frame from the board");
-    return 0;
-}
+static int t_disappear(void) { return resume_fault_case("disappear"); }
+static int t_timeout(void) { return resume_fault_case("timeout"); }
+static int t_timeout_out(void) { return resume_fault_case("timeout_out"); }
+static int t_stall(void) { return resume_fault_case("stall"); }
+static int t_corrupt(void) { return resume_fault_case("corrupt"); }
+static int t_short(void) { return resume_fault_case("short"); }
 
 /*
  * Item 3 of issue 11: the journal is bound to its target. An emulator's

@@ -707,15 +707,22 @@ static void seed_close(seed_render *r)
     np_scene_free(&r->s);
 }
 
-/* Every error PNG carries the colour bar: the heat map's end colours at its documented ends, and the scale as text. */
-static int error_colour_bar(void)
+/* Runs a case on the seed scene `name` (render_default), then releases it: 1 when it cannot be rendered. */
+static int with_seed(const char *name, int (*body)(const np_scene *, const np_render_frame *, const np_render_run *,
+                                                   const np_render_run *))
 {
     seed_render R;
-    if (render_default("wood", &R.s, &R.fr, &R.fd, &R.tx))
+    if (render_default(name, &R.s, &R.fr, &R.fd, &R.tx))
         return 1;
-    const np_scene *s = &R.s;
-    const np_render_frame *fr = &R.fr;
-    const np_render_run *fd = &R.fd;
+    int rc = body(&R.s, &R.fr, &R.fd, &R.tx);
+    seed_close(&R);
+    return rc;
+}
+
+/* Every error PNG carries the colour bar: the heat map's end colours at its documented ends, and the scale as text. */
+static int error_colour_bar_seed(const np_scene *s, const np_render_frame *fr, const np_render_run *fd, const np_render_run *tx)
+{
+    (void)tx;
     char err[512], val[512];
     np_render_legend lg;
     np_render_legend_layout(s->width, &lg);
@@ -762,23 +769,17 @@ static int error_colour_bar(void)
         snprintf(path, sizeof path, "%s.exr", base);
         remove(path);
     }
-    seed_close(&R);
     return 0;
 }
+static int error_colour_bar(void) { return with_seed("wood", error_colour_bar_seed); }
 
 /*
  * The error beyond correct rounding: zero everywhere for an image equal to the
  * correctly rounded reference; for the units, non-zero exactly at the samples
  * the summary counts (np_render_err.over_cr).
  */
-static int error_rounded(void)
+static int error_rounded_seed(const np_scene *s, const np_render_frame *fr, const np_render_run *fd, const np_render_run *tx)
 {
-    seed_render R;
-    if (render_default("wood", &R.s, &R.fr, &R.fd, &R.tx))
-        return 1;
-    const np_scene *s = &R.s;
-    const np_render_frame *fr = &R.fr;
-    const np_render_run *fd = &R.fd, *tx = &R.tx;
     size_t n = (size_t)s->width * s->height;
     uint8_t *ref8 = malloc(3 * n);
     np_render_ref_rgb8(fr, ref8);
@@ -815,9 +816,9 @@ static int error_rounded(void)
     remove("test_render_cr.exr");
     remove("test_render_cr.png");
     free(ref8);
-    seed_close(&R);
     return 0;
 }
+static int error_rounded(void) { return with_seed("wood", error_rounded_seed); }
 
 /* The golden hash of image `image` of scene `scene` in vectors/images/hashes.txt (np_golden_hash). */
 static int golden_hash(const char *scene, const char *image, char hex[65])
@@ -830,14 +831,9 @@ static int golden_hash(const char *scene, const char *image, char hex[65])
  * but not the data: the unit's image, its PNG and its golden hash stay as they
  * were; the scene's light section is read and checked.
  */
-static int shading_view(void)
+static int shading_view_seed(const np_scene *s, const np_render_frame *fr, const np_render_run *fd, const np_render_run *tx)
 {
-    seed_render R;
-    if (render_default("wood", &R.s, &R.fr, &R.fd, &R.tx))
-        return 1;
-    const np_scene *s = &R.s;
-    const np_render_frame *fr = &R.fr;
-    const np_render_run *fd = &R.fd;
+    (void)tx;
     size_t n = (size_t)s->width * s->height;
     char err[512], val[256], hex[65], want[65];
     uint8_t *copy = malloc(3 * n);
@@ -892,7 +888,6 @@ static int shading_view(void)
     remove("test_render_view.png");
     remove("test_render_view_lit.png");
     remove("test_render_view.exr");
-    seed_close(&R);
     /* The light section: given, normalised; zero and unknown keys refused with the field. */
     char buf[4096];
     np_scene t;
@@ -912,15 +907,12 @@ static int shading_view(void)
     printf("  %s\n", err);
     return 0;
 }
+static int shading_view(void) { return with_seed("wood", shading_view_seed); }
 
 /* Colour EXRs hold linear light with the chromaticities attribute; error EXRs say they hold LSB data. */
-static int exr_colour_attributes(void)
+static int exr_colour_attributes_seed(const np_scene *s, const np_render_frame *fr, const np_render_run *fd, const np_render_run *tx)
 {
-    seed_render R;
-    if (render_default("marble", &R.s, &R.fr, &R.fd, &R.tx))
-        return 1;
-    const np_render_frame *fr = &R.fr;
-    const np_render_run *tx = &R.tx;
+    (void)s; (void)fd;
     char err[512];
     NP_CHECK(np_render_write_rgb8("test_render_attr", fr, "texel", tx->rgb, err, sizeof err) == 0, "%s", err);
     NP_CHECK(np_render_write_error("test_render_attr_err", fr, "texel", tx->rgb, 0, err, sizeof err) == 0, "%s", err);
@@ -972,9 +964,9 @@ static int exr_colour_attributes(void)
     remove("test_render_attr_lit.png");
     remove("test_render_attr_err.exr");
     remove("test_render_attr_err.png");
-    seed_close(&R);
     return 0;
 }
+static int exr_colour_attributes(void) { return with_seed("marble", exr_colour_attributes_seed); }
 
 static const np_test_case cases[] = {
     { "sha256_kat", sha256_kat },

@@ -15,6 +15,7 @@
 #include "np_aacount.h"
 #include "np_ref.h"
 #include "np_unit.h"
+#include "unit_entry.h"
 #include "unit_aacount.h"
 
 typedef struct aac_cfg {
@@ -433,22 +434,10 @@ static const np_unit_samples samples = {
 const np_unit np_unit_aacount = {
     .name = "aacount",
     .summary = "adaptive supersampling sample count: depth variance, normal cone, luma range (Hollaender et al.)",
-    .keys = keys,
-    .cfg_check = cfg_check,
-    .fields = fields,
-    .eval = eval,
-    .ref = ref,
+    NP_UNIT_MODEL_ENTRY,
     .tolerance_lsb = 0.0,
-    .error_bound_lsb = error_bound,
-    .pipe_init = pipe_init,
-    .sig_set_in = sig_set_in,
-    .sig_get_out = sig_get_out,
-    .boundary = boundary,
-    .datapath = datapath,
     .timing = timing,
     .cfg_scene = cfg_scene,
-    .trace = trace,
-    .conformance_configs = conformance_configs,
     .eval_n = eval_n,
     .samples = &samples,
 };

@@ -9,6 +9,7 @@
 #include "np_ref.h"
 #include "np_rng.h"
 #include "np_unit.h"
+#include "unit_entry.h"
 #include "np_unit_sweep.h"
 
 /* The registry's configuration block: the model's. */
@@ -441,21 +442,9 @@ static void fine_cfg(const void *cfg, void *fine)
 const np_unit np_unit_classic3 = {
     .name = "classic3",
     .summary = "classic 3-D gradient noise, 8.8 inputs, L/H/S/I pipeline (Perlin, Noise Hardware)",
-    .keys = keys,
-    .cfg_check = cfg_check,
-    .fields = fields,
-    .eval = eval,
-    .ref = ref,
+    NP_UNIT_MODEL_ENTRY,
     .tolerance_lsb = 1.0,
-    .error_bound_lsb = error_bound,
-    .pipe_init = pipe_init,
-    .sig_set_in = sig_set_in,
-    .sig_get_out = sig_get_out,
-    .boundary = boundary,
-    .datapath = datapath,
     .sweep_rows = sweep_rows,
-    .trace = trace,
-    .conformance_configs = conformance_configs,
     .adversarial = adversarial,
     .fine_cfg = fine_cfg,
     .eval_n = eval_n,

@@ -7,6 +7,7 @@
 #include "np_hatch.h"
 #include "np_ref.h"
 #include "np_unit.h"
+#include "unit_entry.h"
 #include "unit_hatch.h"
 
 _Static_assert(sizeof(np_hatch_cfg) <= NP_UNIT_CFG_MAX, "configuration block too large");
@@ -570,21 +571,9 @@ static const np_unit_strokes strokes = {
 const np_unit np_unit_hatch = {
     .name = "hatch",
     .summary = "procedural hatching, de Bruijn seeds, 4 layers (Szecsi & Sziranyi, RPTAM)",
-    .keys = keys,
-    .cfg_check = cfg_check,
-    .fields = fields,
-    .eval = eval,
-    .ref = ref,
+    NP_UNIT_MODEL_ENTRY,
     .tolerance_lsb = 1.0,
-    .error_bound_lsb = error_bound,
-    .pipe_init = pipe_init,
-    .sig_set_in = sig_set_in,
-    .sig_get_out = sig_get_out,
-    .boundary = boundary,
-    .datapath = datapath,
-    .trace = trace,
     .timing = timing,
-    .conformance_configs = conformance_configs,
     .cfg_scene = cfg_scene,
     .strokes = &strokes,
 };

@@ -9,6 +9,7 @@
 #include "np_rng.h"
 #include "np_simplex.h"
 #include "np_unit.h"
+#include "unit_entry.h"
 #include "np_unit_sweep.h"
 
 /* The registry's configuration block: the model's. */
@@ -370,20 +371,8 @@ const np_unit np_unit_simplex3 = {
     .sweep_rows = sweep_rows,
     .summary = "3-D simplex noise with analytic derivative, 8.8 inputs, exact skew/rank "
                "(Perlin, Noise Hardware, Appendix B)",
-    .keys = keys,
-    .cfg_check = cfg_check,
-    .fields = fields,
-    .eval = eval,
-    .ref = ref,
+    NP_UNIT_MODEL_ENTRY,
     .tolerance_lsb = 1.0,
-    .error_bound_lsb = error_bound,
-    .pipe_init = pipe_init,
-    .sig_set_in = sig_set_in,
-    .sig_get_out = sig_get_out,
-    .boundary = boundary,
-    .datapath = datapath,
-    .trace = trace,
-    .conformance_configs = conformance_configs,
     .adversarial = adversarial,
     .fine_cfg = fine_cfg,
     .eval_n = eval_n,

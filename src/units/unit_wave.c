@@ -15,6 +15,7 @@
 #include <string.h>
 
 #include "np_unit.h"
+#include "unit_entry.h"
 #include "np_wave.h"
 #include "np_wave_host.h"
 #include "np_wave_ref.h"
@@ -694,20 +695,8 @@ const np_unit np_unit_wave = {
     .name = "wave",
     .summary = "Gerstner waves, one grid point a transaction: exact integer phase in turns, quarter-wave "
                "ROM sin/cos, per-train products (Yrjola and Larsson, seed 004)",
-    .keys = keys,
-    .cfg_check = cfg_check,
-    .fields = fields,
-    .eval = eval,
-    .ref = ref,
+    NP_UNIT_MODEL_ENTRY,
     .tolerance_lsb = 1.0,
-    .error_bound_lsb = error_bound,
-    .pipe_init = pipe_init,
-    .sig_set_in = sig_set_in,
-    .sig_get_out = sig_get_out,
-    .boundary = boundary,
-    .datapath = datapath,
-    .trace = trace,
-    .conformance_configs = conformance_configs,
     .regs = regs,
     .eval_n = eval_n,
 };

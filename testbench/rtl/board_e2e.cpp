@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "Vbd.h"
+#include "np_uart_line.h"
 #include "verilated.h"
 
 extern "C" {
@@ -33,7 +34,6 @@ extern "C" {
 
 namespace {
 
-const unsigned kCpb = 4;  // np_board_top's CLKS_PER_BIT (its default)
 const double kClockHz = 12e6;
 const uint64_t kQuiet = 400000;  // clocks without a byte either way: the host's time-out
 
@@ -45,17 +45,17 @@ struct Fault {
 // The host's side of the line: a UART transmitter that starts a byte only while rts_n is low.
 struct LineOut {
     std::deque<uint8_t> q;
-    unsigned bit = 0, clk = 0;  // bit 0: idle; 1 start, 2..9 data, 10 stop
-    uint8_t cur = 0;
+    np_line::Tx tx;
     int level = 1;
     uint64_t sent = 0;
+    bool idle() const { return tx.idle(); }
     // One clock; returns the line level for this clock.
     int step(int rts_n, const std::vector<Fault> &faults, uint64_t *n_faults)
     {
-        if (bit == 0) {
+        if (tx.idle()) {
             if (q.empty() || rts_n)
                 return level = 1;
-            cur = q.front();
+            uint8_t cur = q.front();
             q.pop_front();
             uint64_t idx = sent++;
             for (const Fault &f : faults)
@@ -66,59 +66,29 @@ struct LineOut {
                     (*n_faults)++;
                     cur ^= 0x10;
                 }
-            bit = 1;
-            clk = 0;
+            tx.start(cur);
         }
-        int v = bit == 1 ? 0 : bit == 10 ? 1 : (cur >> (bit - 2)) & 1;
-        if (++clk == kCpb) {
-            clk = 0;
-            bit = bit == 10 ? 0 : bit + 1;
-        }
-        return level = v;
+        return level = tx.clock();
     }
 };
 
-// The host's receiver: the board's line sampled in the middle of each bit.
+// The host's receiver: the board's line sampled in the middle of each bit; flip-in faults on
+// the bytes received whole.
 struct LineIn {
-    unsigned bit = 0, clk = 0;
-    uint8_t sh = 0;
-    int prev = 1;
-    uint64_t got = 0, framing = 0;
+    np_line::Rx rx;
+    uint64_t got = 0;
     // One clock of line level v; returns 1 with a byte in *b.
     int step(int v, uint8_t *b, const std::vector<Fault> &faults, uint64_t *n_faults)
     {
-        int out = 0;
-        if (bit == 0) {
-            if (prev && !v) {
-                bit = 1;
-                clk = kCpb / 2;  // to the middle of the start bit
+        if (!rx.step(v, b))
+            return 0;
+        uint64_t idx = got++;
+        for (const Fault &f : faults)
+            if (f.at == idx && f.kind == 2) {
+                (*n_faults)++;
+                *b ^= 0x04;
             }
-        } else if (--clk == 0) {
-            clk = kCpb;
-            if (bit == 1) {
-                if (v) bit = 0;  // a glitch
-                else bit = 2;
-            } else if (bit < 10) {
-                sh = (uint8_t)(sh >> 1 | (v ? 0x80 : 0));
-                bit++;
-            } else {
-                bit = 0;
-                if (!v) {
-                    framing++;
-                } else {
-                    uint64_t idx = got++;
-                    for (const Fault &f : faults)
-                        if (f.at == idx && f.kind == 2) {
-                            (*n_faults)++;
-                            sh ^= 0x04;
-                        }
-                    *b = sh;
-                    out = 1;
-                }
-            }
-        }
-        prev = v;
-        return out;
+        return 1;
     }
 };
 
@@ -183,15 +153,7 @@ int main(int argc, char **argv)
     }
 
     Vbd *t = new Vbd;
-    t->rxd = 1;
-    t->rst = 1;
-    for (int k = 0; k < 4; k++) {
-        t->clk = 0;
-        t->eval();
-        t->clk = 1;
-        t->eval();
-    }
-    t->rst = 0;
+    np_line::reset(t);
     LineOut lo;
     LineIn li;
     uint64_t n_faults = 0, clocks = 0, verified_sum = 0, errors_sum = 0, frame_errs = 0;
@@ -210,11 +172,11 @@ int main(int argc, char **argv)
         }
         uint64_t quiet = 0, c0 = clocks;
         while (!np_host_done(h) && np_host_get_fault(h) == NP_FAULT_NONE) {
-            if (lo.q.empty() && lo.bit == 0) {
+            if (lo.q.empty() && lo.idle()) {
                 size_t n = np_host_pull(h, obuf.data(), obuf.size());
                 lo.q.insert(lo.q.end(), obuf.begin(), obuf.begin() + (long)n);
             }
-            int moved = lo.bit != 0;
+            int moved = !lo.idle();
             t->rxd = (uint8_t)lo.step(t->rts_n, faults, &n_faults);
             t->clk = 0;
             t->eval();
@@ -236,7 +198,7 @@ int main(int argc, char **argv)
         }
         // A USB OUT transfer (one frame) completes: the frame on the line is finished (the
         // queue holds no more than it).
-        while (lo.bit != 0 || !lo.q.empty()) {
+        while (!lo.idle() || !lo.q.empty()) {
             t->rxd = (uint8_t)lo.step(t->rts_n, faults, &n_faults);
             t->clk = 0;
             t->eval();

@@ -55,11 +55,11 @@
 #include <vector>
 
 #include "Vbd.h"
+#include "np_uart_line.h"
 #include "verilated.h"
 
 namespace {
 
-const unsigned kCpb = 4;          // np_board_top's CLKS_PER_BIT (its default)
 const uint64_t kLinger = 20000;   // clocks the board runs on after the last byte either way
 const uint64_t kBatch = 2048;     // clocks between looks at stdin while the board runs
 const unsigned kResetClocks = 16;
@@ -125,8 +125,7 @@ struct Sim {
 // The bridge's side of the OUT line: a UART transmitter that starts a byte only while rts_n is low.
 struct LineOut {
     std::deque<uint8_t> q;  // host bytes not yet on the line
-    unsigned bit = 0, clk = 0;  // bit 0: idle; 1 start, 2..9 data, 10 stop
-    uint8_t cur = 0;
+    np_line::Tx tx;
     uint64_t sent = 0;   // bytes taken from q (the OUT byte index)
     Stall stall;
     unsigned reset_left = 0;  // clocks of rst still to hold
@@ -136,7 +135,7 @@ struct LineOut {
     // One clock; the line level.
     int step(int rts_n, Sim &s, uint64_t clock)
     {
-        if (bit == 0) {
+        if (tx.idle()) {
             if (q.empty() || stall.active(clock) || reset_left)
                 return 1;
             uint64_t idx = sent;
@@ -166,7 +165,7 @@ struct LineOut {
                 reset_left = kResetClocks;
                 return 1;
             }
-            cur = q.front();
+            uint8_t cur = q.front();
             q.pop_front();
             sent++;
             if (Fault *f = s.find(DROP_OUT, idx)) {
@@ -179,56 +178,15 @@ struct LineOut {
                 s.applied++;
                 cur = (uint8_t)(cur ^ (1u << f->bit));
             }
-            bit = 1;
-            clk = 0;
+            tx.start(cur);
         }
-        int v = bit == 1 ? 0 : bit == 10 ? 1 : (cur >> (bit - 2)) & 1;
-        if (++clk == kCpb) {
-            clk = 0;
-            bit = bit == 10 ? 0 : bit + 1;
-        }
-        return v;
+        return tx.clock();
     }
-    bool idle() const { return bit == 0; }
+    bool idle() const { return tx.idle(); }
 };
 
 // The bridge's receiver: the board's line sampled in the middle of each bit.
-struct LineIn {
-    unsigned bit = 0, clk = 0;
-    uint8_t sh = 0;
-    int prev = 1;
-    uint64_t got = 0, framing = 0;
-    // One clock of line level v; 1 with a byte in *b.
-    int step(int v, uint8_t *b)
-    {
-        int out = 0;
-        if (bit == 0) {
-            if (prev && !v) {
-                bit = 1;
-                clk = kCpb / 2;  // to the middle of the start bit
-            }
-        } else if (--clk == 0) {
-            clk = kCpb;
-            if (bit == 1) {
-                bit = v ? 0 : 2;  // high in the middle of the start bit: a glitch
-            } else if (bit < 10) {
-                sh = (uint8_t)(sh >> 1 | (v ? 0x80 : 0));
-                bit++;
-            } else {
-                bit = 0;
-                if (!v) {
-                    framing++;
-                } else {
-                    *b = sh;
-                    out = 1;
-                }
-            }
-        }
-        prev = v;
-        return out;
-    }
-    bool idle() const { return bit == 0; }
-};
+typedef np_line::Rx LineIn;
 
 // The IN side of the bridge: bytes off the line, faults, the stall, then stdout.
 struct Bridge {
@@ -377,15 +335,7 @@ int main(int argc, char **argv)
     signal(SIGPIPE, SIG_IGN);  // a host that is gone: EPIPE, not a signal
 
     Vbd *t = new Vbd;
-    t->rxd = 1;
-    t->rst = 1;
-    for (int k = 0; k < 4; k++) {
-        t->clk = 0;
-        t->eval();
-        t->clk = 1;
-        t->eval();
-    }
-    t->rst = 0;
+    np_line::reset(t);
     LineOut lo;
     LineIn li;
     Bridge br;

@@ -10,10 +10,9 @@
 // instance each; +cfg=NAME picks the one that runs (the others sit idle with
 // their clock held), so one Verilated build serves every configuration.
 //
-//   +vectors=FILE   the $readmemh vector file (required)
 //   +cfg=NAME       default | rom6 | rom10 | irr0_cap0 | trains4 | jac | fold | normals | opts
-//   +bubble=B +stall=S   input bubbles and output stalls, in 1/8 (default 2, 2)
-//   +seed=N         the bubble/stall generator's seed (xorshift32, default 1)
+//   +vectors, +bubble, +stall, +seed as np_tb_vec.vh says (file reading, driver
+//   and verdict are its too).
 //
 // The file is read twice, through two handles, as a text file (never as a
 // memory): the driver takes the header (config, registers, count) and each
@@ -29,9 +28,9 @@
 /* verilator lint_off BLKSEQ */
 module rtl_wave_tb;
     localparam integer NCFG = 9;
-    localparam integer MAX_ERRORS = 20;
     localparam integer IB = 151;  // i j t ph u v r g
-    function [8*9-1:0] cfg_name;
+    localparam integer NAME_W = 9;
+    function [8*NAME_W-1:0] cfg_name;
         input integer k;
         case (k)
             0: cfg_name = "default";
@@ -46,9 +45,6 @@ module rtl_wave_tb;
         endcase
     endfunction
 
-    reg clk = 1'b0;
-    reg rst = 1'b1;
-    reg in_valid = 1'b0, out_ready = 1'b0;
     reg [15:0] i = 16'd0, j = 16'd0, u = 16'd0, v = 16'd0;
     reg [31:0] t = 32'd0, ph = 32'd0;
     reg [7:0] r = 8'd0;
@@ -62,11 +58,16 @@ module rtl_wave_tb;
     reg [2:0] rg_mlog2;
     reg [31:0] rg_pu, rg_pv, rg_pt, rg_omc;
     reg [14:0] rg_b, rg_gcap;
-    integer sel = -1;
-    wire [NCFG-1:0] in_ready_k, out_valid_k;
     wire [109*NCFG-1:0] o_k;     // each DUT's result fields, right-aligned: {y, dx, dz[, nx, ny, nz][, fold]}
     reg [NCFG*8-1:0] rw_k;       // their width
     reg [NCFG*48-1:0] cfg_k;     // trains irr cap rom_log2 normals fold, 8 bits each
+
+    reg [271:0] word, want_word;
+    integer nb, n_regs, want_regs;
+    integer c_tr, c_ir, c_cp, c_l, c_no, c_fo;
+    reg [108:0] got_m, want_m, mask;
+`define NP_TB "rtl_wave_tb"
+`include "np_tb_vec.vh"
 
 `define NP_DUT(K, TR, IR, CP, L, NO, FO, INR, OS) \
     wire clk_``K = clk & (sel == K); \
@@ -100,43 +101,15 @@ module rtl_wave_tb;
     `NP_DUT(7, 3, 1, 1, 8, 1, 0, 0, 0)
     `NP_DUT(8, 2, 1, 1, 8, 0, 0, 1, 1)
 
-    wire in_ready = in_ready_k[sel];
-    wire out_valid = out_valid_k[sel];
     wire [108:0] o109 = o_k[109*sel+:109];
 
-    always #5 clk = !clk;
-
-    reg [8*64-1:0] want_name;
 `ifdef VERILATOR
-    string line;
     string rname;
     string tname;
-`define NP_LAST_CHAR (line.len() > 0 ? line.getc(line.len() - 1) : 8'h00)
-`define NP_CLEAR_LINE line = ""
 `else
-    reg [8*200-1:0] line;  // $fgets stops at 200 characters; the rest comes next
     reg [8*32-1:0] rname;
     reg [8*32-1:0] tname;
-`define NP_LAST_CHAR line[7:0]
-`define NP_CLEAR_LINE line = 0
 `endif
-    reg [271:0] word;
-    reg [31:0] rng;
-    string vec_path;
-    integer fd_in, fd_out, n_hdr, n_in, n_out, errors, cycles, idle, bubble, stall, seed, nb, k, n_regs;
-    integer c_tr, c_ir, c_cp, c_l, c_no, c_fo;
-    reg in_done;
-    reg [1:0] comment;  // per handle: the chunk read last belongs to a '//' line that goes on
-
-    function [31:0] xorshift;
-        input [31:0] s;
-        reg [31:0] x;
-        begin
-            x = s ^ (s << 13);
-            x = x ^ (x >> 17);
-            xorshift = x ^ (x << 5);
-        end
-    endfunction
 
     // One "// reg NAME HEX" line: the register it names, or $fatal.
     task set_reg(input [31:0] val);
@@ -169,148 +142,85 @@ module rtl_wave_tb;
         end
     endtask
 
-    // Next data word of a handle into `word`; 0 at the end of the file.
-    // Header lines ("// count N", "// config ...", "// reg ...") are taken from handle fd_in.
-    task next_word(input integer fd, input integer hdr, output integer got);
-        integer rr, n1, n2, n3, n4, n5, n6, nf;
+    // Header lines of handle fd_in: "// reg ..." and "// config ...".
+    task header_line(output integer took);
+        integer n1, n2, n3, n4, n5, n6, nf;
         reg [31:0] hv;
         /* verilator lint_off UNUSEDSIGNAL */
         reg [7:0] ch;  // the first letter after sincos= (only that it is there counts)
         /* verilator lint_on UNUSEDSIGNAL */
         begin
-            got = 0;
-            while (got == 0 && !$feof(fd)) begin
-                `NP_CLEAR_LINE;
-                rr = $fgets(line, fd);
-                if (rr > 0 && comment[hdr]) begin
-                    comment[hdr] = `NP_LAST_CHAR != 8'h0a;  // the rest of a long comment line
-                end else if (rr > 0) begin
-                    comment[hdr] = `NP_LAST_CHAR != 8'h0a;
-                    if (hdr != 0 && $sscanf(line, "// count %d", n1) == 1) n_hdr = n1;
-                    else if (hdr != 0 && $sscanf(line, "// reg %s %h", rname, hv) == 2) set_reg(hv);
-                    else if (hdr != 0 && $sscanf(line, "// config trains=%d irr=%d cap=%d rom_log2=%d",
-                                                 n1, n2, n3, n4) == 4) begin
-                        c_tr = n1; c_ir = n2; c_cp = n3; c_l = n4; c_no = 0; c_fo = 0;
-                        nf = $sscanf(line, "// config trains=%d irr=%d cap=%d rom_log2=%d normals=%d fold=%d",
-                                     n1, n2, n3, n4, n5, n6);
-                        if (nf >= 5) c_no = n5;
-                        if (nf == 6) c_fo = n6;
-                        if ($sscanf(line, "// config trains=%d irr=%d cap=%d rom_log2=%d fold=%d",
-                                    n1, n2, n3, n4, n6) == 5) c_fo = n6;
-                        if ($sscanf(line, "// config trains=%d irr=%d cap=%d rom_log2=%d sincos=%c",
-                                    n1, n2, n3, n4, ch) == 5)
-                            $fatal(1, "rtl_wave_tb: %0s is for sincos=recurrence, which has no RTL (docs/wave.md, Reference RTL)", vec_path);
-                    end else if ($sscanf(line, "%h", word) == 1) begin
-                        got = 1;
-                        comment[hdr] = 1'b0;
-                    end
-                end
-            end
+            took = 1;
+            if ($sscanf(line, "// reg %s %h", rname, hv) == 2) set_reg(hv);
+            else if ($sscanf(line, "// config trains=%d irr=%d cap=%d rom_log2=%d", n1, n2, n3, n4) == 4) begin
+                c_tr = n1; c_ir = n2; c_cp = n3; c_l = n4; c_no = 0; c_fo = 0;
+                nf = $sscanf(line, "// config trains=%d irr=%d cap=%d rom_log2=%d normals=%d fold=%d",
+                             n1, n2, n3, n4, n5, n6);
+                if (nf >= 5) c_no = n5;
+                if (nf == 6) c_fo = n6;
+                if ($sscanf(line, "// config trains=%d irr=%d cap=%d rom_log2=%d fold=%d",
+                            n1, n2, n3, n4, n6) == 5) c_fo = n6;
+                if ($sscanf(line, "// config trains=%d irr=%d cap=%d rom_log2=%d sincos=%c",
+                            n1, n2, n3, n4, ch) == 5)
+                    $fatal(1, "rtl_wave_tb: %0s is for sincos=recurrence, which has no RTL (docs/wave.md, Reference RTL)", vec_path);
+            end else took = 0;
         end
     endtask
 
     initial begin
-        if (!$value$plusargs("vectors=%s", vec_path)) $fatal(1, "rtl_wave_tb: +vectors=FILE missing");
-        if (!$value$plusargs("cfg=%s", want_name)) want_name = "default";
-        if (!$value$plusargs("bubble=%d", bubble)) bubble = 2;
-        if (!$value$plusargs("stall=%d", stall)) stall = 2;
-        if (!$value$plusargs("seed=%d", seed)) seed = 1;
-        rng = seed == 0 ? 32'h9e3779b9 : seed[31:0];
-        for (k = 0; k < NCFG; k = k + 1) if (cfg_name(k) == want_name[8*9-1:0] && want_name[8*64-1:8*9] == 0) sel = k;
-        if (sel < 0) $fatal(1, "rtl_wave_tb: unknown +cfg=%0s", want_name);
-        fd_in = $fopen(vec_path, "r");
-        fd_out = $fopen(vec_path, "r");
-        if (fd_in == 0 || fd_out == 0) $fatal(1, "rtl_wave_tb: cannot open %0s", vec_path);
-        n_hdr = -1; c_tr = -1; c_ir = -1; c_cp = -1; c_l = -1; c_no = -1; c_fo = -1;
-        n_in = 0; n_out = 0; errors = 0; cycles = 0; idle = 0; n_regs = 0;
-        in_done = 0; comment = 2'b00;
+        np_tb_open("default");
+        c_tr = -1; c_ir = -1; c_cp = -1; c_l = -1; c_no = -1; c_fo = -1;
+        n_regs = 0;
         rg_n = 0; rg_kx = 0; rg_kz = 0; rg_phi = 0; rg_om = 0; rg_amp = 0; rg_airr = 0; rg_cx = 0; rg_cz = 0;
         rg_kmx = 0; rg_kmz = 0; rg_width = 0; rg_mlog2 = 3'd7; rg_pu = 0; rg_pv = 0; rg_pt = 0; rg_omc = 0;
         rg_b = 0; rg_gcap = 0;
     end
 
-    // Driver: a presented input stays until it is accepted; bubbles and
-    // stalls from the generator. Both sides change after the clock edge.
-    integer got_in, got_out, want_regs;
-    reg [271:0] want_word;
-    reg [108:0] got_m, want_m, mask;
-    always @(posedge clk) begin
-        if (rst) begin
-            if (cycles == 2) begin
-                rst <= 1'b0;
-            end
-            cycles = cycles + 1;
-        end else begin
-            cycles = cycles + 1;
-            // output side: sample the transfer of this edge
-            if (out_valid && out_ready) begin
-                next_word(fd_out, 0, got_out);
-                want_word = word;
-                nb = {24'd0, rw_k[8*sel+:8]};
-                if (got_out == 0 || want_word[nb+IB] !== 1'b1) begin
-                    $fatal(1, "rtl_wave_tb: the DUT delivered more results (%0d) than the file holds", n_out + 1);
-                end
-                mask = {109{1'b1}} >> (109 - nb);
-                want_m = want_word[108:0] & mask;
-                got_m = o109 & mask;
-                if (got_m !== want_m) begin
-                    errors = errors + 1;
-                    if (errors <= MAX_ERRORS)
-                        $display("i %h j %h t %h ph %h u %h v %h r %h g %h => %h expected: %h  (vector %0d)",
-                                 want_word[nb+150-:16], want_word[nb+134-:16], want_word[nb+118-:32],
-                                 want_word[nb+86-:32], want_word[nb+54-:16], want_word[nb+38-:16],
-                                 want_word[nb+22-:8], want_word[nb+14-:15], got_m, want_m, n_out);
-                end
-                n_out = n_out + 1;
-                idle = 0;
-            end else idle = idle + 1;
-            if (in_valid && in_ready) begin
-                n_in = n_in + 1;
-                in_valid <= 1'b0;
-            end
-            // next input
-            if (!in_done && (!in_valid || in_ready)) begin
-                rng = xorshift(rng);
-                if ({29'd0, rng[2:0]} >= bubble) begin
-                    next_word(fd_in, 1, got_in);
-                    nb = {24'd0, rw_k[8*sel+:8]};
-                    if (n_in == 0) begin
-                        if ({c_tr[7:0], c_ir[7:0], c_cp[7:0], c_l[7:0], c_no[7:0], c_fo[7:0]} != cfg_k[48*sel+:48])
-                            $fatal(1, "rtl_wave_tb: %0s is for trains=%0d irr=%0d cap=%0d rom_log2=%0d normals=%0d fold=%0d, not for cfg %0s",
-                                   vec_path, c_tr, c_ir, c_cp, c_l, c_no, c_fo, want_name);
-                        // n, 8 a train (10 with normals or fold), 8 for the box
-                        want_regs = 1 + rg_n * ((c_no != 0 || c_fo != 0) ? 10 : 8) + 8;
-                        if (n_regs != want_regs)
-                            $fatal(1, "rtl_wave_tb: %0s has %0d '// reg' lines before its first vector, not the %0d of its register set",
-                                   vec_path, n_regs, want_regs);
-                        if (rg_mlog2 != 3'd3)
-                            $fatal(1, "rtl_wave_tb: %0s has mlog2=%0d; the DUT is built for MLOG2=3", vec_path, rg_mlog2);
-                    end
-                    if (got_in == 0 || word[nb+IB] !== 1'b1) begin
-                        in_done = 1;
-                        in_valid <= 1'b0;
-                    end else begin
-                        in_valid <= 1'b1;
-                        {i, j, t, ph, u, v, r, g} <= word[nb+IB-1-:IB];
-                    end
-                end else in_valid <= 1'b0;
-            end
-            rng = xorshift(rng);
-            out_ready <= {29'd0, rng[5:3]} >= stall;
-            if (in_done && n_out == n_in) begin
-                if (n_hdr < 0) $fatal(1, "rtl_wave_tb: %0s has no '// count N' header line", vec_path);
-                if (n_hdr != n_in)
-                    $fatal(1, "rtl_wave_tb: the header's count is %0d but the file holds %0d vectors", n_hdr, n_in);
-                if (n_in == 0) $fatal(1, "rtl_wave_tb: no vectors in %0s", vec_path);
-                if (errors > MAX_ERRORS) $display("rtl_wave_tb: (only the first %0d errors are shown)", MAX_ERRORS);
-                if (errors != 0)
-                    $fatal(1, "rtl_wave_tb: cfg %0s: In %0d tests, %0d errors found.", want_name, n_in, errors);
-                $display("rtl_wave_tb: cfg %0s (trains=%0d irr=%0d cap=%0d rom_log2=%0d normals=%0d fold=%0d), %0d cycles: In %0d tests, no errors found.",
-                         want_name, c_tr, c_ir, c_cp, c_l, c_no, c_fo, cycles, n_in);
-                $finish;
-            end
-            if (idle > 1000)
-                $fatal(1, "rtl_wave_tb: no output for 1000 cycles after %0d of %0d results (%0d errors)", n_out, n_in, errors);
+    // The word: {valid, i, j, t, ph, u, v, r, g (IB bits), the result fields} (nb bits of them).
+    task layout;
+        begin
+            nb = {24'd0, rw_k[8*sel+:8]};
+            vpos = nb + IB;
         end
-    end
+    endtask
+
+    task check_result;
+        begin
+            mask = {109{1'b1}} >> (109 - nb);
+            want_m = want_word[108:0] & mask;
+            got_m = o109 & mask;
+            if (got_m !== want_m) begin
+                errors = errors + 1;
+                if (errors <= MAX_ERRORS)
+                    $display("i %h j %h t %h ph %h u %h v %h r %h g %h => %h expected: %h  (vector %0d)",
+                             want_word[nb+150-:16], want_word[nb+134-:16], want_word[nb+118-:32],
+                             want_word[nb+86-:32], want_word[nb+54-:16], want_word[nb+38-:16],
+                             want_word[nb+22-:8], want_word[nb+14-:15], got_m, want_m, n_out);
+            end
+        end
+    endtask
+
+    task check_config;
+        begin
+            if ({c_tr[7:0], c_ir[7:0], c_cp[7:0], c_l[7:0], c_no[7:0], c_fo[7:0]} != cfg_k[48*sel+:48])
+                $fatal(1, "rtl_wave_tb: %0s is for trains=%0d irr=%0d cap=%0d rom_log2=%0d normals=%0d fold=%0d, not for cfg %0s",
+                       vec_path, c_tr, c_ir, c_cp, c_l, c_no, c_fo, want_name);
+            // n, 8 a train (10 with normals or fold), 8 for the box
+            want_regs = 1 + rg_n * ((c_no != 0 || c_fo != 0) ? 10 : 8) + 8;
+            if (n_regs != want_regs)
+                $fatal(1, "rtl_wave_tb: %0s has %0d '// reg' lines before its first vector, not the %0d of its register set",
+                       vec_path, n_regs, want_regs);
+            if (rg_mlog2 != 3'd3)
+                $fatal(1, "rtl_wave_tb: %0s has mlog2=%0d; the DUT is built for MLOG2=3", vec_path, rg_mlog2);
+        end
+    endtask
+
+    task drive_input;
+        {i, j, t, ph, u, v, r, g} <= word[nb+IB-1-:IB];
+    endtask
+
+    task report_pass;
+        $display("rtl_wave_tb: cfg %0s (trains=%0d irr=%0d cap=%0d rom_log2=%0d normals=%0d fold=%0d), %0d cycles: In %0d tests, no errors found.",
+                 want_name, c_tr, c_ir, c_cp, c_l, c_no, c_fo, cycles, n_in);
+    endtask
 endmodule
