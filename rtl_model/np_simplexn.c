@@ -280,17 +280,28 @@ static void span_add(np_dp *d, const char *stage, const char *sig, unsigned coun
         np_dp_op(d, stage, sig, NP_OP_ADD, count, out - lo, 0, sig_out, sgn, level);
 }
 
-/* count adder trees of m operands of w bits (modulo 2^w) from level0; returns the first free level. */
-static unsigned tree(np_dp *d, const char *stage, const char *sig, unsigned count, unsigned m, unsigned w, int sgn,
-                     unsigned level0)
+/*
+ * count adder trees of m operands of w live bits (modulo 2^w) from level0; the
+ * last adder's output is the traced signal sig of out bits (the full width,
+ * when its low bits are constant zeros). Returns the first free level.
+ */
+static unsigned tree_live(np_dp *d, const char *stage, const char *sig, unsigned count, unsigned m, unsigned w,
+                          unsigned out, int sgn, unsigned level0)
 {
     unsigned lv = level0;
     while (m > 1u) {
         unsigned adders = m / 2u;
         m -= adders;
-        np_dp_op(d, stage, m == 1u ? sig : NULL, NP_OP_ADD, count * adders, w, 0, m == 1u ? w : 0u, sgn, lv++);
+        np_dp_op(d, stage, m == 1u ? sig : NULL, NP_OP_ADD, count * adders, w, 0, m == 1u ? out : 0u, sgn, lv++);
     }
     return lv;
+}
+
+/* count adder trees of m operands of w bits (modulo 2^w) from level0; returns the first free level. */
+static unsigned tree(np_dp *d, const char *stage, const char *sig, unsigned count, unsigned m, unsigned w, int sgn,
+                     unsigned level0)
+{
+    return tree_live(d, stage, sig, count, m, w, w, sgn, level0);
 }
 
 /*
@@ -475,7 +486,7 @@ size_t np_simplexn_datapath(const np_simplexn_cfg *cfg, np_op *ops, size_t max)
     unsigned lh = tree(&d, "CH", "h", nc, lookups, HBITS, 0, 2);
     np_dp_op(&d, "CH", NULL, NP_OP_NEG, nc * n, uw, 0, 0, 0, 2);
     np_dp_op(&d, "CH", NULL, NP_OP_MUX, nc * n, uw, 3, 0, 0, lh);
-    tree(&d, "CH", "gd", nc, n, gdl, 1, lh + 1u);
+    tree_live(&d, "CH", "gd", nc, n, gdl, gdw, 1, lh + 1u);
     /* D's bits below dshare equal U's at every corner: one register holds their live bits for the nc corners. */
     unsigned dreg = n * ((dshare > tz ? dshare - tz : 0u) + nc * (OFFW - (dshare > tz ? dshare : tz)));
     np_dp_op(&d, "CH", NULL, NP_OP_REG, 1, dreg + nc * gdl + 1u, 0, 0, 0, 0);
@@ -489,7 +500,7 @@ size_t np_simplexn_datapath(const np_simplexn_cfg *cfg, np_op *ops, size_t max)
     unsigned tw = ubits(g->tv), tl = tw - 2u * tz;
     np_dp_op(&d, "KT", NULL, NP_OP_NEG, nc * n, uw, 0, 0, 0, 0);
     np_dp_op(&d, "KT", NULL, NP_OP_SQR, nc * n, OFFW - 1u - tz, 0, 2u * OFFW, 0, 1); /* |d_a|^2: squarers */
-    lv = tree(&d, "KT", "r2", nc, n, r2w - 2u * tz, 0, 2);
+    lv = tree_live(&d, "KT", "r2", nc, n, r2w - 2u * tz, r2w, 0, 2);
     lv += const_mul_span(&d, "KT", NULL, nc, g->k, r2w - 2u * tz, tdw - 2u * tz, 0, 0, lv);
     np_dp_op(&d, "KT", NULL, NP_OP_INC, nc, tdw - 2u * tz, 0, 0, 1, lv++); /* a constant minus k R2 */
     np_dp_op(&d, "KT", "t", NP_OP_MUX, nc, tl, 2, tw, 0, lv);
