@@ -13,6 +13,9 @@
 // of NP_COSIM_NDIM=texel and NP_COSIM_KEYS (every key, texture= first): its
 // register inputs get the texture's registers (np_cosim_tex_regs), its
 // descriptor the stream model's (y = x0 = 0), and cr cg cb are compared.
+// np_hatch builds with NP_COSIM_HATCH on top of NP_COSIM_NDIM=hatch and
+// NP_COSIM_KEYS (every key of the unit): its ports xu xv tone pm om get the
+// registry's input fields, its c is compared.
 //
 //   cosim --unit classic3 --cfg 8,12,11 [--in-reg] [--out-skid] [--cycles N]
 //         [--seed S] [--no-traffic] [--bench] [--trace FILE]
@@ -190,6 +193,12 @@ struct Rtl {
         top->in_n = (uint32_t)c.in[6];
         top->in_y = 0;
         top->in_x0 = 0;
+#elif defined(NP_COSIM_HATCH)
+        top->xu = c.in[0];  // the registry's fields in order: xu, xv u33; tone u8; pm, om u17
+        top->xv = c.in[1];
+        top->tone = (uint8_t)c.in[2];
+        top->pm = (uint32_t)c.in[3];
+        top->om = (uint32_t)c.in[4];
 #elif defined(NP_COSIM_NDIM)
         for (unsigned a = 0; a < nin; a++)  // field a at [16 (n - 1 - a) +: 16]: x at the top
             put_bits(top->x, 16 * (nin - 1 - a), 16, c.in[a]);
@@ -228,6 +237,9 @@ struct Rtl {
         o[0] = top->cr;
         o[1] = top->cg;
         o[2] = top->cb;
+#elif defined(NP_COSIM_HATCH)
+        (void)normals;
+        o[0] = top->c;
 #elif defined(NP_COSIM_SIMPLEX)
         (void)normals;
         o[0] = top->f;
@@ -372,7 +384,7 @@ int main(int argc, char **argv)
         for (unsigned k = 0; k < nout; k++) std::fprintf(trace, " out%u(%u bits)", k, np_cosim_out_bits(m, k));
         std::fprintf(trace, "\n");
     }
-    unsigned long long mismatches = 0, compared = 0;
+    unsigned long long mismatches = 0, compared = 0, ink = 0;
     unsigned long long hist[4][17] = {};  // aacount: compared cycles by the value (0..16) of s, sd, sn, ss
     np_cosim_cycle c{};
     uint32_t ro[NP_COSIM_OUTS];
@@ -388,6 +400,9 @@ int main(int argc, char **argv)
             for (unsigned k = 0; k < nout; k++) bad |= ro[k] != c.out[k];
             if (aac_bits)
                 for (unsigned k = 0; k < 4; k++) hist[k][c.out[k == 0 ? 0 : k + 1] & 31u]++;
+#ifdef NP_COSIM_HATCH
+            if (c.out_valid && c.out_ready) ink += c.out[0] != 255u;  // a result with ink (c < 255)
+#endif
         }
         if (bad) {
             if (++mismatches <= 10) {
@@ -438,6 +453,11 @@ int main(int argc, char **argv)
                 unit, cfg, in_reg ? " in_reg" : "", out_skid ? " out_skid" : "", (unsigned long long)n[0],
                 (unsigned long long)n[1], (unsigned long long)n[2], compared, (unsigned long long)n[3],
                 (unsigned long long)n[4], mismatches, t_both);
+#ifdef NP_COSIM_HATCH
+    std::printf("results with ink (c < 255): %llu of %llu\n", ink, (unsigned long long)n[2]);
+#else
+    (void)ink;
+#endif
     if (aac_bits) {
         // How the compared windows spread over the counts: each value 0..16 with its number of cycles.
         static const char *const name[4] = {"s", "sd", "sn", "ss"};
