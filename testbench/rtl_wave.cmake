@@ -13,8 +13,9 @@ set(NP_RTL_WV_RTL ${NP_RTL_SRC}/np_wave.v ${NP_RTL_SRC}/np_wave_sin.v ${NP_RTL_S
 set(NP_RTL_WV_SRC ${NP_RTL_TB}/rtl_wave_tb.v ${NP_RTL_WV_RTL})
 # fault_flip: bit 0 of y flipped when Y's 4 low bits are 0101; fault_stall: bank M overwrites
 # its content under a stall; fault_mirror: the one's complement ROM mirror 2^30 - 1 - x;
-# fault_fold: det J without the jxz jzx product (the fold flag and ny wrong).
-foreach(v ok fault_flip fault_stall fault_mirror fault_fold)
+# fault_fold: det J without the jxz jzx product (the fold flag and ny wrong); fault_foldsign:
+# the fold compare unsigned (the bug co-simulation once found: fold = (ny == 0), ny still right).
+foreach(v ok fault_flip fault_stall fault_mirror fault_fold fault_foldsign)
   np_rtl_builds(wave ${v} rtl_wave_tb ${NP_RTL_WV_SRC})
 endforeach()
 # The bench's configurations without a checked-in set: level-1 sets generated here.
@@ -56,6 +57,8 @@ foreach(sim icarus verilator)
     "In 2514 tests, [1-9][0-9]* errors found" "${lab}")
   np_rtl_check(rtl.wave.${sim}.fault_fold wave ${sim} fault_fold rtl_wave_tb jac ${wv_dir}/wave-l1-seed2.memh fail
     "In 2514 tests, [1-9][0-9]* errors found" "${lab}")
+  np_rtl_check(rtl.wave.${sim}.fault_foldsign wave ${sim} fault_foldsign rtl_wave_tb jac ${wv_dir}/wave-l1-seed2.memh fail
+    "In 2514 tests, 214 errors found" "${lab}")
   # A set that ends early, or has no count, cannot pass.
   np_rtl_check(rtl.wave.${sim}.count_short wave ${sim} ok rtl_wave_tb default ${wv_vec}/wave-golden-short.memh fail
     "the header's count is 2514 but the file holds 2513 vectors" "${lab}")

@@ -443,7 +443,11 @@ module np_wave #(
                 r6_nx <= NORMALS != 0 ? nxr[19:0] : 20'd0;
                 r6_ny <= NORMALS != 0 ? nyr[19:0] : 20'd0;
                 r6_nz <= NORMALS != 0 ? nzr[19:0] : 20'd0;
+`ifdef NP_FAULT_FOLDSIGN
+                r6_fold <= FOLD != 0 ? nyw <= {WN{1'b0}} : 1'b0;  // fault: the compare unsigned (fold = (ny == 0))
+`else
                 r6_fold <= FOLD != 0 ? nyw <= $signed({WN{1'b0}}) : 1'b0;  // signed: a bare {WN{0}} would make it unsigned
+`endif
             end
             assign o_core = {r6_y, r6_dx, r6_dz, r6_nx, r6_ny, r6_nz, r6_fold};
         end
