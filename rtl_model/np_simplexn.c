@@ -372,21 +372,6 @@ static uint64_t div_magic(uint32_t q, uint32_t vmax, unsigned *sh)
     return 0;
 }
 
-/* Comparators per layer of the sorting network of n (a comparator goes one layer after its inputs'); the depth. */
-static unsigned network_layers(unsigned n, unsigned per_layer[16])
-{
-    const uint8_t(*pairs)[2];
-    unsigned m = np_simplexn_network(n, &pairs), lvl[NP_SIMPLEXN_MAX] = { 0 }, depth = 0;
-    memset(per_layer, 0, 16 * sizeof per_layer[0]);
-    for (unsigned k = 0; k < m; k++) {
-        unsigned i = pairs[k][0], j = pairs[k][1], l = (lvl[i] > lvl[j] ? lvl[i] : lvl[j]) + 1u;
-        lvl[i] = lvl[j] = l;
-        per_layer[l - 1u]++;
-        depth = l > depth ? l : depth;
-    }
-    return depth;
-}
-
 size_t np_simplexn_datapath(const np_simplexn_cfg *cfg, np_op *ops, size_t max)
 {
     np_dp d = { ops, max, 0 };
@@ -454,11 +439,44 @@ size_t np_simplexn_datapath(const np_simplexn_cfg *cfg, np_op *ops, size_t max)
      * inputs' own, i < j), so its tie-break is wiring and it compares U alone;
      * later ones compare (U, axis) and select both.
      */
-    unsigned layer[16], depth = network_layers(n, layer);
+    /*
+     * Only the ranking (the axes) is kept: a comparator's U outputs are
+     * selected only where a later comparator reads them (none after the last
+     * layer), and a comparator whose inputs are both untouched sees constant
+     * axes: its axis outputs are its compare bit and its inverse (wiring).
+     * (Every output selected at full width, RK was 1.14-1.17 times Yosys's.)
+     */
+    const uint8_t(*pairs)[2];
+    unsigned ncmp = np_simplexn_network(n, &pairs), plv[NP_SIMPLEXN_MAX] = { 0 }, depth = 0;
+    unsigned cmp_u[16] = { 0 }, cmp_ua[16] = { 0 }, mux_u[16] = { 0 }, mux_a[16] = { 0 };
+    int touched[NP_SIMPLEXN_MAX] = { 0 };
+    for (unsigned k = 0; k < ncmp; k++) {
+        unsigned i = pairs[k][0], j = pairs[k][1], l = (plv[i] > plv[j] ? plv[i] : plv[j]) + 1u;
+        plv[i] = plv[j] = l;
+        depth = l > depth ? l : depth;
+        int later_i = 0, later_j = 0;
+        for (unsigned q = k + 1u; q < ncmp; q++) {
+            later_i |= pairs[q][0] == i || pairs[q][1] == i;
+            later_j |= pairs[q][0] == j || pairs[q][1] == j;
+        }
+        if (!touched[i] && !touched[j]) {
+            cmp_u[l - 1u]++;
+        } else {
+            cmp_ua[l - 1u]++;
+            mux_a[l - 1u] += 2u;
+        }
+        mux_u[l - 1u] += (unsigned)later_i + (unsigned)later_j;
+        touched[i] = touched[j] = 1;
+    }
     for (unsigned k = 0; k < depth; k++) {
-        unsigned cw = k == 0 ? uw : uw + axw;
-        np_dp_op(&d, "RK", NULL, NP_OP_CMP, layer[k], cw, 0, 0, 0, lv + 2u * k);
-        np_dp_op(&d, "RK", NULL, NP_OP_MUX, 2u * layer[k], k == 0 ? uw : uw + axw, 2, 0, 0, lv + 2u * k + 1u);
+        if (cmp_u[k])
+            np_dp_op(&d, "RK", NULL, NP_OP_CMP, cmp_u[k], uw, 0, 0, 0, lv + 2u * k);
+        if (cmp_ua[k])
+            np_dp_op(&d, "RK", NULL, NP_OP_CMP, cmp_ua[k], uw + axw, 0, 0, 0, lv + 2u * k);
+        if (mux_u[k])
+            np_dp_op(&d, "RK", NULL, NP_OP_MUX, mux_u[k], uw, 2, 0, 0, lv + 2u * k + 1u);
+        if (mux_a[k])
+            np_dp_op(&d, "RK", NULL, NP_OP_MUX, mux_a[k], axw, 2, 0, 0, lv + 2u * k + 1u);
     }
     np_dp_op(&d, "RK", NULL, NP_OP_REG, 1, n * uw + n * axw + 2u * n * NP_HASHN_COORD + 1u, 0, 0, 0, 0);
     /*
@@ -476,16 +494,35 @@ size_t np_simplexn_datapath(const np_simplexn_cfg *cfg, np_op *ops, size_t max)
     unsigned gdw = sbits((uint64_t)ceil(sqrt((double)kmax * g->edge2) * g->w));
     unsigned gdl = gdw - tz, dshare = OFFW;
     np_dp_op(&d, "CH", NULL, NP_OP_MUX, (n - 1u) * n, NP_HASHN_COORD, 2, 0, 0, 0);
+    /*
+     * D = U + K with K = wc c - W A one of two constants, equal below ctz W:
+     * there a constant added to U (an incrementer's cost, bits [lo, ctz W)),
+     * a full adder only from ctz W up, where the mask bit picks K's bits.
+     * (Priced as full adders over [lo, 12) CH was 1.21 times Yosys's count
+     * at n = 5, where wc = 121 is odd: 12-bit adders for what is mostly a
+     * constant's.)
+     */
     for (unsigned c = 1; c <= n; c++) {
         unsigned lo = ctz_below(((uint64_t)g->wc * c) & 0xfffu, OFFW);
         lo = lo < lo_w ? lo : lo_w;
         dshare = lo < dshare ? lo : dshare;
-        span_add(&d, "CH", "d", n, lo, OFFW, OFFW, 1, 0);
+        if (lo < lo_w)
+            np_dp_op(&d, "CH", NULL, NP_OP_INC, n, lo_w - lo, 0, 0, 0, 0);
+        span_add(&d, "CH", "d", n, lo_w, OFFW, OFFW, 1, 0);
     }
     np_dp_op(&d, "CH", NULL, NP_OP_LUT, nc * lookups, 3, HBITS, 0, 0, 1);
     unsigned lh = tree(&d, "CH", "h", nc, lookups, HBITS, 0, 2);
+    /* A coefficient of G is 1, -1 or 0: a 3:1 select of D, -D, 0; 2:1 where no gradient of n has a zero (n = 5). */
+    unsigned sel = 2u;
+    for (unsigned h = 0; h < 64u && sel == 2u; h++) {
+        int8_t coef[NP_SIMPLEXN_MAX];
+        np_gradn_decode(n, (uint8_t)h, coef);
+        for (unsigned a = 0; a < n; a++)
+            if (coef[a] == 0)
+                sel = 3u;
+    }
     np_dp_op(&d, "CH", NULL, NP_OP_NEG, nc * n, uw, 0, 0, 0, 2);
-    np_dp_op(&d, "CH", NULL, NP_OP_MUX, nc * n, uw, 3, 0, 0, lh);
+    np_dp_op(&d, "CH", NULL, NP_OP_MUX, nc * n, uw, sel, 0, 0, lh);
     tree_live(&d, "CH", "gd", nc, n, gdl, gdw, 1, lh + 1u);
     /* D's bits below dshare equal U's at every corner: one register holds their live bits for the nc corners. */
     unsigned dreg = n * ((dshare > tz ? dshare - tz : 0u) + nc * (OFFW - (dshare > tz ? dshare : tz)));
@@ -505,15 +542,23 @@ size_t np_simplexn_datapath(const np_simplexn_cfg *cfg, np_op *ops, size_t max)
     np_dp_op(&d, "KT", NULL, NP_OP_INC, nc, tdw - 2u * tz, 0, 0, 1, lv++); /* a constant minus k R2 */
     np_dp_op(&d, "KT", "t", NP_OP_MUX, nc, tl, 2, tw, 0, lv);
     np_dp_op(&d, "KT", NULL, NP_OP_REG, 1, nc * (tl + gdl) + 1u, 0, 0, 0, 0);
-    /* P2, P4: squarers; roundings are incrementers (as simplex3); the largest words are at T = Tv. */
+    /*
+     * P2, P4: squarers; roundings are incrementers (as simplex3); the largest
+     * words are at T = Tv. The RTL holds tau2 and tau4 at WT bits (r4_tau2,
+     * r5_tau4), and no synthesis can see that their values stay below
+     * t2w, t4w bits (that needs T <= Tv, a range, not a constant bit): the
+     * banks, P4's squarer and M's multiplier are WT bits wide, as Yosys
+     * builds them. (Priced at t2w = 24, t4w = 23, n = 2, 4, 5's P4 and M were
+     * 0.89-0.94 of Yosys's count; n = 3's WT = t2w = 23 was right.)
+     */
     uint64_t t2 = np_simplexn_tau2(g, cfg, g->tv), t4 = np_simplexn_tau4(cfg, (uint32_t)t2);
-    unsigned t2w = ubits(t2), t4w = ubits(t4);
+    unsigned t2w = ubits(t2), t4w = ubits(t4), rt2 = wt > t2w ? wt : t2w, rt4 = wt > t4w ? wt : t4w;
     np_dp_op(&d, "P2", NULL, NP_OP_SQR, nc, tl, 0, 2u * tw, 0, 0);
     np_dp_op(&d, "P2", "tau2", NP_OP_INC, nc, t2w + 1u, 0, t2w, 0, 1);
-    np_dp_op(&d, "P2", NULL, NP_OP_REG, 1, nc * (t2w + gdl) + 1u, 0, 0, 0, 0);
-    np_dp_op(&d, "P4", NULL, NP_OP_SQR, nc, t2w, 0, 2u * t2w, 0, 0);
+    np_dp_op(&d, "P2", NULL, NP_OP_REG, 1, nc * (rt2 + gdl) + 1u, 0, 0, 0, 0);
+    np_dp_op(&d, "P4", NULL, NP_OP_SQR, nc, rt2, 0, 2u * t2w, 0, 0);
     np_dp_op(&d, "P4", "tau4", NP_OP_INC, nc, t4w + 1u, 0, t4w, 0, 1);
-    np_dp_op(&d, "P4", NULL, NP_OP_REG, 1, nc * (t4w + gdl) + 1u, 0, 0, 0, 0);
+    np_dp_op(&d, "P4", NULL, NP_OP_REG, 1, nc * (rt4 + gdl) + 1u, 0, 0, 0, 0);
     /*
      * M: fc = round(tau4 gd): |tau^4 G.d| <= fcmax where T > 0, plus tau4's
      * error e4 times |gd| <= gmax and fc's own rounding (ERROR BOUND).
@@ -528,7 +573,7 @@ size_t np_simplexn_datapath(const np_simplexn_cfg *cfg, np_op *ops, size_t max)
      * bank, A and O are priced at the RTL's widths (the traced fc keeps fcw).
      */
     unsigned rfw = wp + gdw - g->gdf + 1u;
-    np_dp_op(&d, "M", NULL, NP_OP_MUL, nc, t4w, gdl, t4w + gdw, 1, 0);
+    np_dp_op(&d, "M", NULL, NP_OP_MUL, nc, rt4, gdl, t4w + gdw, 1, 0);
     if (wt + g->gdf > wp)
         np_dp_op(&d, "M", "fc", NP_OP_INC, nc, rfw + 1u, 0, fcw, 1, 1);
     np_dp_op(&d, "M", NULL, NP_OP_REG, 1, nc * rfw + 1u, 0, 0, 0, 0);
