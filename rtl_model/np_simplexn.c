@@ -332,11 +332,17 @@ static unsigned const_mul_span(np_dp *d, const char *stage, const char *sig, uns
             unsigned h = (hi[i] > hi[i + 1u] ? hi[i] : hi[i + 1u]) + 1u;
             h = h < out ? h : out;
             int last = m == 2u;
-            unsigned carry = last && unread > l ? (unread < h ? unread : h) - l : 0u;
+            unsigned carry = last && unread > l ? (unread < h ? unread : h) - l : 0u, a0 = l + carry;
+            /* above the narrower operand's top, the wider one's bits and a carry: an incrementer */
+            unsigned ot = hi[i] < hi[i + 1u] ? hi[i] : hi[i + 1u];
+            ot = ot > a0 ? ot : a0;
             if (carry)
                 np_dp_op(d, stage, NULL, NP_OP_CARRY, count, carry, 0, 0, 0, lv);
-            if (h > l + carry)
-                np_dp_op(d, stage, last ? sig : NULL, NP_OP_ADD, count, h - l - carry, 0, last ? out : 0u, sgn, lv);
+            if (ot > a0)
+                np_dp_op(d, stage, last ? sig : NULL, NP_OP_ADD, count, ot - a0, 0, last ? out : 0u, sgn, lv);
+            if (h > ot)
+                np_dp_op(d, stage, last && ot == a0 ? sig : NULL, NP_OP_INC, count, h - ot, 0, last && ot == a0 ? out : 0u,
+                         sgn, lv);
             lo[j] = lo[i] < lo[i + 1u] ? lo[i] : lo[i + 1u];
             hi[j++] = h;
         }
@@ -449,7 +455,16 @@ size_t np_simplexn_datapath(const np_simplexn_cfg *cfg, np_op *ops, size_t max)
     const uint8_t(*pairs)[2];
     unsigned ncmp = np_simplexn_network(n, &pairs), plv[NP_SIMPLEXN_MAX] = { 0 }, depth = 0;
     unsigned cmp_u[16] = { 0 }, cmp_ua[16] = { 0 }, mux_u[16] = { 0 }, mux_a[16] = { 0 };
-    int touched[NP_SIMPLEXN_MAX] = { 0 };
+    /*
+     * Each position's possible axes (a bit set): where every axis one input
+     * can hold is below every axis of the other, the tie-break is a constant
+     * and the comparator compares U alone (n = 4's second layer: {0,1}
+     * against {2,3}); an axis output is selected on the bits where its
+     * possible axes differ.
+     */
+    unsigned axes[NP_SIMPLEXN_MAX];
+    for (unsigned a = 0; a < n; a++)
+        axes[a] = 1u << a;
     for (unsigned k = 0; k < ncmp; k++) {
         unsigned i = pairs[k][0], j = pairs[k][1], l = (plv[i] > plv[j] ? plv[i] : plv[j]) + 1u;
         plv[i] = plv[j] = l;
@@ -459,14 +474,21 @@ size_t np_simplexn_datapath(const np_simplexn_cfg *cfg, np_op *ops, size_t max)
             later_i |= pairs[q][0] == i || pairs[q][1] == i;
             later_j |= pairs[q][0] == j || pairs[q][1] == j;
         }
-        if (!touched[i] && !touched[j]) {
+        unsigned lo_i = ctz_below(axes[i], 8), hi_i = 31u - (unsigned)__builtin_clz(axes[i]);
+        unsigned lo_j = ctz_below(axes[j], 8), hi_j = 31u - (unsigned)__builtin_clz(axes[j]);
+        int consts = (axes[i] & (axes[i] - 1u)) == 0u && (axes[j] & (axes[j] - 1u)) == 0u;
+        if (hi_i < lo_j || hi_j < lo_i)
             cmp_u[l - 1u]++;
-        } else {
+        else
             cmp_ua[l - 1u]++;
-            mux_a[l - 1u] += 2u;
-        }
+        unsigned u = axes[i] | axes[j], vary = 0, first = ctz_below(u, 8);
+        for (unsigned a = first + 1u; a < n; a++)
+            if ((u >> a) & 1u)
+                vary |= a ^ first;
+        if (!consts) /* two constants: the outputs are the compare bit and its inverse */
+            mux_a[l - 1u] += 2u * (unsigned)__builtin_popcount(vary);
         mux_u[l - 1u] += (unsigned)later_i + (unsigned)later_j;
-        touched[i] = touched[j] = 1;
+        axes[i] = axes[j] = u;
     }
     for (unsigned k = 0; k < depth; k++) {
         if (cmp_u[k])
@@ -476,7 +498,7 @@ size_t np_simplexn_datapath(const np_simplexn_cfg *cfg, np_op *ops, size_t max)
         if (mux_u[k])
             np_dp_op(&d, "RK", NULL, NP_OP_MUX, mux_u[k], uw, 2, 0, 0, lv + 2u * k + 1u);
         if (mux_a[k])
-            np_dp_op(&d, "RK", NULL, NP_OP_MUX, mux_a[k], axw, 2, 0, 0, lv + 2u * k + 1u);
+            np_dp_op(&d, "RK", NULL, NP_OP_MUX, mux_a[k], 1, 2, 0, 0, lv + 2u * k + 1u);
     }
     np_dp_op(&d, "RK", NULL, NP_OP_REG, 1, n * uw + n * axw + 2u * n * NP_HASHN_COORD + 1u, 0, 0, 0, 0);
     /*
@@ -535,6 +557,24 @@ size_t np_simplexn_datapath(const np_simplexn_cfg *cfg, np_op *ops, size_t max)
     uint64_t r2max = (uint64_t)ceil(g->edge2 * (double)g->w * (double)g->w);
     unsigned r2w = ubits(r2max), tdw = sbits((uint64_t)g->k * r2max > g->tv ? (uint64_t)g->k * r2max : g->tv);
     unsigned tw = ubits(g->tv), tl = tw - 2u * tz;
+    /*
+     * T's bit 2 tz can be a constant too: (D / 2^tz)^2 = D / 2^tz mod 2, so
+     * R2 / 4^tz = sum_a D_a / 2^tz mod 2, and sum_a U_a = wx sum X - W sum i
+     * + n wc n_sum while corner c adds the constant n wc c - W c (c axes
+     * carry the mask). When wx, W and n wc are 0 mod 2^(tz + 1) (n = 4), a
+     * corner's R2 / 4^tz has a fixed parity, and if Tv / 4^tz - k times it
+     * is even, T's bit 2 tz is 0 (the clamp's 0 too). ABC's SAT sweep
+     * proves it: Yosys's KT bank at n = 4 has 151 flip-flops, the model had
+     * 160, and P2's squarer priced at 20 bits was 1.16 times Yosys's count.
+     */
+    int even_t = (((g->wx >> tz) | (g->w >> tz) | (((uint64_t)n * g->wc) >> tz)) & 1u) == 0u;
+    for (unsigned c = 0; c <= n && even_t; c++) {
+        uint64_t pc = (((uint64_t)n * g->wc * c - (uint64_t)g->w * c) >> tz) & 1u;
+        if ((((uint64_t)g->tv >> (2u * tz)) - (uint64_t)g->k * pc) & 1u)
+            even_t = 0;
+    }
+    if (even_t)
+        tl--;
     np_dp_op(&d, "KT", NULL, NP_OP_NEG, nc * n, uw, 0, 0, 0, 0);
     np_dp_op(&d, "KT", NULL, NP_OP_SQR, nc * n, OFFW - 1u - tz, 0, 2u * OFFW, 0, 1); /* |d_a|^2: squarers */
     lv = tree_live(&d, "KT", "r2", nc, n, r2w - 2u * tz, r2w, 0, 2);
@@ -577,10 +617,35 @@ size_t np_simplexn_datapath(const np_simplexn_cfg *cfg, np_op *ops, size_t max)
     if (wt + g->gdf > wp)
         np_dp_op(&d, "M", "fc", NP_OP_INC, nc, rfw + 1u, 0, fcw, 1, 1);
     np_dp_op(&d, "M", NULL, NP_OP_REG, 1, nc * rfw + 1u, 0, 0, 0, 0);
-    /* A: the sum of n + 1 terms, |S| <= smax + errors < (n + 1) max |fc|: s(fcw + ceil log2 (n+1)); the RTL's FW + 3. */
+    /*
+     * A: the sum of n + 1 terms, |S| <= smax + errors < (n + 1) max |fc|:
+     * s(fcw + ceil log2 (n+1)); the RTL's FW + 3. A sum of two s(w) words
+     * is s(w + 1): the tree's adders grow one bit a level up to FW + 3 (the
+     * bits above are the operands' sign copies). When Kf' is one digit 2^p
+     * (n = 5: A = 4), O's product is S << p and its rounding adds
+     * 2^(shift - 1): S's bits below shift - 1 - p are never read (Yosys's A
+     * bank at n = 5 has 26 flip-flops for the RTL's 32 bits), so they are
+     * no register and the last adder only carries there. (With every
+     * adder at FW + 3 and S whole, A was 1.09-1.16 times Yosys's count.)
+     */
     unsigned sw = rfw + 3u;
-    tree(&d, "A", NULL, 1, nc, sw, 1, 0);
-    np_dp_op(&d, "A", NULL, NP_OP_REG, 1, sw + 1u, 0, 0, 0, 0);
+    uint64_t kf = (uint64_t)np_simplexn_kf(g, cfg);
+    unsigned shift = wk + wp > nb ? wk + wp - nb : 0u, dead = 0;
+    if (kf && (kf & (kf - 1u)) == 0u) {
+        unsigned p = ctz_below(kf, 64);
+        dead = shift > p + 1u ? shift - 1u - p : 0u;
+    }
+    for (unsigned m = nc, l = 0; m > 1u; l++) {
+        unsigned adders = m / 2u, w = rfw + l + 1u < sw ? rfw + l + 1u : sw;
+        m -= adders;
+        if (m == 1u && dead > 0u && dead < w) {
+            np_dp_op(&d, "A", NULL, NP_OP_CARRY, adders, dead, 0, 0, 0, l);
+            np_dp_op(&d, "A", NULL, NP_OP_ADD, adders, w - dead, 0, 0, 1, l);
+        } else {
+            np_dp_op(&d, "A", NULL, NP_OP_ADD, adders, w, 0, 0, 1, l);
+        }
+    }
+    np_dp_op(&d, "A", NULL, NP_OP_REG, 1, sw - dead + 1u, 0, 0, 0, 0);
     /*
      * O: Kf' S as shift-adds whose adders span their operands' overlap and
      * whose bits under the rounding's round bit only carry (as simplex3's O);
@@ -588,8 +653,7 @@ size_t np_simplexn_datapath(const np_simplexn_cfg *cfg, np_op *ops, size_t max)
      * prices it: one check that the bits from the output's sign bit up are
      * all equal, and a 2:1 select of the word or the largest value.
      */
-    uint64_t kf = (uint64_t)np_simplexn_kf(g, cfg);
-    unsigned pw = sw + ubits(kf), shift = wk + wp > nb ? wk + wp - nb : 0u;
+    unsigned pw = sw + ubits(kf);
     lv = const_mul_span(&d, "O", NULL, 1, kf, sw, pw, shift > 0u ? shift - 1u : 0u, 1, 0);
     if (shift > 0u)
         np_dp_op(&d, "O", NULL, NP_OP_INC, 1, pw - shift + 1u, 0, 0, 1, lv++);
