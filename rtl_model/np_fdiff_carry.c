@@ -137,3 +137,18 @@ void np_fdiff_carry_setup(const np_fdiff_carry *c, const uint64_t u[3], unsigned
         d[t] = np_tex_to_index(y, NP_FDIFF_CARRY_FRAC + NP_TEX_LAT_FRAC, F, W);
     }
 }
+
+void np_fdiff_carry_wrap(np_fdiff_carry *c, unsigned bits)
+{
+    if (bits >= 128)
+        return;
+    c->amp = np_wrap_s128(c->amp, bits);
+    for (unsigned a = 0; a < 3; a++)
+        for (unsigned t = 0; t < 2; t++)
+            c->lin[a][t] = np_wrap_s128(c->lin[a][t], bits);
+    for (unsigned p = 0; p < 3; p++)
+        for (unsigned t = 0; t < 3; t++)
+            c->quad[p][t] = np_wrap_s128(c->quad[p][t], bits);
+    for (unsigned t = 0; t < 4; t++)
+        c->cub[t] = np_wrap_s128(c->cub[t], bits);
+}

@@ -94,6 +94,16 @@ void np_fdiff_carry_shift(const uint64_t u[3], const int64_t du[3], int32_t j[3]
 void np_fdiff_carry_setup(const np_fdiff_carry *c, const uint64_t u[3], unsigned F, unsigned W, np_s128 d[4],
                           np_s128 exact[4]);
 
+/*
+ * The hardware's widths: keep every carried value modulo 2^bits at the
+ * common scale Q.110 (a' U modulo 2^(bits-64) at Q.46, a' UV.. modulo
+ * 2^(bits-32) at Q.78, a' UVW modulo 2^bits), bits = the window the
+ * rounding reads (np_fdiff_y_window, 117 + I). Every operation is a ring
+ * operation, so the rounded differences are unchanged (test
+ * fdiff.carry_seed_scenes and carry_adversarial check it).
+ */
+void np_fdiff_carry_wrap(np_fdiff_carry *c, unsigned bits);
+
 #ifdef __cplusplus
 } /* extern "C" */
 #endif
