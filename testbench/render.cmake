@@ -14,7 +14,7 @@ np_add_cases(test_fdiff fdiff
 np_test_program(test_fdiff_carry test_fdiff_carry.c span_test.c np_golden.c)
 target_link_libraries(test_fdiff_carry PRIVATE np_render)
 target_compile_definitions(test_fdiff_carry PRIVATE NP_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
-np_add_cases(test_fdiff_carry fdiff carry_seed_scenes carry_adversarial carry_unit_spans carry_price)
+np_add_cases(test_fdiff_carry fdiff carry_seed_scenes carry_adversarial carry_unit_spans carry_price carry_span_relations)
 np_test_program(test_texel test_texel.c span_test.c)
 np_add_cases(test_texel fdiff texel_exact_weights texel_cycle_vs_model)
 np_test_program(test_texture test_texture.c span_test.c)

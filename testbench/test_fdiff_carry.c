@@ -332,6 +332,61 @@ static int carry_unit_spans(void)
     return 0;
 }
 
+/*
+ * How the renderer's span descriptors relate to each other (docs/fdiff.md,
+ * "Span to span"): per polygon, are consecutive scanlines' steps ds the
+ * same bits, and is the start s0 affine in (x0, y) in the Q.32 bits, i.e.
+ * is D = s0(y+1) - s0(y) - (x0(y+1) - x0(y)) ds the same on every row?
+ */
+static int span_relations(const char *name)
+{
+    char path[1024], err[1024];
+    np_scene s;
+    np_render_frame fr;
+    np_golden_scene_path(NP_SOURCE_DIR, name, path, sizeof path);
+    NP_CHECK(np_scene_load(path, &s, err, sizeof err) == 0, "%s", err);
+    NP_CHECK(np_render_prepare(&s, &fr, err, sizeof err) == 0, "%s", err);
+    uint64_t pairs = 0, same_ds = 0, polys = 0;
+    int64_t spread_max = 0;
+    for (unsigned poly = 0; poly < 4096; poly++) {
+        const np_span *prev = NULL;
+        int64_t dmin[3] = { INT64_MAX, INT64_MAX, INT64_MAX }, dmax[3] = { INT64_MIN, INT64_MIN, INT64_MIN };
+        int any = 0;
+        for (size_t i = 0; i < fr.n_spans; i++) {
+            if (fr.spans[i].poly != poly)
+                continue;
+            const np_span *sp = &fr.spans[i].hw;
+            any = 1;
+            if (prev && sp->y == prev->y + 1u) {
+                pairs++;
+                same_ds += memcmp(sp->ds, prev->ds, sizeof sp->ds) == 0;
+                for (unsigned a = 0; a < 3; a++) {
+                    const int64_t d = sp->s[a] - prev->s[a] - ((int64_t)sp->x0 - (int64_t)prev->x0) * prev->ds[a];
+                    dmin[a] = d < dmin[a] ? d : dmin[a];
+                    dmax[a] = d > dmax[a] ? d : dmax[a];
+                }
+            }
+            prev = sp;
+        }
+        if (!any)
+            continue;
+        polys++;
+        for (unsigned a = 0; a < 3; a++)
+            if (dmax[a] >= dmin[a] && dmax[a] - dmin[a] > spread_max)
+                spread_max = dmax[a] - dmin[a];
+    }
+    printf("%s: %llu polygons, %llu pairs of consecutive scanlines: ds the same bits in %llu; s0(y+1) - s0(y) - "
+           "dx0 ds varies over a polygon's rows by up to %lld LSB of Q.32 (0 would be a plane in the units' bits)\n",
+           name, (unsigned long long)polys, (unsigned long long)pairs, (unsigned long long)same_ds,
+           (long long)spread_max);
+    np_render_frame_free(&fr);
+    np_scene_free(&s);
+    NP_CHECK(pairs > 0, "no consecutive spans");
+    return 0;
+}
+
+static int carry_span_relations(void) { return span_relations("wood") || span_relations("marble"); }
+
 /* --- The estimate of docs/fdiff.md ("A multiplier-free set-up"): the cost model on the declarations --- */
 
 enum { OPS_MAX = 256 };
@@ -429,6 +484,7 @@ static const np_test_case cases[] = {
     { "carry_adversarial", carry_adversarial },
     { "carry_unit_spans", carry_unit_spans },
     { "carry_price", carry_price },
+    { "carry_span_relations", carry_span_relations },
     { NULL, NULL },
 };
 
