@@ -746,9 +746,15 @@ size_t np_fdiff_carry_datapath(const np_fdiff_cfg *cfg, const np_tex_regs *r, un
     const unsigned no = r->n_oct, yw = np_fdiff_y_window(cfg);
     const unsigned wl = yw - 2u * NP_TEX_FC, wq = yw - NP_TEX_FC, wc = yw; /* a'U, a'UV.., a'UVW windows */
     const unsigned bits = 3u * 2u * wl + 3u * 3u * wq + 4u * wc;
-    np_dp_op(&d, "CA", NULL, NP_OP_ADD, 3u * no, wl, 0, 0, 0, 0);
-    np_dp_op(&d, "CA", NULL, NP_OP_ADD, 6u * no, wq, 0, 0, 0, 0);
-    np_dp_op(&d, "CA", NULL, NP_OP_ADD, 3u * no, wc, 0, 0, 0, 0);
+    /*
+     * The carrier runs ahead of the stepping (it must reach a crossing before
+     * the stepping does, as today's crossing finder): NP_FDIFF_CARRY_RATE
+     * pixels per clock, each step a layer of the 12 adders.
+     */
+    const unsigned R = NP_FDIFF_CARRY_RATE;
+    np_dp_op(&d, "CA", NULL, NP_OP_ADD, R * 3u * no, wl, 0, 0, 0, 0);
+    np_dp_op(&d, "CA", NULL, NP_OP_ADD, R * 6u * no, wq, 0, 0, 0, 0);
+    np_dp_op(&d, "CA", NULL, NP_OP_ADD, R * 3u * no, wc, 0, 0, 0, 0);
     np_dp_op(&d, "CA", NULL, NP_OP_MUX, 3u * no, wl, 2, 0, 0, 0);
     np_dp_op(&d, "CA", NULL, NP_OP_MUX, 6u * no, wq, 3, 0, 0, 0);
     np_dp_op(&d, "CA", NULL, NP_OP_MUX, 3u * no, wc, 4, 0, 0, 0);

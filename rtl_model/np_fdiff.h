@@ -317,7 +317,8 @@ size_t np_fdiff_datapath(const np_fdiff_cfg *cfg, const np_tex_regs *r, np_op *o
  * docs/fdiff.md ("A multiplier-free set-up"); not yet part of
  * np_fdiff_datapath, whose SU stays the multiplier engine. "CA", per octave:
  * the carried values (1,741 bits by default: a'U mod 2^(yw-64), a'UV.. mod
- * 2^(yw-32), a'UVW mod 2^yw), their 12 stepping adders, and the shift's
+ * 2^(yw-32), a'UVW mod 2^yw), their 12 stepping adders per pixel of
+ * NP_FDIFF_CARRY_RATE, and the shift's
  * operand multiplexers and add/subtract control (one axis, |j| = 1, per
  * clock through the stepping adders). "CM": macs crossing MACs (an s10 x yw
  * multiplier, a yw-bit accumulator, a 20:1 operand multiplexer) each with a
@@ -325,8 +326,12 @@ size_t np_fdiff_datapath(const np_fdiff_cfg *cfg, const np_tex_regs *r, np_op *o
  * full count.
  */
 size_t np_fdiff_carry_datapath(const np_fdiff_cfg *cfg, const np_tex_regs *r, unsigned macs, np_op *ops, size_t max);
-/* Products by a..h of one carried cell set-up (20). */
-enum { NP_FDIFF_CARRY_PRODUCTS = 20 };
+/*
+ * Products by a..h of one carried cell set-up (20); the carrier's pixels per
+ * clock in that estimate (2: it gains a pixel a clock on the stepping, so it
+ * finds crossings ahead, as the crossing finder does today at 4).
+ */
+enum { NP_FDIFF_CARRY_PRODUCTS = 20, NP_FDIFF_CARRY_RATE = 2 };
 /* Trace the per-pixel signals of the core at its current pixel (u, N, Q, x). */
 void np_fdiff_trace_core(const np_fdiff_core *c, np_trace *t, size_t n);
 /* Trace a cell set-up's signals (coef, uv, cross, dudv, r2, Y). */
