@@ -26,6 +26,7 @@ np_fdiff_cfg np_fdiff_cfg_default(void)
     c.resetup = 0;
     c.setup_mults = 2;
     c.mult_lat = 2;
+    c.carry = 0;
     return c;
 }
 
@@ -41,6 +42,8 @@ const char *np_fdiff_cfg_check(const np_fdiff_cfg *c)
         return "setup_mults must be 1..64";
     if (c->mult_lat < 1 || c->mult_lat > NP_FDIFF_LAT_MAX)
         return "mult_lat must be 1..16";
+    if (c->carry > 1)
+        return "carry must be 0 (multiplier set-up) or 1 (carried set-up)";
     return NULL;
 }
 
@@ -69,18 +72,11 @@ static np_s128 shl(np_s128 a, unsigned s) { return np_shl128(a, s); }
 static void cell_setup(const np_fdiff_cfg *cfg, const np_tex_regs *r, unsigned oct, const uint64_t u[3],
                        const int64_t du[3], np_s128 d[4], np_s128 exact[4], np_fdiff_setup_sig *sig)
 {
-    uint8_t n[8];
-    np_tex_lattice(np_tex_cell(u[0]), np_tex_cell(u[1]), np_tex_cell(u[2]), n);
-    /*
-     * The seed's corners N0..N7 (Section 3): N0 (0,0,0), N1 (1,0,0),
-     * N2 (1,1,0), N3 (0,1,0), N4 (0,0,1), N5 (1,0,1), N6 (1,1,1), N7 (0,1,1);
-     * ours are c = 4cz + 2cy + cx.
-     */
-    const int64_t N0 = n[0], N1 = n[1], N2 = n[3], N3 = n[2], N4 = n[4], N5 = n[5], N6 = n[7],
-                  N7 = n[6];
-    /* The Appendix's coefficients, s10 Q3.6, exact. */
-    const int64_t ca = N0, cb = N1 - N0, cc = N3 - N0, cd = N4 - N0, ce = N0 - N1 + N2 - N3,
-                  cf = N7 - N4 - N3 + N0, cg = N5 - N4 - N1 + N0, ch = N4 - N5 + N6 - N7 - ce;
+    /* The Appendix's coefficients, s10 Q3.6, exact (np_fdiff_carry.c). */
+    int64_t co8[8];
+    np_fdiff_cell_coef(u, co8);
+    const int64_t ca = co8[0], cb = co8[1], cc = co8[2], cd = co8[3], ce = co8[4], cf = co8[5], cg = co8[6],
+                  ch = co8[7];
     /* Fractions u32 Q0.32 and steps s40 Q7.32. */
     const np_s128 fu = np_tex_frac(u[0]), fv = np_tex_frac(u[1]), fw = np_tex_frac(u[2]);
     const np_s128 dU = du[0], dV = du[1], dW = du[2];
@@ -397,7 +393,10 @@ static void tl_next_quad(np_fdiff_core *c, uint64_t at)
 
 static void core_setup_octave(np_fdiff_core *c, unsigned o)
 {
-    np_fdiff_cell_setup(c->cfg, c->r, o, c->oct[o].u, c->oct[o].du, c->oct[o].d, NULL);
+    if (c->cfg->carry)
+        np_fdiff_carry_setup(&c->oct[o].cm, c->oct[o].u, c->F, c->W, c->oct[o].d, NULL);
+    else
+        np_fdiff_cell_setup(c->cfg, c->r, o, c->oct[o].u, c->oct[o].du, c->oct[o].d, NULL);
     for (unsigned a = 0; a < 3; a++)
         c->oct[o].cell[a] = np_tex_cell(c->oct[o].u[a]);
     c->oct[o].steps = 0;
@@ -449,6 +448,8 @@ unsigned np_fdiff_core_begin(np_fdiff_core *c, const np_span *sp, np_span_counts
         np_tex_octave_span(c->r, o, sp->s, sp->ds, &os);
         memcpy(c->oct[o].u, os.u, sizeof os.u);
         memcpy(c->oct[o].du, os.du, sizeof os.du);
+        if (c->cfg->carry)
+            np_fdiff_carry_init(&c->oct[o].cm, c->r, o, os.u, os.du);
         core_setup_octave(c, o);
         c->last_setup |= 1u << o;
     }
@@ -519,6 +520,13 @@ unsigned np_fdiff_core_advance(np_fdiff_core *c, np_span_counts *cnt)
         d[1] = np_wrap_s128(np_add128(d[1], d[2]), W);
         d[2] = np_wrap_s128(np_add128(d[2], d[3]), W);
         c->oct[o].steps++;
+        int32_t j[3];
+        if (c->cfg->carry) {
+            /* The carried monomials: a step (additions), and the crossing's integer shifts. */
+            np_fdiff_carry_shift(c->oct[o].u, c->oct[o].du, j);
+            np_fdiff_carry_step(&c->oct[o].cm);
+            np_fdiff_carry_rebase(&c->oct[o].cm, j);
+        }
         int crossed = 0;
         for (unsigned a = 0; a < 3; a++) {
             c->oct[o].u[a] = np_tex_dda(c->oct[o].u[a], c->oct[o].du[a]);
@@ -729,6 +737,35 @@ size_t np_fdiff_datapath(const np_fdiff_cfg *cfg, const np_tex_regs *r, np_op *o
     /* C1: x = Q + sum n_i (an adder tree, mod 2^W) ahead of the split, in the same clock. */
     lv = np_dp_add_tree(&d, "C1", "x", no + 1u, W, 1, 0);
     np_tex_dp_colour(&d, r, F, W, cfg->w_frac, lv, SIDE_BITS);
+    return d.n;
+}
+
+size_t np_fdiff_carry_datapath(const np_fdiff_cfg *cfg, const np_tex_regs *r, unsigned macs, np_op *ops, size_t max)
+{
+    np_dp d = { ops, max, 0 };
+    const unsigned no = r->n_oct, yw = np_fdiff_y_window(cfg);
+    const unsigned wl = yw - 2u * NP_TEX_FC, wq = yw - NP_TEX_FC, wc = yw; /* a'U, a'UV.., a'UVW windows */
+    const unsigned bits = 3u * 2u * wl + 3u * 3u * wq + 4u * wc;
+    /*
+     * The carrier runs ahead of the stepping (it must reach a crossing before
+     * the stepping does, as today's crossing finder): NP_FDIFF_CARRY_RATE
+     * pixels per clock, each step a layer of the 12 adders.
+     */
+    const unsigned R = NP_FDIFF_CARRY_RATE;
+    np_dp_op(&d, "CA", NULL, NP_OP_ADD, R * 3u * no, wl, 0, 0, 0, 0);
+    np_dp_op(&d, "CA", NULL, NP_OP_ADD, R * 6u * no, wq, 0, 0, 0, 0);
+    np_dp_op(&d, "CA", NULL, NP_OP_ADD, R * 3u * no, wc, 0, 0, 0, 0);
+    np_dp_op(&d, "CA", NULL, NP_OP_MUX, 3u * no, wl, 2, 0, 0, 0);
+    np_dp_op(&d, "CA", NULL, NP_OP_MUX, 6u * no, wq, 3, 0, 0, 0);
+    np_dp_op(&d, "CA", NULL, NP_OP_MUX, 3u * no, wc, 4, 0, 0, 0);
+    np_dp_op(&d, "CA", NULL, NP_OP_NEG, 3u * no, wl, 0, 0, 0, 0);
+    np_dp_op(&d, "CA", NULL, NP_OP_NEG, 6u * no, wq, 0, 0, 0, 0);
+    np_dp_op(&d, "CA", NULL, NP_OP_NEG, 3u * no, wc, 0, 0, 0, 0);
+    np_dp_op(&d, "CA", NULL, NP_OP_REG, 1, no * bits, 0, 0, 0, 0);
+    np_dp_op(&d, "CM", NULL, NP_OP_MUL, macs, 10, wc, 0, 0, 0);
+    np_dp_op(&d, "CM", NULL, NP_OP_ADD, macs, wc, 0, 0, 0, 1);
+    np_dp_op(&d, "CM", NULL, NP_OP_MUX, macs, wc, NP_FDIFF_CARRY_PRODUCTS, 0, 0, 0);
+    np_dp_op(&d, "CM", NULL, NP_OP_REG, 1, macs * bits, 0, 0, 0, 0);
     return d.n;
 }
 

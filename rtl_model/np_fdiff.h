@@ -77,6 +77,7 @@
 #include <stdint.h>
 
 #include "np_datapath.h"
+#include "np_fdiff_carry.h"
 #include "np_fixed.h"
 #include "np_pipe.h"
 #include "np_span.h"
@@ -101,6 +102,13 @@ typedef struct np_fdiff_cfg {
     unsigned resetup;     /* K: re-set-up after K steps without one; 0 = off (default) */
     unsigned setup_mults; /* P: multipliers of the set-up engine, 1..64 (default 2) */
     unsigned mult_lat;    /* Lm: their pipeline latency in clocks, 1..16 (default 2) */
+    /*
+     * The cell set-up: 0 the multiplier set-up (default), 1 the carried one
+     * (np_fdiff_carry.h: the monomials carried by additions, a crossing set
+     * up by the products of a..h). The bits are the same; the cycle model's
+     * timing and the datapath declaration are still the multiplier set-up's.
+     */
+    unsigned carry;
 } np_fdiff_cfg;
 
 np_fdiff_cfg np_fdiff_cfg_default(void);
@@ -257,6 +265,7 @@ typedef struct np_fdiff_core {
         uint8_t cell[3];
         np_s128 d[4];
         uint32_t steps;
+        np_fdiff_carry cm;  /* the carried monomials (cfg->carry) */
     } oct[NP_TEX_MAX_OCTAVES];
     unsigned last_setup; /* what was set up for pixel k: bit i = octave i, bit 8 = quadric */
     np_fdiff_timeline tl; /* the set-up engine's timing (not the bits) */
@@ -303,6 +312,26 @@ static inline unsigned np_fdiff_y_window(const np_fdiff_cfg *c)
  * returns the full count.
  */
 size_t np_fdiff_datapath(const np_fdiff_cfg *cfg, const np_tex_regs *r, np_op *ops, size_t max);
+/*
+ * What the carried set-up (np_fdiff_carry.h) adds, for the estimate of
+ * docs/fdiff.md ("A multiplier-free set-up"); not yet part of
+ * np_fdiff_datapath, whose SU stays the multiplier engine. "CA", per octave:
+ * the carried values (1,741 bits by default: a'U mod 2^(yw-64), a'UV.. mod
+ * 2^(yw-32), a'UVW mod 2^yw), their 12 stepping adders per pixel of
+ * NP_FDIFF_CARRY_RATE, and the shift's
+ * operand multiplexers and add/subtract control (one axis, |j| = 1, per
+ * clock through the stepping adders). "CM": macs crossing MACs (an s10 x yw
+ * multiplier, a yw-bit accumulator, a 20:1 operand multiplexer) each with a
+ * snapshot of one octave's carried values. Writes up to max ops, returns the
+ * full count.
+ */
+size_t np_fdiff_carry_datapath(const np_fdiff_cfg *cfg, const np_tex_regs *r, unsigned macs, np_op *ops, size_t max);
+/*
+ * Products by a..h of one carried cell set-up (20); the carrier's pixels per
+ * clock in that estimate (2: it gains a pixel a clock on the stepping, so it
+ * finds crossings ahead, as the crossing finder does today at 4).
+ */
+enum { NP_FDIFF_CARRY_PRODUCTS = 20, NP_FDIFF_CARRY_RATE = 2 };
 /* Trace the per-pixel signals of the core at its current pixel (u, N, Q, x). */
 void np_fdiff_trace_core(const np_fdiff_core *c, np_trace *t, size_t n);
 /* Trace a cell set-up's signals (coef, uv, cross, dudv, r2, Y). */

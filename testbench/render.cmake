@@ -10,6 +10,11 @@ np_add_cases(test_fdiff fdiff
   stiff_span65536 stiff_deriv_tiny stiff_deriv_huge stiff_cell_edge_on_pixel stiff_span_one_zero
   stiff_wrap stiff_quadric_long guard_search guard_min_both_ways setup_exact appendix_coefficients drift_identity
   cycle_vs_model cycle_count setup_overlap)
+# The carried (multiplier-free) cell set-up of fdiff against the multiplier set-up (issue 26).
+np_test_program(test_fdiff_carry test_fdiff_carry.c span_test.c np_golden.c)
+target_link_libraries(test_fdiff_carry PRIVATE np_render)
+target_compile_definitions(test_fdiff_carry PRIVATE NP_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+np_add_cases(test_fdiff_carry fdiff carry_seed_scenes carry_adversarial carry_unit_spans carry_price carry_span_relations)
 np_test_program(test_texel test_texel.c span_test.c)
 np_add_cases(test_texel fdiff texel_exact_weights texel_cycle_vs_model)
 np_test_program(test_texture test_texture.c span_test.c)

@@ -82,7 +82,7 @@ int np_ut_texture_add(const char *name, const np_ref_texture *t, unsigned *tex, 
  * per-transaction bundle (the transaction's words, the context, the engine's
  * bundle). A unit's file checks its engine against them (_Static_assert).
  */
-enum { NP_SU_STAGES_MAX = 15, NP_SU_CORE_MAX = 4096, NP_SU_SIG_MAX = 4096, NP_SU_SIG_HEAD = 256 };
+enum { NP_SU_STAGES_MAX = 15, NP_SU_CORE_MAX = 8192, NP_SU_SIG_MAX = 4096, NP_SU_SIG_HEAD = 256 };
 
 /* A span unit: its engine, where the engine's configuration and the texture are in its block. */
 typedef struct np_su {
