@@ -695,12 +695,68 @@ unsigned np_hatch_bigq_bits(const np_hatch_cfg *cfg)
 
 #define OP(st, sg, k, cnt, a, b, o, sgn, lv) np_dp_op(&d, st, sg, k, cnt, a, b, o, sgn, lv)
 
+/* Set bits of v. */
+static unsigned ones(uint32_t v)
+{
+    unsigned n = 0;
+    for (; v; v &= v - 1u)
+        n++;
+    return n;
+}
+
+/* Bits of 0x1FFFF (the largest pm) times inv: k's live width on one axis. */
+static unsigned k_axis_bits(unsigned inv)
+{
+    return np_bits_for_range(0, (int64_t)(NP_MASK(NP_HATCH_M_BITS) * inv), 0);
+}
+
+/*
+ * The adders of a constant multiply-add c x + s y or c x - s y (np_hatch_seed.v's
+ * q_u = RC r_u + RS r_v, q_v = RC r_v - RS r_u: RC, RS the layer's Q1.14 constants,
+ * the operands and the sums s49 words). Yosys keeps
+ * one row of the operand shifted by j for each set bit j of a constant (the
+ * constant as the product's 49-bit two's complement word: a negative one is
+ * sign-extended, so its high bits are rows too), truncated to the 49-bit sum,
+ * 49 - j bits wide; the rows are summed by rows - 1 adders, the widest row
+ * needing none; c x - s y with s y one power-of-two row and c = 0 is a negation
+ * (*neg). Returns the adder count, *bits their total width.
+ */
+enum { ROT_W = 49 };
+static unsigned rot_adders(int c, int s, int sub, unsigned *bits, unsigned *neg)
+{
+    unsigned rows = 0, sum = 0, widest = 0;
+    const int k[2] = { c, s };
+    for (unsigned t = 0; t < 2; t++) {
+        uint64_t w = (uint64_t)(int64_t)k[t] & NP_MASK(ROT_W);
+        for (unsigned j = 0; j < ROT_W; j++)
+            if (w >> j & 1u) {
+                rows++;
+                sum += ROT_W - j;
+                widest = ROT_W - j > widest ? ROT_W - j : widest;
+            }
+    }
+    *bits = rows > 1u ? sum - widest : 0u;
+    *neg = rows == 1u && sub && c == 0;
+    return rows > 1u ? rows - 1u : 0u;
+}
+
 /*
  * Stages A and S; the G = layers N / P seed stages S0..S(G-1) of the pipe are
  * identical, so they are declared as one row "S" whose counts are G times one
  * stage's (the gate report's stages are the declaration's: unit_hatch.c's
  * timing). The widths are the configuration's: k from 1/(F e), q from R, Q
  * from both; the traced signals are S0's.
+ *
+ * What the RTL (np_hatch.v, np_hatch_seed.v) builds, operator for operator,
+ * where it differs from the C model's arithmetic: a seed's K = NOT33(st) +
+ * 2^31 and its layer's (c, s) are constants (brute force), so d is a constant
+ * add and R r a sum of shifted rows (rot_adders); k = pm inv is a constant
+ * multiply too (rows of pm). The squares of the profile are squarers; mul30's
+ * operands are the RTL's 32-bit words (u2, u4 are not known to Yosys to be
+ * <= 2^30); at is 29 live bits (al's two low bits are 0), am 17 (oms << 14,
+ * or 2^30 for a survivor); |Q| is the RTL's 44-bit word, and "|Q| < 1" a
+ * zero test of its 14 integer bits. docs/hatch.md, "Synthesis", has the lane
+ * against Yosys.
  */
 size_t np_hatch_datapath(const np_hatch_cfg *cfg, np_op *ops, size_t max)
 {
@@ -709,6 +765,9 @@ size_t np_hatch_datapath(const np_hatch_cfg *cfg, np_op *ops, size_t max)
     unsigned slots = cfg->cover_slots ? cfg->cover_slots : n, g = cfg->layers * slots / cfg->lanes;
     unsigned gp = g * p, obo = cfg->fade == NP_HATCH_FADE_ONE_BY_ONE;
     unsigned kb = np_hatch_k_bits(cfg), qb = np_hatch_q_bits(cfg), Qb = np_hatch_bigq_bits(cfg);
+    unsigned kbu = k_axis_bits(cfg->inv_u), kbv = k_axis_bits(cfg->inv_v);
+    /* The RTL's Q and |Q| words (np_hatch_seed.v: s44 Q14.30) and their integer bits. */
+    const unsigned qw = 44u, qint = qw - 30u;
     /* Coverage: a list word per layer, slots indices of log2 N bits and a 4-bit length. */
     unsigned nb = log2u(n), tb = log2u(4u << np_hatch_sets[cfg->set].K), lw = slots * nb + 4u;
     /* What every bank carries besides c: x (66), the layer tones, oms (17), ku, kv, valid (and the lists). */
@@ -719,7 +778,9 @@ size_t np_hatch_datapath(const np_hatch_cfg *cfg, np_op *ops, size_t max)
     OP("A", NULL, NP_OP_MUX, cfg->layers, 31, 3, 0, 0, 2);
     OP("A", "oms", NP_OP_CMP, 1, 17, 0, 17, 0, 0);
     OP("A", NULL, NP_OP_MUX, 1, 17, 2, 0, 0, 1);
-    OP("A", "k", NP_OP_MUL, 2, 17, 16, kb, 0, 0);
+    /* k = pm inv per axis: a row of pm per set bit of the constant inv, rows - 1 adders. */
+    unsigned kadd = (ones(cfg->inv_u) - 1u) + (ones(cfg->inv_v) - 1u);
+    OP("A", "k", NP_OP_ADD, kadd, kb, 0, kb, 0, 0);
     if (cfg->cover_slots) /* the list memory, one per layer, addressed by the texel (wiring from x) */
         OP("A", "list", NP_OP_ROM, cfg->layers, 2 * tb, lw, lw, 0, 0);
     OP("A", NULL, NP_OP_REG, 1, carry + f1, 0, 0, 0, 0);
@@ -731,31 +792,59 @@ size_t np_hatch_datapath(const np_hatch_cfg *cfg, np_op *ops, size_t max)
         lv += nb;
         OP("S", NULL, NP_OP_CMPK, gp, 4, 0, 0, 0, 0);              /* enable: j < len */
         OP("S", NULL, NP_OP_MUX, gp, 31, 2, 0, 0, 7);              /* alpha 0 in an empty slot */
+        OP("S", "d", NP_OP_ADD, 2 * gp, 33, 0, 33, 0, lv++);       /* st from the rotator: not a constant */
+    } else {
+        OP("S", "d", NP_OP_INC, 2 * gp, 33, 0, 33, 0, lv++);       /* x + K, K a constant of the lane */
     }
-    OP("S", "d", NP_OP_ADD, 2 * gp, 33, 0, 33, 0, lv++);
     OP("S", NULL, NP_OP_LUT, gp, 4, 1, 0, 0, lv);                 /* survival: two XNOR, one AND */
-    OP("S", NULL, NP_OP_MUL, 4 * gp, 16, 33, 0, 0, lv++);
-    OP("S", "q", NP_OP_ADD, 2 * gp, qb, 0, qb, 1, lv++);
-    OP("S", NULL, NP_OP_MUL, 2 * gp, qb, kb, 0, 0, lv++);
-    OP("S", "Q", NP_OP_ADD, 2 * gp, Qb, 0, Qb, 1, lv++);
-    OP("S", NULL, NP_OP_NEG, 2 * gp, Qb, 0, 0, 0, lv++);
-    OP("S", NULL, NP_OP_CMP, 2 * gp, Qb, 0, 0, 0, lv++);
-    OP("S", NULL, NP_OP_MUL, 2 * gp, 30, 30, 0, 0, lv++);          /* U^2, V^2 */
-    OP("S", NULL, NP_OP_MUL, 2 * gp, 31, 31, 0, 0, lv++);          /* U^4, V^4 */
-    OP("S", NULL, NP_OP_MUL, gp, 31, 31, 0, 0, lv++);              /* U^8 */
-    OP("S", "profile", NP_OP_MUL, gp, 31, 31, 31, 0, lv++);
-    if (obo) {
-        /* (N+1) x - i and its clamp, then S(t) = t^2 (3 - 2t), tone and level, beside the stroke. */
-        OP("S", NULL, NP_OP_ADD, 4 * gp, 38, 0, 0, 0, 1);
-        OP("S", NULL, NP_OP_MUX, 2 * gp, 31, 3, 0, 0, 2);
-        OP("S", NULL, NP_OP_MUL, 2 * gp, 31, 31, 0, 0, 3);
-        OP("S", NULL, NP_OP_ADD, 2 * gp, 32, 0, 0, 0, 3);
-        OP("S", NULL, NP_OP_MUL, 2 * gp, 31, 32, 0, 0, 4);
-        OP("S", NULL, NP_OP_ADD, gp, 31, 0, 0, 0, 5);
+    /* q = R r: each layer's lanes (slots of them) with the layer's constant rows, at their mean width. */
+    unsigned radd = 0, rbits = 0, rneg = 0;
+    for (unsigned l = 0; l < cfg->layers; l++) {
+        int16_t r[2][2];
+        np_hatch_layer_r(cfg, l, r); /* r[0] = (RC, RS) */
+        for (unsigned sub = 0; sub < 2; sub++) {
+            unsigned bits, ng;
+            radd += slots * rot_adders(r[0][0], r[0][1], (int)sub, &bits, &ng);
+            rbits += slots * bits;
+            rneg += slots * ng;
+        }
     }
-    OP("S", NULL, NP_OP_MUX, gp, 31, 2, 0, 0, 2);                  /* am: 1 or the fade */
-    OP("S", NULL, NP_OP_MUL, gp, 31, 31, 0, 0, 6);                 /* at am */
-    OP("S", "alpha", NP_OP_MUL, gp, 31, 31, 31, 0, lv++);
+    OP("S", "q", NP_OP_ADD, radd, radd ? (rbits + radd / 2u) / radd : qb, 0, qb, 1, lv);
+    OP("S", NULL, NP_OP_INC, rneg, ROT_W, 0, 0, 0, lv++);
+    /* q k: a signed product (k zero-extended), each axis at its k's live width. */
+    OP("S", NULL, NP_OP_SMUL, gp, qb, kbu, 0, 0, lv);
+    OP("S", NULL, NP_OP_SMUL, gp, qb, kbv, 0, 0, lv++);
+    OP("S", "Q", NP_OP_INC, 2 * gp, Qb + 1u, 0, Qb, 1, lv++);     /* + 2^38: the rounding constant */
+    OP("S", NULL, NP_OP_NEG, 2 * gp, qw, 0, 0, 0, lv++);           /* |Q| */
+    OP("S", NULL, NP_OP_CMPK, 2 * gp, qint, 0, 0, 0, lv++);        /* |Q| < 1: integer bits 0 */
+    OP("S", NULL, NP_OP_SQR, 2 * gp, 30, 0, 0, 0, lv++);           /* U^2, V^2 */
+    OP("S", NULL, NP_OP_SQR, 2 * gp, 32, 0, 0, 0, lv++);           /* U^4, V^4 */
+    OP("S", NULL, NP_OP_SQR, gp, 32, 0, 0, 0, lv++);               /* U^8 */
+    OP("S", NULL, NP_OP_INC, 2 * gp, 32, 0, 0, 0, lv);             /* 1 - U^8, 1 - V^4 */
+    OP("S", NULL, NP_OP_MUX, gp, 32, 2, 0, 0, lv + 1u);            /* 0 outside the box */
+    OP("S", "profile", NP_OP_MUL, gp, 32, 32, 31, 0, lv++);
+    if (obo) {
+        /*
+         * Tone and level beside the stroke, each clamp((N+1) x - i, 0, 1) then S(t) = t^2 (3 - 2t):
+         * (N+1) x is two rows of x (N + 1 = 2^K + 1), - i 2^30 a constant on its top 10 bits, the
+         * clamp a test against 2^30 (the sign is a bit) and a 3:1 choice; t^2 a squarer, 3 - 2t a
+         * constant minus a shift, the product of 32-bit words; 1 - S for the level.
+         */
+        OP("S", NULL, NP_OP_ADD, 2 * gp, 38, 0, 0, 0, 1);
+        OP("S", NULL, NP_OP_INC, 2 * gp, 10, 0, 0, 0, 1);
+        OP("S", NULL, NP_OP_CMPK, 2 * gp, 40, 0, 0, 0, 2);
+        OP("S", NULL, NP_OP_MUX, 2 * gp, 32, 3, 0, 0, 2);
+        OP("S", NULL, NP_OP_SQR, 2 * gp, 32, 0, 0, 0, 3);
+        OP("S", NULL, NP_OP_INC, 2 * gp, 32, 0, 0, 0, 3);
+        OP("S", NULL, NP_OP_MUL, 2 * gp, 32, 32, 0, 0, 4);
+        OP("S", NULL, NP_OP_INC, gp, 32, 0, 0, 0, 5);
+        OP("S", NULL, NP_OP_MUX, gp, 32, 2, 0, 0, 5);              /* am: 1 for a survivor, or the fade */
+        OP("S", NULL, NP_OP_MUL, gp, 32, 32, 0, 0, 6);             /* at am */
+    } else {
+        OP("S", NULL, NP_OP_MUX, gp, 17, 2, 0, 0, 2);              /* am: 2^30 or oms << 14 */
+        OP("S", NULL, NP_OP_MUL, gp, 29, 17, 0, 0, 6);             /* at am: live bits */
+    }
+    OP("S", "alpha", NP_OP_MUL, gp, 32, 32, 31, 0, lv++);
     /* The P blends of a stage are serial (compositing order matters): P (multiply, subtract) pairs of levels. */
     for (unsigned q = 0; q < p; q++) {
         OP("S", NULL, NP_OP_MUL, g, 31, f1, 0, 0, lv++);

@@ -34,6 +34,7 @@
 #include <unistd.h>
 
 #include "np_aacount.h"
+#include "np_hatch.h"
 #include "np_common.h"
 #include "np_outfile.h"
 #include "np_synth.h"
@@ -141,6 +142,33 @@ static void classicn_bank_sel(unsigned k, unsigned n_stages, char *buf, size_t l
         snprintf(buf, len, "w:g_lvl?%u?.rl w:g_s?*?.q?%u? %%u", (k - 3) / 2, k);
 }
 
+/*
+ * hatch: brute force only (np_hatch.v; the coverage unit, cover_slots, has no
+ * RTL). Its banks are the declaration's two rows: A is `ra`; S, the G seed
+ * stages declared as one row, is every seed stage's bank g_st[g].g_carry.r
+ * and the output register rc_out ('?' for the brackets).
+ */
+static int hatch_params(const void *cfg, char *buf, size_t len, char *err, size_t errlen)
+{
+    const np_hatch_cfg *c = cfg;
+    if (c->cover_slots) {
+        snprintf(err, errlen, "the coverage unit (mode=coverage) has no reference RTL (docs/hatch.md, \"Reference RTL\")");
+        return -1;
+    }
+    if (len)
+        buf[0] = '\0';
+    return 0;
+}
+
+static void hatch_bank_sel(unsigned k, unsigned n_stages, char *buf, size_t len)
+{
+    (void)n_stages;
+    if (k == 0)
+        snprintf(buf, len, "w:ra");
+    else
+        snprintf(buf, len, "w:g_st?*?.g_carry.r w:rc_out %%u");
+}
+
 #define NP_SIMPLEXN_RTL(name)                                                                                 \
     { name, "np_simplexn", { "np_simplexn.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },                  \
       { { "SK", "r0" }, { "RK", "r1" }, { "CH", "r2" }, { "KT", "r3" }, { "P2", "r4" }, { "P4", "r5" },        \
@@ -164,6 +192,9 @@ static const rtl_desc rtl_units[] = {
     { "aacount", "np_aacount", { "np_aacount.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },
       { { "A", "ra" }, { "V", "rv" }, { "P", "rp" }, { "C", "rc" }, { NULL, NULL } },
       { "tile", NULL }, aacount_params, NULL, NULL, 1 },
+    /* hatch: millions of gates at every registry configuration (docs/hatch.md, "Synthesis"). */
+    { "hatch", "np_hatch", { "np_hatch.v", "np_hatch_seed.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },
+      { { NULL, NULL } }, { NULL }, hatch_params, NULL, hatch_bank_sel, 1 },
     /* The n-D units (np_simplexn.v, np_classicn.v; every key, DIMS included, is a parameter). */
     NP_CLASSICN_RTL("classic2"), NP_CLASSICN_RTL("classic4"), NP_CLASSICN_RTL("classic5"),
     NP_SIMPLEXN_RTL("simplex2"), NP_SIMPLEXN_RTL("simplex4"), NP_SIMPLEXN_RTL("simplex5"),
@@ -228,6 +259,7 @@ static const struct {
     { "simplex3", { "IN_REG", "OUT_SKID", NULL } },
     { "wave", { "IN_REG", "OUT_SKID", NULL } },
     { "aacount", { "IN_REG", "OUT_SKID", NULL } },
+    { "hatch", { "IN_REG", "OUT_SKID", NULL } },
 };
 static char g_rtl_params[256];      /* " -set S_TABLE 1 -set HASH_SERIAL 1" */
 static char g_rtl_params_spec[256]; /* "S_TABLE=1 HASH_SERIAL=1", for the heading */
@@ -242,7 +274,7 @@ int np_synth_set_rtl_params(const np_unit *u, const char *spec, char *err, size_
         if (u && strcmp(rtl_extra_params[i].unit, u->name) == 0)
             names = rtl_extra_params[i].names;
     if (!names) {
-        snprintf(err, errlen, "--rtl-param needs --unit classic3, simplex3, wave or aacount");
+        snprintf(err, errlen, "--rtl-param needs --unit classic3, simplex3, wave, aacount or hatch");
         return -1;
     }
     size_t n = 0, m = 0;
@@ -474,7 +506,7 @@ int np_synth_run(const np_unit *u, const void *cfg, const np_unit_cost *c, const
     const rtl_desc *d = rtl_of(u);
     if (!d) {
         snprintf(err, errlen, "unit %s has no reference RTL (--synth: classic3, simplex3; with --unit also "
-                 "wave, aacount, classic2/4/5, simplex2/4/5)", u->name);
+                 "wave, aacount, hatch, classic2/4/5, simplex2/4/5)", u->name);
         return -1;
     }
     if (system("yosys -V >/dev/null 2>&1") != 0) {
@@ -729,7 +761,7 @@ int np_report_gates_synth(const np_unit *only, const char *spec, const char *rtl
     }
     if (!any) {
         np_err("report", "unit %s has no reference RTL (--synth: classic3, simplex3; with --unit also wave, "
-                         "aacount, classic2/4/5, simplex2/4/5)", only ? only->name : "(any)");
+                         "aacount, hatch, classic2/4/5, simplex2/4/5)", only ? only->name : "(any)");
         return NP_EXIT_USAGE;
     }
     return rc;
