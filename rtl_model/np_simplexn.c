@@ -308,7 +308,10 @@ static unsigned tree(np_dp *d, const char *stage, const char *sig, unsigned coun
  * A multiply by the constant k (its canonical signed digits) with each adder priced over the bits where its two
  * operands overlap: the CSD digit at position p makes an operand of bits
  * [p, p + win); below the higher operand's lowest bit the sum is the lower
- * operand's bits (wiring); a sum is kept to out bits (modulo 2^out). When the
+ * operand's bits (wiring); from the narrower operand's top up to the sum's
+ * the bits are the wider operand's and a carry (an incrementer; priced as a
+ * full adder there, SK was 1.14-1.24 times Yosys's count); a sum is kept to
+ * out bits (modulo 2^out). When the
  * result's bits below unread are never read (a divider's (v M) >> sh), the
  * last adder only carries there (a carry chain). Adjacent partial sums are
  * paired, as the RTL's shift-add chain's tree. Returns the levels it takes.
