@@ -30,7 +30,8 @@ set(NP_RTL_SRC ${PROJECT_SOURCE_DIR}/rtl_model/verilog)
 set(NP_RTL_TB ${CMAKE_CURRENT_SOURCE_DIR}/rtl)
 set(NP_RTL_WORK ${CMAKE_CURRENT_BINARY_DIR}/rtl)
 set(NP_RTL_RUN ${NP_RTL_TB}/rtl_run.cmake)
-set(NP_RTL_PIPE_SRC ${NP_RTL_SRC}/np_pipe_in_reg.v ${NP_RTL_SRC}/np_pipe_skid.v)
+# The pipe's handshake (np_pipe_ctrl.v: every unit but classic3, whose L stage has its own) and options.
+set(NP_RTL_PIPE_SRC ${NP_RTL_SRC}/np_pipe_ctrl.v ${NP_RTL_SRC}/np_pipe_in_reg.v ${NP_RTL_SRC}/np_pipe_skid.v)
 
 # np_rtl_test(name tool expect pattern labels command...): expect pass or fail.
 # An Icarus build or run, or a Yosys check, is labelled nosan too: iverilog, vvp and yosys are not

@@ -127,21 +127,10 @@ module np_classicn #(
     wire [16*NN-1:0] cx;
     wire [N-1:0] core_out;
     reg [NB-1:0] v;
-    reg [NB-1:0] en;
-    integer e;
-    always @(*) begin
-        en[NB-1] = !v[NB-1] || core_out_ready;
-        for (e = NB - 2; e >= 0; e = e - 1) en[e] = !v[e] || en[e+1];
-`ifdef NP_FAULT_STALL
-        en[5] = 1'b1;  // fault: bank I2a overwrites its content when its successor stalls
-`endif
-    end
-    assign core_in_ready = en[0];
-    assign core_out_valid = v[NB-1];
-    always @(posedge clk) begin
-        if (rst) v <= {NB{1'b0}};
-        else v <= (v & ~en) | ({v[NB-2:0], core_in_valid} & en);
-    end
+    wire [NB-1:0] en, v_next;  // NP_FAULT_STALL: bank I2a overwrites its content when its successor stalls
+    np_pipe_ctrl #(.NB(NB), .STALL_BANK(5)) u_ctrl (.v(v), .in_valid(core_in_valid), .out_ready(core_out_ready),
+        .en(en), .v_next(v_next), .in_ready(core_in_ready), .out_valid(core_out_valid));
+    always @(posedge clk) if (rst) v <= {NB{1'b0}}; else v <= v_next;
 
     // ---------------------------------------------------------------- L
     // h_c = hashn(n, k_c), k_ca = cell_a + b_a mod 256 (the tile wraps); u_a^2.

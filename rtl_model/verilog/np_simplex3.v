@@ -113,21 +113,10 @@ module np_simplex3 #(
     wire [15:0] cx, cy, cz;
     wire [OW-1:0] core_out;
     reg [NB-1:0] v;
-    reg [NB-1:0] en;
-    integer e;
-    always @(*) begin
-        en[NB-1] = !v[NB-1] || core_out_ready;
-        for (e = NB - 2; e >= 0; e = e - 1) en[e] = !v[e] || en[e+1];
-`ifdef NP_FAULT_STALL
-        en[3] = 1'b1;  // fault: bank KT overwrites its content when its successor stalls
-`endif
-    end
-    assign core_in_ready = en[0];
-    assign core_out_valid = v[NB-1];
-    always @(posedge clk) begin
-        if (rst) v <= {NB{1'b0}};
-        else v <= (v & ~en) | ({v[NB-2:0], core_in_valid} & en);
-    end
+    wire [NB-1:0] en, v_next;  // NP_FAULT_STALL: bank KT overwrites its content when its successor stalls
+    np_pipe_ctrl #(.NB(NB), .STALL_BANK(3)) u_ctrl (.v(v), .in_valid(core_in_valid), .out_ready(core_out_ready),
+        .en(en), .v_next(v_next), .in_ready(core_in_ready), .out_valid(core_out_valid));
+    always @(posedge clk) if (rst) v <= {NB{1'b0}}; else v <= v_next;
     // Bank indices.
     localparam integer B_M = 6, B_A = NB - 2, B_O = NB - 1;
 

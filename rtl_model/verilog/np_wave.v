@@ -145,21 +145,10 @@ module np_wave #(
     wire [14:0] cg;
     wire [OW-1:0] core_out;
     reg [NB-1:0] bv;  // each bank's valid bit
-    reg [NB-1:0] en;
-    integer e;
-    always @(*) begin
-        en[NB-1] = !bv[NB-1] || core_out_ready;
-        for (e = NB - 2; e >= 0; e = e - 1) en[e] = !bv[e] || en[e+1];
-`ifdef NP_FAULT_STALL
-        en[B_M] = 1'b1;  // fault: bank M overwrites its content when its successor stalls
-`endif
-    end
-    assign core_in_ready = en[0];
-    assign core_out_valid = bv[NB-1];
-    always @(posedge clk) begin
-        if (rst) bv <= {NB{1'b0}};
-        else bv <= (bv & ~en) | ({bv[NB-2:0], core_in_valid} & en);
-    end
+    wire [NB-1:0] en, bv_next;  // NP_FAULT_STALL: bank M overwrites its content when its successor stalls
+    np_pipe_ctrl #(.NB(NB), .STALL_BANK(B_M)) u_ctrl (.v(bv), .in_valid(core_in_valid), .out_ready(core_out_ready),
+        .en(en), .v_next(bv_next), .in_ready(core_in_ready), .out_valid(core_out_valid));
+    always @(posedge clk) if (rst) bv <= {NB{1'b0}}; else bv <= bv_next;
     wire ld_p = en[B_P] && core_in_valid, ld_s = en[B_S] && bv[B_P], ld_a = en[B_A] && bv[B_S];
     wire ld_m = en[B_M] && bv[B_A], ld_t = en[B_T] && bv[B_M], ld_g = en[B_G] && bv[B_T];
 

@@ -65,9 +65,11 @@ typedef int (*rtl_params_fn)(const void *cfg, char *buf, size_t len, char *err, 
  * and aacount: a run over every unit, and report fpga, keep classic3 and
  * simplex3, whose syntheses the docs and tests time; aacount alone takes 30 min).
  */
+enum { RTL_FILES = 7 }; /* a unit's RTL files at the most, NULL-terminated when fewer */
+
 typedef struct rtl_desc {
     const char *unit, *top;
-    const char *files[6];
+    const char *files[RTL_FILES];
     struct { const char *stage, *prefix; } bank[12];
     const char *not_params[4];
     rtl_params_fn params;
@@ -142,26 +144,27 @@ static void classicn_bank_sel(unsigned k, unsigned n_stages, char *buf, size_t l
 }
 
 #define NP_SIMPLEXN_RTL(name)                                                                                 \
-    { name, "np_simplexn", { "np_simplexn.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },                  \
-      { { "SK", "r0" }, { "RK", "r1" }, { "CH", "r2" }, { "KT", "r3" }, { "P2", "r4" }, { "P4", "r5" },        \
+    { name, "np_simplexn", { "np_simplexn.v", "np_pipe_ctrl.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL }, \
+      { { "SK", "r0" }, { "RK", "r1" }, { "CH", "r2" }, { "KT", "r3" }, { "P2", "r4" }, { "P4", "r5" },       \
         { "M", "r6" }, { "A", "r7" }, { "O", "r8" }, { NULL, NULL } }, { NULL }, NULL, NULL, NULL, 1 }
 #define NP_CLASSICN_RTL(name)                                                                                 \
-    { name, "np_classicn", { "np_classicn.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL }, { { NULL, NULL } }, \
-      { NULL }, NULL, NULL, classicn_bank_sel, 1 }
+    { name, "np_classicn", { "np_classicn.v", "np_pipe_ctrl.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL }, \
+      { { NULL, NULL } }, { NULL }, NULL, NULL, classicn_bank_sel, 1 }
 
 static const rtl_desc rtl_units[] = {
     { "classic3", "np_classic3", { "np_classic3.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },
       { { "L", "r0" }, { "H", "r1" }, { "I1m", "r2" }, { "I1a", "r3" }, { "I2m", "r4" }, { "I2a", "r5" },
         { "I3m", "r6" }, { "I3a", "r7" }, { "O", "r8" }, { NULL, NULL } }, { NULL }, NULL, NULL, NULL, 0 },
     /* simplex3 names its banks by the derivative datapath's numbering; without it there is no r7 (M2). */
-    { "simplex3", "np_simplex3", { "np_simplex3.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },
+    { "simplex3", "np_simplex3", { "np_simplex3.v", "np_pipe_ctrl.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },
       { { "SK", "r0" }, { "RK", "r1" }, { "CH", "r2" }, { "KT", "r3" }, { "P2", "r4" }, { "P4", "r5" },
         { "M", "r6" }, { "M2", "r7" }, { "A", "r8" }, { "O", "r9" }, { NULL, NULL } }, { NULL }, NULL, NULL, NULL, 0 },
-    { "wave", "np_wave", { "np_wave.v", "np_wave_sin.v", "np_wave_rom.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },
+    { "wave", "np_wave",
+      { "np_wave.v", "np_wave_sin.v", "np_wave_rom.v", "np_pipe_ctrl.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },
       { { "P", "r0" }, { "S", "r1" }, { "A", "r2" }, { "M", "r3" }, { "T", "r4" }, { "G", "r5" }, { "N", "r6" },
         { NULL, NULL } },
       { "sincos", "reset", "regs", NULL }, wave_params, "bv", NULL, 1 },
-    { "aacount", "np_aacount", { "np_aacount.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },
+    { "aacount", "np_aacount", { "np_aacount.v", "np_pipe_ctrl.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },
       { { "A", "ra" }, { "V", "rv" }, { "P", "rp" }, { "C", "rc" }, { NULL, NULL } },
       { "tile", NULL }, aacount_params, NULL, NULL, 1 },
     /* The n-D units (np_simplexn.v, np_classicn.v; every key, DIMS included, is a parameter). */
@@ -188,6 +191,15 @@ int np_synth_in_default_set(const np_unit *u)
 {
     const rtl_desc *d = rtl_of(u);
     return d != NULL && !d->by_name;
+}
+
+const np_unit *np_synth_unit_next(const np_unit *only, size_t *i)
+{
+    const np_unit *u;
+    while ((u = np_unit_at((*i)++)) != NULL)
+        if (only ? u == only : np_synth_in_default_set(u))
+            return u;
+    return NULL;
 }
 
 /*
@@ -293,7 +305,7 @@ static int not_param(const rtl_desc *d, const char *key)
 /* Every file of the unit's RTL is readable in dir (else a message naming it). */
 static int rtl_readable(const rtl_desc *d, const char *dir, char *err, size_t errlen)
 {
-    for (unsigned i = 0; i < 6 && d->files[i]; i++) {
+    for (unsigned i = 0; i < RTL_FILES && d->files[i]; i++) {
         char path[4096];
         snprintf(path, sizeof path, "%s/%s", dir, d->files[i]);
         if (access(path, R_OK) != 0) {
@@ -315,7 +327,7 @@ static int write_read(FILE *f, const rtl_desc *d, const np_unit *u, const void *
     if (d->params && d->params(cfg, derived, sizeof derived, err, errlen) != 0)
         return -1;
     fprintf(f, "read_verilog -I%s", dir);
-    for (unsigned i = 0; i < 6 && d->files[i]; i++)
+    for (unsigned i = 0; i < RTL_FILES && d->files[i]; i++)
         fprintf(f, " %s/%s", dir, d->files[i]);
     fprintf(f, "\nchparam");
     size_t nk = np_unit_key_count(u);
@@ -576,7 +588,7 @@ int np_synth_key(const np_unit *u, const void *cfg, const char *rtl_dir, int fla
     uint64_t h = UINT64_C(0xcbf29ce484222325);
     char buf[4096];
     /* The files by name and content (not by folder: a worktree's copy is the same RTL). */
-    for (unsigned i = 0; i < 6 && d->files[i]; i++) {
+    for (unsigned i = 0; i < RTL_FILES && d->files[i]; i++) {
         char path[4096];
         snprintf(path, sizeof path, "%s/%s", rtl_dir, d->files[i]);
         FILE *f = fopen(path, "rb");
@@ -677,9 +689,8 @@ int np_report_gates_synth(const np_unit *only, const char *spec, const char *rtl
         rtl_dir = np_synth_default_rtl_dir();
     int rc = NP_EXIT_OK, any = 0;
     const np_unit *u;
-    for (size_t i = 0; (u = np_unit_at(i)) != NULL; i++) {
-        if ((only && u != only) || (!only && !np_synth_in_default_set(u)))
-            continue;
+    size_t next = 0;
+    while ((u = np_synth_unit_next(only, &next)) != NULL) {
         any = 1;
         char err[512];
         np_unit_cfg cfg;
