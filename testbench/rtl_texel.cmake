@@ -14,7 +14,7 @@ if(NOT COMMAND np_rtl_builds)
   return()
 endif()
 # What every span unit's RTL builds on: the sequencer, the pipe's handshake, the colour banks
-# (np_span_ports.vh and np_tex_quad.vh are included from -I${NP_RTL_SRC}).
+# (np_span_ports.vh, np_tex_quad.vh and np_tex_front.vh are included from -I${NP_RTL_SRC}).
 set(NP_RTL_SPAN_SRC ${NP_RTL_SRC}/np_span_seq.v ${NP_RTL_SRC}/np_pipe_ctrl.v ${NP_RTL_SRC}/np_tex_colour.v)
 set(NP_RTL_TX_RTL ${NP_RTL_SRC}/np_texel.v ${NP_RTL_SPAN_SRC})
 set(NP_RTL_TX_SRC ${NP_RTL_TB}/rtl_texel_tb.v ${NP_RTL_TX_RTL})
@@ -42,19 +42,17 @@ endforeach()
 # registers of texel's fixture rtl.texel.regs.<regs> (the same np_ut_regs registers for both units).
 function(np_rtl_span_check name unit sim variant vec regs expect pattern)
   set(dir ${NP_RTL_WORK}/${unit}/${variant})
-  set(labels "rtl")
   if(sim STREQUAL "icarus")
     set(cmd ${NP_VVP} -n ${dir}/rtl_${unit}_tb.vvp)
     set(tool "${NP_VVP}")
   else()
-    set(labels "rtl;nosan")
     if(variant MATCHES "^fault_" AND NOT NOISEPIPE_FULL_RTL_TESTS)
       return()  # its build is not registered (np_rtl_builds)
     endif()
     set(cmd ${dir}/verilator/rtl_${unit}_tb)
     set(tool "${NP_VERILATOR}")
   endif()
-  np_rtl_test(${name} "${tool}" ${expect} "${pattern}" "${labels}" ${cmd} +vectors=${vec}
+  np_rtl_test(${name} "${tool}" ${expect} "${pattern}" "rtl" ${cmd} +vectors=${vec}
     +regs=${NP_RTL_WORK}/texel/regs-${regs}.txt ${ARGN})
   set_tests_properties(${name} PROPERTIES FIXTURES_REQUIRED "rtl_${unit}_${sim}_${variant};rtl_texel_regs_${regs}")
 endfunction()

@@ -81,13 +81,8 @@ module np_classicn #(
     parameter integer IN_REG = 0,
     parameter integer OUT_SKID = 0
 ) (
-    input wire clk,
-    input wire rst,
-    input wire in_valid,
-    output wire in_ready,
+`include "np_pipe_ports.vh"
     input wire [16*DIMS-1:0] x,
-    output wire out_valid,
-    input wire out_ready,
     output wire [OUT_BITS-1:0] f
 );
     localparam integer NN = DIMS, N = OUT_BITS, WS = S_FRAC, WL = LERP_FRAC;
@@ -109,18 +104,8 @@ module np_classicn #(
         end
     endfunction
 
-    // Round-half-up rescaling of a wide signed value from FROM to TO fraction
-    // bits (np_shr_round_half_up): shift right with rounding, or exact shift left.
-    function signed [XW-1:0] requant;
-        input signed [XW-1:0] val;
-        input integer from, to;
-        reg signed [XW-1:0] one;
-        begin
-            one = 1;
-            if (from > to) requant = (val + (one <<< (from - to - 1))) >>> (from - to);
-            else requant = val <<< (to - from);
-        end
-    endfunction
+    // requant(val, from, to): np_shr_round_half_up at XW bits (np_fixed.vh)
+`include "np_fixed.vh"
 
     // ---------------------------------------------------------------- handshake
     wire core_in_valid, core_in_ready, core_out_valid, core_out_ready;
@@ -279,14 +264,11 @@ module np_classicn #(
     assign core_out = ro_f;
 
     // ---------------------------------------------------------------- options
-    np_pipe_in_reg #(.W(16 * NN), .ON(IN_REG)) u_in (
-        .clk(clk), .rst(rst),
-        .s_valid(in_valid), .s_ready(in_ready), .s_data(x),
-        .m_valid(core_in_valid), .m_ready(core_in_ready), .m_data(cx));
-    np_pipe_skid #(.W(N), .ON(OUT_SKID)) u_out (
-        .clk(clk), .rst(rst),
-        .s_valid(core_out_valid), .s_ready(core_out_ready), .s_data(core_out),
-        .m_valid(out_valid), .m_ready(out_ready), .m_data(f));
+    np_pipe_opts #(.IW(16 * NN), .OW(N), .IN_REG(IN_REG), .OUT_SKID(OUT_SKID)) u_opts (.clk(clk), .rst(rst),
+        .in_valid(in_valid), .in_ready(in_ready), .in_data(x),
+        .core_in_valid(core_in_valid), .core_in_ready(core_in_ready), .core_in_data(cx),
+        .core_out_valid(core_out_valid), .core_out_ready(core_out_ready), .core_out_data(core_out),
+        .out_valid(out_valid), .out_ready(out_ready), .out_data(f));
 endmodule
 /* verilator lint_on UNUSEDSIGNAL */
 /* verilator lint_on BLKSEQ */

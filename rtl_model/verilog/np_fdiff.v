@@ -400,33 +400,20 @@ module np_fdiff #(
     genvar o, ab, a, cn;
     generate
         for (o = 0; o < N_OCT; o = o + 1) begin : g_oct
-            wire [127:0] mv[0:8];
-            for (ab = 0; ab < 9; ab = ab + 1) begin : g_m
-                wire [23:0] m24 = m_reg[24*(9*o + ab) +: 24];
-                assign mv[ab] = {{104{m24[23]}}, m24};
-            end
-            assign offdiag[o] = m_reg[24*(9*o + 1) +: 24] != 24'd0 || m_reg[24*(9*o + 2) +: 24] != 24'd0 ||
-                                m_reg[24*(9*o + 3) +: 24] != 24'd0 || m_reg[24*(9*o + 5) +: 24] != 24'd0 ||
-                                m_reg[24*(9*o + 6) +: 24] != 24'd0 || m_reg[24*(9*o + 7) +: 24] != 24'd0;
-            wire [31:0] amp = amp_reg[32*o +: 32];
+`include "np_tex_front.vh"
             // --- front end (np_tex_octave_span) and the DDA; su: the u a cell is set up at
             wire [39:0] su[0:2];
             wire [39:0] sdu[0:2];
             wire [2:0] cx;
             for (a = 0; a < 3; a = a + 1) begin : g_axis
-                wire [47:0] o48 = o_reg[48*(3*o + a) +: 48];
-                wire [127:0] uu = ({{80{o48[47]}}, o48} << 16) + mv[3*a] * sv[0] + mv[3*a+1] * sv[1] + mv[3*a+2] * sv[2];
-                wire [127:0] dd = mv[3*a] * dsv[0] + mv[3*a+1] * dsv[1] + mv[3*a+2] * dsv[2];
-                wire [127:0] u_rnd = (uu + (128'd1 << 15)) >> 16;
-                wire [127:0] d_rnd = (dd + (128'd1 << 15)) >> 16;
                 wire [39:0] u_nx = u_q[o][a] + du_q[o][a];   // u40 Q8.32, mod 256
-                assign su[a] = bg_job ? u_rnd[39:0] : u_nx;
-                assign sdu[a] = bg_job ? d_rnd[39:0] : du_q[o][a];
+                assign su[a] = bg_job ? u0[a] : u_nx;
+                assign sdu[a] = bg_job ? du0[a] : du_q[o][a];
                 assign cx[a] = u_nx[39:32] != u_q[o][a][39:32];
                 always @(posedge clk) begin
                     if (bg_job) begin
-                        u_q[o][a] <= u_rnd[39:0];
-                        du_q[o][a] <= d_rnd[39:0];
+                        u_q[o][a] <= u0[a];
+                        du_q[o][a] <= du0[a];
                     end else if (step) begin
                         u_q[o][a] <= u_nx;
                     end

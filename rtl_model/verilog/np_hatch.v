@@ -57,17 +57,12 @@ module np_hatch #(
     parameter integer IN_REG = 0,
     parameter integer OUT_SKID = 0
 ) (
-    input wire clk,
-    input wire rst,
-    input wire in_valid,
-    output wire in_ready,
+`include "np_pipe_ports.vh"
     input wire [32:0] xu,
     input wire [32:0] xv,
     input wire [7:0] tone,
     input wire [16:0] pm,
     input wire [16:0] om,
-    output wire out_valid,
-    input wire out_ready,
     output wire [7:0] c
 );
     localparam integer N = SET >= 2 ? 64 : 16;
@@ -252,13 +247,10 @@ module np_hatch #(
     endgenerate
 
     // ---------------------------------------------------------------- options
-    np_pipe_in_reg #(.W(IW), .ON(IN_REG)) u_in (
-        .clk(clk), .rst(rst),
-        .s_valid(in_valid), .s_ready(in_ready), .s_data({xu, xv, tone, pm, om}),
-        .m_valid(core_in_valid), .m_ready(core_in_ready), .m_data(cin));
-    np_pipe_skid #(.W(8), .ON(OUT_SKID)) u_out (
-        .clk(clk), .rst(rst),
-        .s_valid(core_out_valid), .s_ready(core_out_ready), .s_data(rc_out),
-        .m_valid(out_valid), .m_ready(out_ready), .m_data(c));
+    np_pipe_opts #(.IW(IW), .OW(8), .IN_REG(IN_REG), .OUT_SKID(OUT_SKID)) u_opts (.clk(clk), .rst(rst),
+        .in_valid(in_valid), .in_ready(in_ready), .in_data({xu, xv, tone, pm, om}),
+        .core_in_valid(core_in_valid), .core_in_ready(core_in_ready), .core_in_data(cin),
+        .core_out_valid(core_out_valid), .core_out_ready(core_out_ready), .core_out_data(rc_out),
+        .out_valid(out_valid), .out_ready(out_ready), .out_data(c));
 endmodule
 /* verilator lint_on UNUSEDSIGNAL */

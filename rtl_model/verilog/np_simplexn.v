@@ -71,13 +71,8 @@ module np_simplexn #(
     parameter integer IN_REG = 0,
     parameter integer OUT_SKID = 0
 ) (
-    input wire clk,
-    input wire rst,
-    input wire in_valid,
-    output wire in_ready,
+`include "np_pipe_ports.vh"
     input wire [16*DIMS-1:0] x,
-    output wire out_valid,
-    input wire out_ready,
     output wire [OUT_BITS-1:0] f
 );
     localparam integer NN = DIMS, N = OUT_BITS, WT = T_FRAC, WP = P_FRAC, WK = K_FRAC;
@@ -114,23 +109,8 @@ module np_simplexn #(
     // Canonical signed digits (non-adjacent form) of a constant: the
     // positions of its +1 digits and of its -1 digits. A constant multiply is
     // one shifted operand per non-zero digit (np_simplexn.c's csd_digits).
-    function [63:0] csd_digits;
-        input [63:0] k;
-        input integer negative;  // 0: the +1 digits; 1: the -1 digits
-        reg [64:0] kk;
-        integer i;
-        begin
-            kk = {1'b0, k};
-            csd_digits = 64'd0;
-            for (i = 0; i < 64; i = i + 1) begin
-                if (kk[0]) begin
-                    csd_digits[i] = kk[1] ? negative != 0 : negative == 0;
-                    kk = kk[1] ? kk + 65'd1 : kk - 65'd1;
-                end
-                kk = kk >> 1;
-            end
-        end
-    endfunction
+    // csd_digits; requant = np_simplexn_requant at XW bits
+`include "np_fixed.vh"
     // v times the constant whose digits are dp (+1) and dn (-1), modulo 2^64.
     function [63:0] cmul;
         input [63:0] v;
@@ -163,18 +143,6 @@ module np_simplexn #(
         .en(en), .v_next(v_next), .in_ready(core_in_ready), .out_valid(core_out_valid));
     always @(posedge clk) if (rst) v <= {NB{1'b0}}; else v <= v_next;
 
-    // Round-half-up rescaling of a wide signed value from FROM to TO fraction
-    // bits (np_simplexn_requant): shift right with rounding, or exact shift left.
-    function signed [XW-1:0] requant;
-        input signed [XW-1:0] val;
-        input integer from, to;
-        reg signed [XW-1:0] one;
-        begin
-            one = 1;
-            if (from > to) requant = (val + (one <<< (from - to - 1))) >>> (from - to);
-            else requant = val <<< (to - from);
-        end
-    endfunction
 
     // ---------------------------------------------------------------- SK
     // sum = the sum of the n words (u19); SX_a = Q X_a + P sum (u(SXW));
@@ -395,14 +363,11 @@ module np_simplexn #(
     assign core_out = r8_f;
 
     // ---------------------------------------------------------------- options
-    np_pipe_in_reg #(.W(16 * NN), .ON(IN_REG)) u_in (
-        .clk(clk), .rst(rst),
-        .s_valid(in_valid), .s_ready(in_ready), .s_data(x),
-        .m_valid(core_in_valid), .m_ready(core_in_ready), .m_data(cx));
-    np_pipe_skid #(.W(N), .ON(OUT_SKID)) u_out (
-        .clk(clk), .rst(rst),
-        .s_valid(core_out_valid), .s_ready(core_out_ready), .s_data(core_out),
-        .m_valid(out_valid), .m_ready(out_ready), .m_data(f));
+    np_pipe_opts #(.IW(16 * NN), .OW(N), .IN_REG(IN_REG), .OUT_SKID(OUT_SKID)) u_opts (.clk(clk), .rst(rst),
+        .in_valid(in_valid), .in_ready(in_ready), .in_data(x),
+        .core_in_valid(core_in_valid), .core_in_ready(core_in_ready), .core_in_data(cx),
+        .core_out_valid(core_out_valid), .core_out_ready(core_out_ready), .core_out_data(core_out),
+        .out_valid(out_valid), .out_ready(out_ready), .out_data(f));
 endmodule
 /* verilator lint_on UNUSEDSIGNAL */
 /* verilator lint_on BLKSEQ */

@@ -87,8 +87,7 @@ module np_wave #(
     parameter integer IN_REG = 0,
     parameter integer OUT_SKID = 0
 ) (
-    input wire clk,
-    input wire rst,
+`include "np_pipe_ports.vh"
     // the box's registers
     input wire [2:0] n,
     input wire [32*TRAINS-1:0] kx,
@@ -109,8 +108,6 @@ module np_wave #(
     input wire [14:0] b,
     input wire [14:0] gcap,
     // transactions
-    input wire in_valid,
-    output wire in_ready,
     input wire [15:0] i,
     input wire [15:0] j,
     input wire [31:0] t,
@@ -119,8 +116,6 @@ module np_wave #(
     input wire [15:0] v,
     input wire [7:0] r,
     input wire [14:0] g,
-    output wire out_valid,
-    input wire out_ready,
     output wire [15:0] y,
     output wire [15:0] dx,
     output wire [15:0] dz,
@@ -440,13 +435,10 @@ module np_wave #(
     assign core_out = o_core;
 
     // ---------------------------------------------------------------- options
-    np_pipe_in_reg #(.W(IW), .ON(IN_REG)) u_in (
-        .clk(clk), .rst(rst),
-        .s_valid(in_valid), .s_ready(in_ready), .s_data({i, j, t, ph, u, v, r, g}),
-        .m_valid(core_in_valid), .m_ready(core_in_ready), .m_data({ci, cj, ct, cph, cu, cv, cr, cg}));
-    np_pipe_skid #(.W(OW), .ON(OUT_SKID)) u_out (
-        .clk(clk), .rst(rst),
-        .s_valid(core_out_valid), .s_ready(core_out_ready), .s_data(core_out),
-        .m_valid(out_valid), .m_ready(out_ready), .m_data({y, dx, dz, nx, ny, nz, fold}));
+    np_pipe_opts #(.IW(IW), .OW(OW), .IN_REG(IN_REG), .OUT_SKID(OUT_SKID)) u_opts (.clk(clk), .rst(rst),
+        .in_valid(in_valid), .in_ready(in_ready), .in_data({i, j, t, ph, u, v, r, g}),
+        .core_in_valid(core_in_valid), .core_in_ready(core_in_ready), .core_in_data({ci, cj, ct, cph, cu, cv, cr, cg}),
+        .core_out_valid(core_out_valid), .core_out_ready(core_out_ready), .core_out_data(core_out),
+        .out_valid(out_valid), .out_ready(out_ready), .out_data({y, dx, dz, nx, ny, nz, fold}));
 endmodule
 /* verilator lint_on UNUSEDSIGNAL */

@@ -65,7 +65,7 @@ typedef int (*rtl_params_fn)(const void *cfg, char *buf, size_t len, char *err, 
  * and aacount: a run over every unit, and report fpga, keep classic3 and
  * simplex3, whose syntheses the docs and tests time; aacount alone takes 30 min).
  */
-enum { RTL_FILES = 7 }; /* a unit's RTL files at the most, NULL-terminated when fewer */
+enum { RTL_FILES = 8 }; /* a unit's RTL files at the most, NULL-terminated when fewer */
 
 typedef struct rtl_desc {
     const char *unit, *top;
@@ -143,12 +143,15 @@ static void classicn_bank_sel(unsigned k, unsigned n_stages, char *buf, size_t l
         snprintf(buf, len, "w:g_lvl?%u?.rl w:g_s?*?.q?%u? %%u", (k - 3) / 2, k);
 }
 
-#define NP_SIMPLEXN_RTL(name)                                                                                 \
-    { name, "np_simplexn", { "np_simplexn.v", "np_pipe_ctrl.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL }, \
-      { { "SK", "r0" }, { "RK", "r1" }, { "CH", "r2" }, { "KT", "r3" }, { "P2", "r4" }, { "P4", "r5" },       \
+/* The pipe around every unit but classic3: handshake, options (classic3 uses the two options directly). */
+#define NP_PIPE_RTL "np_pipe_ctrl.v", "np_pipe_opts.v", "np_pipe_in_reg.v", "np_pipe_skid.v"
+
+#define NP_SIMPLEXN_RTL(name)                                                                           \
+    { name, "np_simplexn", { "np_simplexn.v", NP_PIPE_RTL, NULL },                                      \
+      { { "SK", "r0" }, { "RK", "r1" }, { "CH", "r2" }, { "KT", "r3" }, { "P2", "r4" }, { "P4", "r5" }, \
         { "M", "r6" }, { "A", "r7" }, { "O", "r8" }, { NULL, NULL } }, { NULL }, NULL, NULL, NULL, 1 }
-#define NP_CLASSICN_RTL(name)                                                                                 \
-    { name, "np_classicn", { "np_classicn.v", "np_pipe_ctrl.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL }, \
+#define NP_CLASSICN_RTL(name)                                                                           \
+    { name, "np_classicn", { "np_classicn.v", NP_PIPE_RTL, NULL },                                      \
       { { NULL, NULL } }, { NULL }, NULL, NULL, classicn_bank_sel, 1 }
 
 static const rtl_desc rtl_units[] = {
@@ -156,15 +159,14 @@ static const rtl_desc rtl_units[] = {
       { { "L", "r0" }, { "H", "r1" }, { "I1m", "r2" }, { "I1a", "r3" }, { "I2m", "r4" }, { "I2a", "r5" },
         { "I3m", "r6" }, { "I3a", "r7" }, { "O", "r8" }, { NULL, NULL } }, { NULL }, NULL, NULL, NULL, 0 },
     /* simplex3 names its banks by the derivative datapath's numbering; without it there is no r7 (M2). */
-    { "simplex3", "np_simplex3", { "np_simplex3.v", "np_pipe_ctrl.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },
+    { "simplex3", "np_simplex3", { "np_simplex3.v", NP_PIPE_RTL, NULL },
       { { "SK", "r0" }, { "RK", "r1" }, { "CH", "r2" }, { "KT", "r3" }, { "P2", "r4" }, { "P4", "r5" },
         { "M", "r6" }, { "M2", "r7" }, { "A", "r8" }, { "O", "r9" }, { NULL, NULL } }, { NULL }, NULL, NULL, NULL, 0 },
-    { "wave", "np_wave",
-      { "np_wave.v", "np_wave_sin.v", "np_wave_rom.v", "np_pipe_ctrl.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },
+    { "wave", "np_wave", { "np_wave.v", "np_wave_sin.v", "np_wave_rom.v", NP_PIPE_RTL, NULL },
       { { "P", "r0" }, { "S", "r1" }, { "A", "r2" }, { "M", "r3" }, { "T", "r4" }, { "G", "r5" }, { "N", "r6" },
         { NULL, NULL } },
       { "sincos", "reset", "regs", NULL }, wave_params, "bv", NULL, 1 },
-    { "aacount", "np_aacount", { "np_aacount.v", "np_pipe_ctrl.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },
+    { "aacount", "np_aacount", { "np_aacount.v", NP_PIPE_RTL, NULL },
       { { "A", "ra" }, { "V", "rv" }, { "P", "rp" }, { "C", "rc" }, { NULL, NULL } },
       { "tile", NULL }, aacount_params, NULL, NULL, 1 },
     /* The n-D units (np_simplexn.v, np_classicn.v; every key, DIMS included, is a parameter). */
@@ -602,9 +604,9 @@ int np_synth_key(const np_unit *u, const void *cfg, const char *rtl_dir, int fla
             h = fnv1a(h, buf, n);
         fclose(f);
     }
-    /* np_hashn.vh and np_hash.vh are included by the n-D RTL: part of it too. */
-    static const char *const includes[] = { "np_hashn.vh", "np_hash.vh" };
-    for (unsigned i = 0; i < 2; i++) {
+    /* The files the RTL includes (np_hashn.vh, np_hash.vh, np_fixed.vh, np_pipe_ports.vh): part of it too. */
+    static const char *const includes[] = { "np_hashn.vh", "np_hash.vh", "np_fixed.vh", "np_pipe_ports.vh" };
+    for (unsigned i = 0; i < sizeof includes / sizeof includes[0]; i++) {
         char path[4096];
         snprintf(path, sizeof path, "%s/%s", rtl_dir, includes[i]);
         FILE *f = fopen(path, "rb");
