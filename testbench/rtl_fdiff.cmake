@@ -14,19 +14,15 @@
 if(NOT COMMAND np_rtl_builds)
   return()
 endif()
-set(NP_RTL_FD_RTL ${NP_RTL_SRC}/np_fdiff.v ${NP_RTL_SRC}/np_span_seq.v)
+set(NP_RTL_FD_RTL ${NP_RTL_SRC}/np_fdiff.v ${NP_RTL_SPAN_SRC})
 set(fd_work ${NP_RTL_WORK}/fdiff)
 file(MAKE_DIRECTORY ${fd_work})
 
 # Lint at the default and at marble's four octaves with the numeric keys off their defaults
 # (resetup stays 0: the interval is not built).
-foreach(l "default;-GN_OCT=1" "oct4;-GN_OCT=4;-GIDX_INT=9;-GW_FRAC=10;-GGUARD=30;-GSETUP_MULTS=1;-GMULT_LAT=3"
-          "wide;-GIDX_INT=1;-GW_FRAC=24;-GGUARD=100;-GSETUP_MULTS=64;-GMULT_LAT=16")
-  list(GET l 0 lname)
-  list(REMOVE_AT l 0)
-  np_rtl_test(rtl.fdiff.lint.${lname} "${NP_VERILATOR}" pass "" "rtl;nosan"
-    ${NP_VERILATOR} --lint-only -Wall -I${NP_RTL_SRC} ${l} --top-module np_fdiff ${NP_RTL_FD_RTL})
-endforeach()
+np_rtl_span_lint(fdiff np_fdiff NP_RTL_FD_RTL "default -GN_OCT=1"
+  "oct4 -GN_OCT=4 -GIDX_INT=9 -GW_FRAC=10 -GGUARD=30 -GSETUP_MULTS=1 -GMULT_LAT=3"
+  "wide -GIDX_INT=1 -GW_FRAC=24 -GGUARD=100 -GSETUP_MULTS=64 -GMULT_LAT=16")
 
 # Co-simulation against the registry's stream model of fdiff (np_cosim_open_spec: np_span_sim with
 # np_fdiff_engine): every cycle in_ready, out_valid and, when valid, cr cg cb, with random bubbles
@@ -66,51 +62,18 @@ foreach(v ${fd_variants})
   np_rtl_builds(fdiff ${v} rtl_fdiff_tb ${NP_RTL_FD_SRC})
 endforeach()
 
-function(np_rtl_fdiff_check name sim variant vec regs expect pattern labels)
-  set(dir ${NP_RTL_WORK}/fdiff/${variant})
-  if(sim STREQUAL "icarus")
-    set(cmd ${NP_VVP} -n ${dir}/rtl_fdiff_tb.vvp)
-    set(tool "${NP_VVP}")
-  else()
-    set(cmd ${dir}/verilator/rtl_fdiff_tb)
-    set(tool "${NP_VERILATOR}")
-  endif()
-  np_rtl_test(${name} "${tool}" ${expect} "${pattern}" "${labels}" ${cmd} +vectors=${vec}
-    +regs=${NP_RTL_WORK}/texel/regs-${regs}.txt ${ARGN})
-  set_tests_properties(${name} PROPERTIES FIXTURES_REQUIRED "rtl_fdiff_${sim}_${variant};rtl_texel_regs_${regs}")
-endfunction()
-
 set(fd_golden ${PROJECT_SOURCE_DIR}/vectors/fdiff/fdiff-l1-seed1.vec)
 # The bench's traffic (bubbles 2/8, stalls 2/8, seed 1) on the golden set's 24 runs (133,113 pixels
 # simulated, 977 compared) takes 182,155 cycles: np_span_sim's count under the same traffic
 # (rtl.fdiff.bench_cycles, below), pinned, so the timing is checked with the bits.
 set(fd_cycles 182155)
-set(fd_pass "${fd_cycles} cycles: In 977 tests, no errors found\\.")
-foreach(sim icarus verilator)
-  set(lab "rtl")
-  if(sim STREQUAL "verilator")
-    set(lab "rtl;nosan")
-  endif()
-  np_rtl_fdiff_check(rtl.fdiff.${sim}.golden.default ${sim} ok ${fd_golden} wood pass "${fd_pass}" "${lab}"
-    +cycles=${fd_cycles})
-  np_rtl_fdiff_check(rtl.fdiff.${sim}.count_short ${sim} ok ${fd_work}/fdiff-golden-short.vec wood fail
-    "the header's count is 977 but the file holds 976 vectors" "${lab}")
-  np_rtl_fdiff_check(rtl.fdiff.${sim}.wrong_regs ${sim} ok ${fd_golden} marble fail
-    "has n_oct 4; the DUT is built for N_OCT=1" "${lab}")
-  if(NOISEPIPE_FULL_RTL_TESTS)
-    np_rtl_fdiff_check(rtl.fdiff.${sim}.fault_flip ${sim} fault_flip ${fd_golden} wood fail
-      "In 977 tests, [1-9][0-9]* errors found" "${lab}" +cycles=${fd_cycles})
-    np_rtl_fdiff_check(rtl.fdiff.${sim}.fault_drop ${sim} fault_drop ${fd_golden} wood fail
-      "In 977 tests, [1-9][0-9]* errors found" "${lab}" +cycles=${fd_cycles})
-    np_rtl_fdiff_check(rtl.fdiff.${sim}.fault_stall ${sim} fault_stall ${fd_golden} wood fail
-      "no output for 1000 cycles|errors found" "${lab}" +cycles=${fd_cycles})
-    np_rtl_fdiff_check(rtl.fdiff.${sim}.fault_setup ${sim} fault_setup ${fd_golden} wood fail
-      "all 977 tests right, but in [0-9]+ cycles, not the ${fd_cycles}|errors found" "${lab}" +cycles=${fd_cycles})
-  endif()
-endforeach()
-file(READ ${fd_golden} fd_text)
-string(REGEX REPLACE "[^\n]+\n$" "" fd_short "${fd_text}")
-file(WRITE ${fd_work}/fdiff-golden-short.vec "${fd_short}")
+# The fault copies' runs (their builds: fd_variants) only with NOISEPIPE_FULL_RTL_TESTS; a wrong
+# cycle count or errors both count for fault_setup.
+set(fd_faults)
+if(NOISEPIPE_FULL_RTL_TESTS)
+  set(fd_faults flip drop stall setup)
+endif()
+np_rtl_span_tests(fdiff ${fd_golden} ${fd_cycles} "|errors found" ${fd_faults})
 
 # The pinned counts from the C cycle model: span_bench_cycles replays the bench's traffic on
 # np_span_sim (texel's pin too, which checks the replay itself).

@@ -20,10 +20,6 @@ endif()
 function(np_rtl_ndim_tests module tb sets golden4 cfg4 opts_cfg wrong_cfg wrong_msg)
   set(pass_re "In [1-9][0-9]* tests, no errors found\\.")
   foreach(sim icarus verilator)
-    set(lab "rtl")
-    if(sim STREQUAL "verilator")
-      set(lab "rtl;nosan")
-    endif()
     foreach(s ${sets})
       string(REPLACE "|" ";" sl "${s}")
       list(GET sl 0 unit)
@@ -37,30 +33,37 @@ function(np_rtl_ndim_tests module tb sets golden4 cfg4 opts_cfg wrong_cfg wrong_
         string(APPEND tname ".${set}")
       endif()
       np_rtl_check(${tname} ${module} ${sim} ok ${tb} ${cfg}
-        ${PROJECT_SOURCE_DIR}/vectors/${unit}/${file}.memh pass "${cycles} cycles: ${pass_re}" "${lab}")
+        ${PROJECT_SOURCE_DIR}/vectors/${unit}/${file}.memh pass "${cycles} cycles: ${pass_re}" "rtl")
     endforeach()
     # The pipe options (IN_REG, OUT_SKID: one clock more) on the n = 4 default set.
     get_filename_component(g4 ${golden4} NAME_WE)
     string(REGEX REPLACE "-.*" "" u4 ${g4})
     np_rtl_check(rtl.${module}.${sim}.golden.${u4}.opts ${module} ${sim} ok ${tb} ${opts_cfg}
-      ${golden4} pass "${pass_re}" "${lab}")
+      ${golden4} pass "${pass_re}" "rtl")
     # A set for another configuration is refused (the header's config is checked).
     np_rtl_check(rtl.${module}.${sim}.wrong_config ${module} ${sim} ok ${tb} ${wrong_cfg}
-      ${golden4} fail "${wrong_msg}" "${lab}")
+      ${golden4} fail "${wrong_msg}" "rtl")
     # Faults: a flipped bit of f and a broken stall path must each be caught.
     np_rtl_check(rtl.${module}.${sim}.fault_flip ${module} ${sim} fault_flip ${tb} ${cfg4}
-      ${golden4} fail "In 1661 tests, [1-9][0-9]* errors found" "${lab}")
+      ${golden4} fail "In 1661 tests, [1-9][0-9]* errors found" "rtl")
     np_rtl_check(rtl.${module}.${sim}.fault_stall ${module} ${sim} fault_stall ${tb} ${cfg4}
-      ${golden4} fail "no output for 1000 cycles|errors found" "${lab}")
+      ${golden4} fail "no output for 1000 cycles|errors found" "rtl")
   endforeach()
 endfunction()
 
-# ------------------------------------------------------------------ simplexn
-set(NP_RTL_SN_RTL ${NP_RTL_SRC}/np_simplexn.v ${NP_RTL_PIPE_SRC})
-set(NP_RTL_SN_SRC ${NP_RTL_TB}/rtl_simplexn_tb.v ${NP_RTL_SN_RTL})
-foreach(v ok fault_flip fault_stall)
-  np_rtl_builds(simplexn ${v} rtl_simplexn_tb ${NP_RTL_SN_SRC})
+# ------------------------------------------------------------------ the benches
+# NP_RTL_SN_RTL, NP_RTL_CN_RTL: the RTL of each module (the co-simulation builds it too); its bench
+# rtl_<module>_tb.v built plain and as the two fault copies.
+foreach(m "simplexn;SN" "classicn;CN")
+  list(GET m 0 module)
+  list(GET m 1 key)
+  set(NP_RTL_${key}_RTL ${NP_RTL_SRC}/np_${module}.v ${NP_RTL_PIPE_SRC})
+  foreach(v ok fault_flip fault_stall)
+    np_rtl_builds(${module} ${v} rtl_${module}_tb ${NP_RTL_TB}/rtl_${module}_tb.v ${NP_RTL_${key}_RTL})
+  endforeach()
 endforeach()
+
+# ------------------------------------------------------------------ simplexn
 # The checked-in sets: unit | set suffix ("" = the default set) | the bench's +cfg and the
 # cycles the bench takes with its bubbles and stalls (pins the latency and the throughput).
 set(NP_RTL_SN_SETS
@@ -84,11 +87,6 @@ np_rtl_check(rtl.simplexn.verilator.l2.simplex4 simplexn verilator ok rtl_simple
 #   rtl.classicn.<sim>.golden.classic4.opts     IN_REG and OUT_SKID on classic4's default set
 #   rtl.classicn.<sim>.wrong_config             a set for another configuration is refused
 #   rtl.classicn.<sim>.fault_{flip,stall}       the fault copies must fail
-set(NP_RTL_CN_RTL ${NP_RTL_SRC}/np_classicn.v ${NP_RTL_PIPE_SRC})
-set(NP_RTL_CN_SRC ${NP_RTL_TB}/rtl_classicn_tb.v ${NP_RTL_CN_RTL})
-foreach(v ok fault_flip fault_stall)
-  np_rtl_builds(classicn ${v} rtl_classicn_tb ${NP_RTL_CN_SRC})
-endforeach()
 # unit | set suffix ("" = the default set) | the bench's +cfg | the cycles the bench takes with its
 # bubbles and stalls (pins the latency 2n + 3 and the throughput; classic3's default set takes
 # np_classic3.v's 6084 cycles).

@@ -13,7 +13,10 @@
 if(NOT COMMAND np_rtl_builds)
   return()
 endif()
-set(NP_RTL_TX_RTL ${NP_RTL_SRC}/np_texel.v ${NP_RTL_SRC}/np_span_seq.v)
+# What every span unit's RTL builds on: the sequencer, the pipe's handshake, the colour banks
+# (np_span_ports.vh, np_tex_quad.vh and np_tex_front.vh are included from -I${NP_RTL_SRC}).
+set(NP_RTL_SPAN_SRC ${NP_RTL_SRC}/np_span_seq.v ${NP_RTL_SRC}/np_pipe_ctrl.v ${NP_RTL_SRC}/np_tex_colour.v)
+set(NP_RTL_TX_RTL ${NP_RTL_SRC}/np_texel.v ${NP_RTL_SPAN_SRC})
 set(NP_RTL_TX_SRC ${NP_RTL_TB}/rtl_texel_tb.v ${NP_RTL_TX_RTL})
 set(tx_work ${NP_RTL_WORK}/texel)
 file(MAKE_DIRECTORY ${tx_work})
@@ -34,60 +37,80 @@ foreach(v ok fault_flip fault_stall fault_setup)
   np_rtl_builds(texel ${v} rtl_texel_tb ${NP_RTL_TX_SRC})
 endforeach()
 
-# np_rtl_texel_check(name sim variant vec regs expect pattern labels plusargs...)
-function(np_rtl_texel_check name sim variant vec regs expect pattern labels)
-  set(dir ${NP_RTL_WORK}/texel/${variant})
+# np_rtl_span_check(name unit sim variant vec regs expect pattern plusargs...): the bench
+# rtl_<unit>_tb (texel's source; fdiff's is built from it) on a vector set, with the texture
+# registers of texel's fixture rtl.texel.regs.<regs> (the same np_ut_regs registers for both units).
+function(np_rtl_span_check name unit sim variant vec regs expect pattern)
+  set(dir ${NP_RTL_WORK}/${unit}/${variant})
   if(sim STREQUAL "icarus")
-    set(cmd ${NP_VVP} -n ${dir}/rtl_texel_tb.vvp)
+    set(cmd ${NP_VVP} -n ${dir}/rtl_${unit}_tb.vvp)
     set(tool "${NP_VVP}")
   else()
     if(variant MATCHES "^fault_" AND NOT NOISEPIPE_FULL_RTL_TESTS)
       return()  # its build is not registered (np_rtl_builds)
     endif()
-    set(cmd ${dir}/verilator/rtl_texel_tb)
+    set(cmd ${dir}/verilator/rtl_${unit}_tb)
     set(tool "${NP_VERILATOR}")
   endif()
-  np_rtl_test(${name} "${tool}" ${expect} "${pattern}" "${labels}" ${cmd} +vectors=${vec}
-    +regs=${tx_work}/regs-${regs}.txt ${ARGN})
-  set_tests_properties(${name} PROPERTIES FIXTURES_REQUIRED "rtl_texel_${sim}_${variant};rtl_texel_regs_${regs}")
+  np_rtl_test(${name} "${tool}" ${expect} "${pattern}" "rtl" ${cmd} +vectors=${vec}
+    +regs=${NP_RTL_WORK}/texel/regs-${regs}.txt ${ARGN})
+  set_tests_properties(${name} PROPERTIES FIXTURES_REQUIRED "rtl_${unit}_${sim}_${variant};rtl_texel_regs_${regs}")
+endfunction()
+
+# np_rtl_span_tests(unit golden cycles setup_alt faults...): under both simulators, the checked-in
+# set (golden.default, its cycle count pinned), the set cut short by its last vector (count_short),
+# another texture's registers (wrong_regs), and each fault copy named (fault_<f>), which must fail
+# for its reason: flip, drop with errors; stall losing transactions or with errors; setup with
+# the bits right and the cycle count wrong (or what setup_alt adds, "|..." or "").
+function(np_rtl_span_tests unit golden cycles setup_alt)
+  set(short ${NP_RTL_WORK}/${unit}/${unit}-golden-short.vec)
+  file(READ ${golden} text)
+  string(REGEX REPLACE "[^\n]+\n$" "" text "${text}")
+  file(WRITE ${short} "${text}")
+  foreach(sim icarus verilator)
+    np_rtl_span_check(rtl.${unit}.${sim}.golden.default ${unit} ${sim} ok ${golden} wood pass
+      "${cycles} cycles: In 977 tests, no errors found\\." +cycles=${cycles})
+    np_rtl_span_check(rtl.${unit}.${sim}.count_short ${unit} ${sim} ok ${short} wood fail
+      "the header's count is 977 but the file holds 976 vectors")
+    np_rtl_span_check(rtl.${unit}.${sim}.wrong_regs ${unit} ${sim} ok ${golden} marble fail
+      "has n_oct 4; the DUT is built for N_OCT=1")
+    foreach(f ${ARGN})
+      if(f STREQUAL "stall")
+        set(pat "no output for 1000 cycles|errors found")
+      elseif(f STREQUAL "setup")
+        set(pat "all 977 tests right, but in [0-9]+ cycles, not the ${cycles}${setup_alt}")
+      else()
+        set(pat "In 977 tests, [1-9][0-9]* errors found")
+      endif()
+      np_rtl_span_check(rtl.${unit}.${sim}.fault_${f} ${unit} ${sim} fault_${f} ${golden} wood fail "${pat}"
+        +cycles=${cycles})
+    endforeach()
+  endforeach()
+endfunction()
+
+# np_rtl_span_lint(unit top rtl_var configs...): verilator --lint-only -Wall of the files in
+# ${rtl_var} at each configuration, "name -GKEY=value ..." (rtl.<unit>.lint.<name>).
+function(np_rtl_span_lint unit top rtl_var)
+  foreach(l ${ARGN})
+    separate_arguments(l UNIX_COMMAND "${l}")
+    list(GET l 0 lname)
+    list(REMOVE_AT l 0)
+    np_rtl_test(rtl.${unit}.lint.${lname} "${NP_VERILATOR}" pass "" "rtl;nosan"
+      ${NP_VERILATOR} --lint-only -Wall -I${NP_RTL_SRC} ${l} --top-module ${top} ${${rtl_var}})
+  endforeach()
 endfunction()
 
 set(tx_golden ${PROJECT_SOURCE_DIR}/vectors/texel/texel-l1-seed1.vec)
 # The bench's traffic (bubbles 2/8, stalls 2/8, seed 1) on the golden set's 24 runs (133,113 pixels
 # simulated, 977 compared) takes 177,709 cycles: pinned, so the timing is checked with the bits.
 set(tx_cycles 177709)
-set(tx_pass "${tx_cycles} cycles: In 977 tests, no errors found\\.")
-foreach(sim icarus verilator)
-  set(lab "rtl")
-  if(sim STREQUAL "verilator")
-    set(lab "rtl;nosan")
-  endif()
-  np_rtl_texel_check(rtl.texel.${sim}.golden.default ${sim} ok ${tx_golden} wood pass "${tx_pass}" "${lab}"
-    +cycles=${tx_cycles})
-  np_rtl_texel_check(rtl.texel.${sim}.fault_flip ${sim} fault_flip ${tx_golden} wood fail
-    "In 977 tests, [1-9][0-9]* errors found" "${lab}" +cycles=${tx_cycles})
-  np_rtl_texel_check(rtl.texel.${sim}.fault_stall ${sim} fault_stall ${tx_golden} wood fail
-    "no output for 1000 cycles|errors found" "${lab}" +cycles=${tx_cycles})
-  np_rtl_texel_check(rtl.texel.${sim}.fault_setup ${sim} fault_setup ${tx_golden} wood fail
-    "all 977 tests right, but in [0-9]+ cycles, not the ${tx_cycles}" "${lab}" +cycles=${tx_cycles})
-  np_rtl_texel_check(rtl.texel.${sim}.count_short ${sim} ok ${tx_work}/texel-golden-short.vec wood fail
-    "the header's count is 977 but the file holds 976 vectors" "${lab}")
-  np_rtl_texel_check(rtl.texel.${sim}.wrong_regs ${sim} ok ${tx_golden} marble fail
-    "has n_oct 4; the DUT is built for N_OCT=1" "${lab}")
-endforeach()
-file(READ ${tx_golden} tx_text)
-string(REGEX REPLACE "[^\n]+\n$" "" tx_short "${tx_text}")
-file(WRITE ${tx_work}/texel-golden-short.vec "${tx_short}")
+np_rtl_span_tests(texel ${tx_golden} ${tx_cycles} "" flip stall setup)
 
 # Lint at the default, at marble's four octaves with every key off its default, and at the widest
 # index (I = 1, Fw = 24, G = 100: W = 126).
-foreach(l "default;-GN_OCT=1" "oct4;-GN_OCT=4;-GIDX_INT=4;-GW_FRAC=8;-GGUARD=4;-GWEIGHT_FRAC=24;-GSETUP_MULTS=1;-GMULT_LAT=16"
-          "wide;-GIDX_INT=1;-GW_FRAC=24;-GGUARD=100;-GWEIGHT_FRAC=32")
-  list(GET l 0 lname)
-  list(REMOVE_AT l 0)
-  np_rtl_test(rtl.texel.lint.${lname} "${NP_VERILATOR}" pass "" "rtl;nosan"
-    ${NP_VERILATOR} --lint-only -Wall -I${NP_RTL_SRC} ${l} --top-module np_texel ${NP_RTL_TX_RTL})
-endforeach()
+np_rtl_span_lint(texel np_texel NP_RTL_TX_RTL "default -GN_OCT=1"
+  "oct4 -GN_OCT=4 -GIDX_INT=4 -GW_FRAC=8 -GGUARD=4 -GWEIGHT_FRAC=24 -GSETUP_MULTS=1 -GMULT_LAT=16"
+  "wide -GIDX_INT=1 -GW_FRAC=24 -GGUARD=100 -GWEIGHT_FRAC=32")
 
 # Co-simulation against the registry's stream model of texel (np_cosim_open_spec: np_span_sim with
 # np_texel_engine; np_cosim.c, cosim_main.cpp): every cycle in_ready, out_valid and, when valid,

@@ -32,17 +32,7 @@ set(NP_RTL_WV_GOLDEN "default|wave-l1-seed1" "opts|wave-l1-seed1" "rom6|wave-l1-
   "jac|wave-l1-seed2")
 foreach(sim icarus verilator)
   set(lab "rtl;nosan")  # Icarus runs are seconds each; the sanitizer pass does not reach the simulators
-  foreach(gs ${NP_RTL_WV_GOLDEN})
-    string(REPLACE "|" ";" gl "${gs}")
-    list(GET gl 0 gcfg)
-    list(GET gl 1 gfile)
-    set(pat "${wv_pass}")
-    if(gcfg STREQUAL "default")
-      set(pat "3677 cycles: ${wv_pass}")  # pins throughput and latency with the bench's bubbles and stalls
-    endif()
-    np_rtl_check(rtl.wave.${sim}.golden.${gcfg} wave ${sim} ok rtl_wave_tb ${gcfg} ${wv_dir}/${gfile}.memh pass
-      "${pat}" "${lab}")
-  endforeach()
+  np_rtl_golden_sets(wave ${sim} rtl_wave_tb ${wv_dir} "${wv_pass}" 3677 ${NP_RTL_WV_GOLDEN})
   np_rtl_check(rtl.wave.${sim}.golden.recurrence_refused wave ${sim} ok rtl_wave_tb default
     ${wv_dir}/wave-l1-seed3.memh fail "is for sincos=recurrence, which has no RTL" "${lab}")
   foreach(cfg fold normals)
@@ -86,14 +76,7 @@ set_tests_properties(rtl.wave.rom_table PROPERTIES LABELS "rtl"
 foreach(u "default;" "jac;-set TRAINS 4 -set NORMALS 1 -set FOLD 1")
   list(GET u 0 name)
   list(GET u 1 params)
-  string(JOIN " " wv_src ${NP_RTL_WV_RTL})
-  set(ys "read_verilog -I${NP_RTL_SRC} ${wv_src}\n")
-  if(params)
-    string(APPEND ys "chparam ${params} np_wave\n")
-  endif()
-  string(APPEND ys "hierarchy -top np_wave\nproc\nopt\ncheck -assert\n")
-  file(WRITE ${NP_RTL_WORK}/yosys-wave-${name}.ys "${ys}")
-  np_rtl_test(rtl.wave.yosys_check.${name} "${NP_YOSYS}" pass "" "rtl;nosan" ${NP_YOSYS} -q -s ${NP_RTL_WORK}/yosys-wave-${name}.ys)
+  np_rtl_yosys_check(wave ${name} np_wave "${params}" ${NP_RTL_WV_RTL})
 endforeach()
 
 # Co-simulation against the wave cycle model (np_cosim.c, cosim_main.cpp): every cycle in_ready,

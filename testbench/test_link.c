@@ -1125,16 +1125,6 @@ static int journal_exactly_once(const char *path, uint64_t n)
     return ok;
 }
 
-static uint64_t test_seed(void)
-{
-    const char *s = getenv("NP_TEST_SEED");
-    if (s)
-        return strtoull(s, NULL, 0);
-    struct timespec ts;
-    clock_gettime(CLOCK_REALTIME, &ts);
-    return (uint64_t)ts.tv_nsec ^ (uint64_t)ts.tv_sec;
-}
-
 /*
  * Kill and resume: the host process is killed (SIGKILL) at a random moment,
  * then resumed; every vector ends up verified exactly once, and the resume
@@ -1142,8 +1132,7 @@ static uint64_t test_seed(void)
  */
 static int t_kill_resume(void)
 {
-    uint64_t seed = test_seed();
-    printf("seed %llu (NP_TEST_SEED=%llu repeats this run)\n", (unsigned long long)seed, (unsigned long long)seed);
+    uint64_t seed = np_child_seed();
     np_rng r;
     np_rng_seed(&r, seed);
     np_link_job j;

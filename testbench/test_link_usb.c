@@ -856,22 +856,11 @@ static int t_min_payload(void)
     return 0;
 }
 
-static uint64_t test_seed(void)
-{
-    const char *s = getenv("NP_TEST_SEED");
-    if (s)
-        return strtoull(s, NULL, 0);
-    struct timespec ts;
-    clock_gettime(CLOCK_REALTIME, &ts);
-    return (uint64_t)ts.tv_nsec ^ (uint64_t)ts.tv_sec;
-}
-
 /* SIGKILL at a random record, then --resume: every vector verified exactly once. */
 static int t_kill_resume(void)
 {
     enum { N = 300000 };
-    uint64_t seed = test_seed();
-    printf("seed %llu (NP_TEST_SEED=%llu repeats this run)\n", (unsigned long long)seed, (unsigned long long)seed);
+    uint64_t seed = np_child_seed();
     np_rng rng;
     np_rng_seed(&rng, seed);
     np_board_opts bo = plain_board();

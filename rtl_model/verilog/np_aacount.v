@@ -63,13 +63,8 @@ module np_aacount #(
     // derived (do not set): the bus width of np_aacount_bus_bits
     parameter integer BUS_BITS = M * M * ((DEPTH != 0 ? 24 : 0) + (NORMAL != 0 ? 24 : 0)) + (LUMA != 0 ? 40 : 0)
 ) (
-    input wire clk,
-    input wire rst,
-    input wire in_valid,
-    output wire in_ready,
+`include "np_pipe_ports.vh"
     input wire [BUS_BITS-1:0] bus,
-    output wire out_valid,
-    input wire out_ready,
     output wire [4:0] s,
     output wire [15:0] mask,
     output wire [4:0] sd,
@@ -187,21 +182,10 @@ module np_aacount #(
     wire [BUS_BITS-1:0] cbus;
     wire [OW-1:0] core_out;
     reg [NB-1:0] v;
-    reg [NB-1:0] en;
-    integer e;
-    always @(*) begin
-        en[NB-1] = !v[NB-1] || core_out_ready;
-        for (e = NB - 2; e >= 0; e = e - 1) en[e] = !v[e] || en[e+1];
-`ifdef NP_FAULT_STALL
-        en[1] = 1'b1;  // fault: bank V overwrites its content when its successor stalls
-`endif
-    end
-    assign core_in_ready = en[0];
-    assign core_out_valid = v[NB-1];
-    always @(posedge clk) begin
-        if (rst) v <= {NB{1'b0}};
-        else v <= (v & ~en) | ({v[NB-2:0], core_in_valid} & en);
-    end
+    wire [NB-1:0] en, v_next;  // NP_FAULT_STALL: bank V overwrites its content when its successor stalls
+    np_pipe_ctrl #(.NB(NB), .STALL_BANK(1)) u_ctrl (.v(v), .in_valid(core_in_valid), .out_ready(core_out_ready),
+        .en(en), .v_next(v_next), .in_ready(core_in_ready), .out_valid(core_out_valid));
+    always @(posedge clk) if (rst) v <= {NB{1'b0}}; else v <= v_next;
 
     // ---------------------------------------------------------------- A
     // sum_d u28, sum_d2 u52, nbar s12 (at M = 4; WSD, WSD2, WNB bits), any_n,
@@ -428,15 +412,12 @@ module np_aacount #(
     assign core_out = rc_out;
 
     // ---------------------------------------------------------------- options
-    np_pipe_in_reg #(.W(BUS_BITS), .ON(IN_REG)) u_in (
-        .clk(clk), .rst(rst),
-        .s_valid(in_valid), .s_ready(in_ready), .s_data(bus),
-        .m_valid(core_in_valid), .m_ready(core_in_ready), .m_data(cbus));
     wire [OW-1:0] out_w;
-    np_pipe_skid #(.W(OW), .ON(OUT_SKID)) u_out (
-        .clk(clk), .rst(rst),
-        .s_valid(core_out_valid), .s_ready(core_out_ready), .s_data(core_out),
-        .m_valid(out_valid), .m_ready(out_ready), .m_data(out_w));
+    np_pipe_opts #(.IW(BUS_BITS), .OW(OW), .IN_REG(IN_REG), .OUT_SKID(OUT_SKID)) u_opts (.clk(clk), .rst(rst),
+        .in_valid(in_valid), .in_ready(in_ready), .in_data(bus),
+        .core_in_valid(core_in_valid), .core_in_ready(core_in_ready), .core_in_data(cbus),
+        .core_out_valid(core_out_valid), .core_out_ready(core_out_ready), .core_out_data(core_out),
+        .out_valid(out_valid), .out_ready(out_ready), .out_data(out_w));
     assign {s, mask, sd, sn, ss} = out_w;
 
     // SERIAL = 1 is the serial cycle model's circuit, not this one

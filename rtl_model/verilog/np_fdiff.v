@@ -20,12 +20,9 @@
 // Default register formats only (k s48 Q23.24, m s24 Q7.16), as np_texel.v.
 // Derived: F = Fw + G, W = 1 + I + F: N_i[0..3], Q[0..2] and x are s(W) QI.F.
 //
-// Ports: as np_texel.v (the same register inputs, descriptor and pixel ports):
-//   k_reg [480] k[i] s48 Q23.24; m_reg [216 N_OCT] m s24 Q7.16; o_reg [144 N_OCT]
-//   o s48 Q15.32; amp_reg [32 N_OCT] a'_o s32 Q17.14; cmap [6144] u8 x 3 x 256;
-//   cmap_n u9 (2..256); cmap_rep 1 repeat / 0 clamp.
-//   in_y, in_x0 u16; in_n u17; in_s, in_t, in_r s48 Q15.32; in_ds, in_dt, in_dr s41 Q8.32
-//   px, py u16; cr, cg, cb u8 (valid/ready both sides)
+// Ports: np_span_ports.vh, as np_texel.v (the same register inputs, descriptor
+// and pixel ports). The colour banks C1..C3 are np_tex_colour.v, the begun
+// descriptor and the quadric's exact set-up np_tex_quad.vh (both shared with np_texel.v).
 //
 // Registers of the core (np_fdiff_core), per octave o:
 //   u[3] u40 Q8.32 (DDA, mod 256), du[3] s40 Q7.32, d[0..3] s(W) QI.F (n, dn, d2n, d3n);
@@ -90,40 +87,13 @@ module np_fdiff #(
     parameter integer MULT_LAT = 2,
     parameter integer N_OCT = 1
 ) (
-    input wire clk,
-    input wire rst,
-    input wire [479:0] k_reg,
-    input wire [216*N_OCT-1:0] m_reg,
-    input wire [144*N_OCT-1:0] o_reg,
-    input wire [32*N_OCT-1:0] amp_reg,
-    input wire [6143:0] cmap,
-    input wire [8:0] cmap_n,
-    input wire cmap_rep,
-    input wire in_valid,
-    output wire in_ready,
-    input wire [15:0] in_y,
-    input wire [15:0] in_x0,
-    input wire [16:0] in_n,
-    input wire [47:0] in_s,
-    input wire [47:0] in_t,
-    input wire [47:0] in_r,
-    input wire [40:0] in_ds,
-    input wire [40:0] in_dt,
-    input wire [40:0] in_dr,
-    output wire out_valid,
-    input wire out_ready,
-    output wire [15:0] px,
-    output wire [15:0] py,
-    output wire [7:0] cr,
-    output wire [7:0] cg,
-    output wire [7:0] cb
+`include "np_span_ports.vh"
 );
     localparam integer FW = W_FRAC;
     localparam integer F = W_FRAC + GUARD;
     localparam integer W = 1 + IDX_INT + F;
     localparam integer QF = 88;                   // np_tex_q_frac at the default k_frac 24
     localparam integer YF = 116;                  // NP_FDIFF_EXACT_FRAC
-    localparam integer PW = 8 + FW;
     localparam integer STALL_W = 16;
     localparam integer PAY_W = 3 * 48 + 3 * 41;
     localparam integer P = SETUP_MULTS, LM = MULT_LAT;
@@ -377,22 +347,13 @@ module np_fdiff #(
 
     // ---------------------------------------------------------------- handshake (np_pipe)
     reg [NB-1:0] bv;
-    reg [NB-1:0] en;
-    integer e;
-    always @(*) begin
-        en[NB-1] = !bv[NB-1] || out_ready;
-        for (e = NB - 2; e >= 0; e = e - 1) en[e] = !bv[e] || en[e+1];
-`ifdef NP_FAULT_STALL
-        en[1] = 1'b1;  // fault: bank C2 overwrites its content when its successor stalls
-`endif
-    end
-    assign iss_ready = en[0] && setup_ok;
+    wire [NB-1:0] en, bv_next;  // NP_FAULT_STALL: bank C2 overwrites its content when its successor stalls
     wire iss = iss_valid && setup_ok;   // the pixel offered to bank C1
-    assign out_valid = bv[NB-1];
-    always @(posedge clk) begin
-        if (rst) bv <= {NB{1'b0}};
-        else bv <= (bv & ~en) | ({bv[NB-2:0], iss} & en);
-    end
+    wire c1_ready;
+    np_pipe_ctrl #(.NB(NB), .STALL_BANK(1)) u_ctrl (.v(bv), .in_valid(iss), .out_ready(out_ready),
+        .en(en), .v_next(bv_next), .in_ready(c1_ready), .out_valid(out_valid));
+    assign iss_ready = c1_ready && setup_ok;
+    always @(posedge clk) if (rst) bv <= {NB{1'b0}}; else bv <= bv_next;
     wire ld_c1 = en[0] && iss, ld_c2 = en[1] && bv[0], ld_c3 = en[2] && bv[1];
     reg [15:0] xb[0:NB-1], yb[0:NB-1];
     always @(posedge clk) begin
@@ -401,42 +362,12 @@ module np_fdiff #(
         if (ld_c3) begin xb[2] <= xb[1]; yb[2] <= yb[1]; end
     end
 
-    // ---------------------------------------------------------------- the begun descriptor
-    wire [127:0] sv[0:2], dsv[0:2];
-    genvar ax;
-    generate
-        for (ax = 0; ax < 3; ax = ax + 1) begin : g_desc
-            wire [47:0] s48 = bg_pay[48*ax +: 48];
-            wire [40:0] d41 = bg_pay[144 + 41*ax +: 41];
-            assign sv[ax] = {{80{s48[47]}}, s48};
-            assign dsv[ax] = {{87{d41[40]}}, d41};
-        end
-    endgenerate
-
-    // ---------------------------------------------------------------- quadric: set-up (np_fdiff_quad_setup) and steps
-    function [127:0] qk;
-        input integer ki;
-        begin
-            qk = {{80{k_reg[48*ki+47]}}, k_reg[48*ki +: 48]};
-        end
-    endfunction
-    wire [127:0] mq00 = qk(0), mq01 = qk(1), mq02 = qk(2), mq11 = qk(4), mq12 = qk(5), mq22 = qk(7);
-    wire [127:0] bq0 = qk(3), bq1 = qk(6), bq2 = qk(8), kj = qk(9);
-    wire [127:0] ms0 = mq00 * sv[0] + mq01 * sv[1] + mq02 * sv[2];
-    wire [127:0] ms1 = mq01 * sv[0] + mq11 * sv[1] + mq12 * sv[2];
-    wire [127:0] ms2 = mq02 * sv[0] + mq12 * sv[1] + mq22 * sv[2];
-    wire [127:0] mds0 = mq00 * dsv[0] + mq01 * dsv[1] + mq02 * dsv[2];
-    wire [127:0] mds1 = mq01 * dsv[0] + mq11 * dsv[1] + mq12 * dsv[2];
-    wire [127:0] mds2 = mq02 * dsv[0] + mq12 * dsv[1] + mq22 * dsv[2];
-    wire [127:0] sms = sv[0] * ms0 + sv[1] * ms1 + sv[2] * ms2;            // Q.88
-    wire [127:0] smds = sv[0] * mds0 + sv[1] * mds1 + sv[2] * mds2;        // Q.88
-    wire [127:0] dsmds = dsv[0] * mds0 + dsv[1] * mds1 + dsv[2] * mds2;    // Q.88
-    wire [127:0] bs = bq0 * sv[0] + bq1 * sv[1] + bq2 * sv[2];             // Q.56
-    wire [127:0] bds = bq0 * dsv[0] + bq1 * dsv[1] + bq2 * dsv[2];         // Q.56
+    // ---------------------------------------------------------------- the begun descriptor, the quadric: set-up (np_fdiff_quad_setup) and steps
+`include "np_tex_quad.vh"
     wire [127:0] qe[0:2];                                                  // np_tex_quadric_exact, Q.88 mod 2^128
-    assign qe[0] = sms + (bs << 33) + (kj << 64);
-    assign qe[1] = (smds << 1) + dsmds + (bds << 33);
-    assign qe[2] = dsmds << 1;
+    assign qe[0] = q0_w;
+    assign qe[1] = q1_w;
+    assign qe[2] = q2_w;
     wire [W-1:0] qi[0:2];                                                  // np_tex_to_index(qe, 88, F, W): s(W) QI.F
     genvar qj;
     generate
@@ -469,33 +400,20 @@ module np_fdiff #(
     genvar o, ab, a, cn;
     generate
         for (o = 0; o < N_OCT; o = o + 1) begin : g_oct
-            wire [127:0] mv[0:8];
-            for (ab = 0; ab < 9; ab = ab + 1) begin : g_m
-                wire [23:0] m24 = m_reg[24*(9*o + ab) +: 24];
-                assign mv[ab] = {{104{m24[23]}}, m24};
-            end
-            assign offdiag[o] = m_reg[24*(9*o + 1) +: 24] != 24'd0 || m_reg[24*(9*o + 2) +: 24] != 24'd0 ||
-                                m_reg[24*(9*o + 3) +: 24] != 24'd0 || m_reg[24*(9*o + 5) +: 24] != 24'd0 ||
-                                m_reg[24*(9*o + 6) +: 24] != 24'd0 || m_reg[24*(9*o + 7) +: 24] != 24'd0;
-            wire [31:0] amp = amp_reg[32*o +: 32];
+`include "np_tex_front.vh"
             // --- front end (np_tex_octave_span) and the DDA; su: the u a cell is set up at
             wire [39:0] su[0:2];
             wire [39:0] sdu[0:2];
             wire [2:0] cx;
             for (a = 0; a < 3; a = a + 1) begin : g_axis
-                wire [47:0] o48 = o_reg[48*(3*o + a) +: 48];
-                wire [127:0] uu = ({{80{o48[47]}}, o48} << 16) + mv[3*a] * sv[0] + mv[3*a+1] * sv[1] + mv[3*a+2] * sv[2];
-                wire [127:0] dd = mv[3*a] * dsv[0] + mv[3*a+1] * dsv[1] + mv[3*a+2] * dsv[2];
-                wire [127:0] u_rnd = (uu + (128'd1 << 15)) >> 16;
-                wire [127:0] d_rnd = (dd + (128'd1 << 15)) >> 16;
                 wire [39:0] u_nx = u_q[o][a] + du_q[o][a];   // u40 Q8.32, mod 256
-                assign su[a] = bg_job ? u_rnd[39:0] : u_nx;
-                assign sdu[a] = bg_job ? d_rnd[39:0] : du_q[o][a];
+                assign su[a] = bg_job ? u0[a] : u_nx;
+                assign sdu[a] = bg_job ? du0[a] : du_q[o][a];
                 assign cx[a] = u_nx[39:32] != u_q[o][a][39:32];
                 always @(posedge clk) begin
                     if (bg_job) begin
-                        u_q[o][a] <= u_rnd[39:0];
-                        du_q[o][a] <= d_rnd[39:0];
+                        u_q[o][a] <= u0[a];
+                        du_q[o][a] <= du0[a];
                     end else if (step) begin
                         u_q[o][a] <= u_nx;
                     end
@@ -668,64 +586,11 @@ module np_fdiff #(
         x_w = q_r[0];
         for (oi = 0; oi < N_OCT; oi = oi + 1) x_w = x_w + n_all[W*oi +: W];
     end
-    localparam integer XW = W + 9 < 128 ? W + 9 : 128;
-    localparam integer RW = (F > FW ? F : FW) + 1;
-    wire [XW-1:0] xs = {{(XW - W){x_w[W-1]}}, x_w};
-    wire [7:0] nm1 = cmap_n[7:0] - 8'd1;
-    wire [XW-1:0] top = {{(XW - 8){1'b0}}, nm1} << F;
-    wire [RW-1:0] xfr = {{(RW - F){1'b0}}, x_w[F-1:0]};
-    wire [XW-1:0] xint = xs >> F;
-    wire [RW-1:0] wround;
-    generate
-        if (F > FW) begin : g_wround
-            assign wround = (xfr + ({{(RW - 1){1'b0}}, 1'b1} << (F - FW - 1))) >> (F - FW);
-        end else begin : g_wshift
-            assign wround = xfr << (FW - F);
-        end
-    endgenerate
-    wire neg = x_w[W-1];
-    wire over = $signed(xs) >= $signed(top);
-    wire [7:0] seg_w = cmap_rep ? xint[7:0] & nm1 : neg ? 8'd0 : over ? cmap_n[7:0] - 8'd2 : xint[7:0];
-    wire [FW:0] cw_w = cmap_rep ? wround[FW:0] : neg ? {(FW + 1){1'b0}} : over ? {1'b1, {FW{1'b0}}} : wround[FW:0];
-    reg [7:0] seg1;
-    reg [FW:0] cw1;
-`ifdef NP_FAULT_FLIP
-    wire flip = x_w[3:0] == 4'h5;  // fault: bit 0 of cr, 1 pixel in 16
-`else
-    wire flip = 1'b0;
-`endif
-    reg flip1, flip2;
-    always @(posedge clk) if (ld_c1) begin seg1 <= seg_w; cw1 <= cw_w; flip1 <= flip; end
-
-    // ---------------------------------------------------------------- C2: mix (np_tex_colour_mix)
-    wire [7:0] nxt = cmap_rep ? (seg1 + 8'd1) & nm1 : seg1 + 8'd1;
-    reg [PW-1:0] prod2[0:2];
-    genvar chn;
-    generate
-        for (chn = 0; chn < 3; chn = chn + 1) begin : g_mix
-            wire [7:0] c0 = cmap[24*seg1 + 8*chn +: 8], c1 = cmap[24*nxt + 8*chn +: 8];
-            wire signed [63:0] c0s = {56'd0, c0}, c1s = {56'd0, c1};
-            wire signed [63:0] cws = {{(63 - FW){1'b0}}, cw1};
-            wire signed [63:0] pv = (c0s <<< FW) + cws * (c1s - c0s);  // s(10+Fw), in [0, 255 2^Fw]
-            always @(posedge clk) if (ld_c2) prod2[chn] <= pv[PW-1:0];
-        end
-    endgenerate
-    always @(posedge clk) if (ld_c2) flip2 <= flip1;
-
-    // ---------------------------------------------------------------- C3: round (np_tex_colour_round)
-    reg [7:0] rgb3[0:2];
-    generate
-        for (chn = 0; chn < 3; chn = chn + 1) begin : g_round
-            wire [PW:0] pr = {1'b0, prod2[chn]} + ({{PW{1'b0}}, 1'b1} << (FW - 1));
-            wire [7:0] rv = pr[FW +: 8];
-            always @(posedge clk) if (ld_c3) rgb3[chn] <= chn == 0 ? {rv[7:1], rv[0] ^ flip2} : rv;
-        end
-    endgenerate
+    // C1 (from x_w) C2 C3: the colour map
+    np_tex_colour #(.W(W), .F(F), .FW(FW)) u_colour (.clk(clk), .x(x_w), .ld_c1(ld_c1), .ld_c2(ld_c2), .ld_c3(ld_c3),
+        .cmap(cmap), .cmap_n(cmap_n), .cmap_rep(cmap_rep), .cr(cr), .cg(cg), .cb(cb));
     assign px = xb[NB-1];
     assign py = yb[NB-1];
-    assign cr = rgb3[0];
-    assign cg = rgb3[1];
-    assign cb = rgb3[2];
 endmodule
 /* verilator lint_on LATCH */
 /* verilator lint_on UNUSEDSIGNAL */

@@ -57,17 +57,12 @@ module np_hatch #(
     parameter integer IN_REG = 0,
     parameter integer OUT_SKID = 0
 ) (
-    input wire clk,
-    input wire rst,
-    input wire in_valid,
-    output wire in_ready,
+`include "np_pipe_ports.vh"
     input wire [32:0] xu,
     input wire [32:0] xv,
     input wire [7:0] tone,
     input wire [16:0] pm,
     input wire [16:0] om,
-    output wire out_valid,
-    input wire out_ready,
     output wire [7:0] c
 );
     localparam integer N = SET >= 2 ? 64 : 16;
@@ -171,21 +166,10 @@ module np_hatch #(
     wire core_in_valid, core_in_ready, core_out_valid, core_out_ready;
     wire [IW-1:0] cin;
     reg [NB-1:0] v;
-    reg [NB-1:0] en;
-    integer e;
-    always @(*) begin
-        en[NB-1] = !v[NB-1] || core_out_ready;
-        for (e = NB - 2; e >= 0; e = e - 1) en[e] = !v[e] || en[e+1];
-`ifdef NP_FAULT_STALL
-        en[1] = 1'b1;  // fault: bank S0 overwrites its content when its successor stalls
-`endif
-    end
-    assign core_in_ready = en[0];
-    assign core_out_valid = v[NB-1];
-    always @(posedge clk) begin
-        if (rst) v <= {NB{1'b0}};
-        else v <= (v & ~en) | ({v[NB-2:0], core_in_valid} & en);
-    end
+    wire [NB-1:0] en, v_next;  // NP_FAULT_STALL: bank S0 overwrites its content when its successor stalls
+    np_pipe_ctrl #(.NB(NB), .STALL_BANK(1)) u_ctrl (.v(v), .in_valid(core_in_valid), .out_ready(core_out_ready),
+        .en(en), .v_next(v_next), .in_ready(core_in_ready), .out_valid(core_out_valid));
+    always @(posedge clk) if (rst) v <= {NB{1'b0}}; else v <= v_next;
 
     // ---------------------------------------------------------------- A
     wire [32:0] ixu = cin[IW-1 -: 33];
@@ -263,13 +247,10 @@ module np_hatch #(
     endgenerate
 
     // ---------------------------------------------------------------- options
-    np_pipe_in_reg #(.W(IW), .ON(IN_REG)) u_in (
-        .clk(clk), .rst(rst),
-        .s_valid(in_valid), .s_ready(in_ready), .s_data({xu, xv, tone, pm, om}),
-        .m_valid(core_in_valid), .m_ready(core_in_ready), .m_data(cin));
-    np_pipe_skid #(.W(8), .ON(OUT_SKID)) u_out (
-        .clk(clk), .rst(rst),
-        .s_valid(core_out_valid), .s_ready(core_out_ready), .s_data(rc_out),
-        .m_valid(out_valid), .m_ready(out_ready), .m_data(c));
+    np_pipe_opts #(.IW(IW), .OW(8), .IN_REG(IN_REG), .OUT_SKID(OUT_SKID)) u_opts (.clk(clk), .rst(rst),
+        .in_valid(in_valid), .in_ready(in_ready), .in_data({xu, xv, tone, pm, om}),
+        .core_in_valid(core_in_valid), .core_in_ready(core_in_ready), .core_in_data(cin),
+        .core_out_valid(core_out_valid), .core_out_ready(core_out_ready), .core_out_data(rc_out),
+        .out_valid(out_valid), .out_ready(out_ready), .out_data(c));
 endmodule
 /* verilator lint_on UNUSEDSIGNAL */

@@ -50,15 +50,10 @@ module np_simplex3 #(
     parameter integer IN_REG = 0,
     parameter integer OUT_SKID = 0
 ) (
-    input wire clk,
-    input wire rst,
-    input wire in_valid,
-    output wire in_ready,
+`include "np_pipe_ports.vh"
     input wire [15:0] x,
     input wire [15:0] y,
     input wire [15:0] z,
-    output wire out_valid,
-    input wire out_ready,
     output wire [OUT_BITS-1:0] f,
     output wire [DOUT_BITS-1:0] dfdx,
     output wire [DOUT_BITS-1:0] dfdy,
@@ -88,23 +83,8 @@ module np_simplex3 #(
     // Their canonical signed digits (non-adjacent form): the positions of the
     // +1 digits and of the -1 digits. O multiplies by a constant as the
     // declaration prices it: one shifted operand per non-zero digit.
-    function [63:0] csd_digits;
-        input [63:0] k;
-        input integer negative;  // 0: the +1 digits; 1: the -1 digits
-        reg [64:0] kk;
-        integer i;
-        begin
-            kk = {1'b0, k};
-            csd_digits = 64'd0;
-            for (i = 0; i < 64; i = i + 1) begin
-                if (kk[0]) begin
-                    csd_digits[i] = kk[1] ? negative != 0 : negative == 0;
-                    kk = kk[1] ? kk + 65'd1 : kk - 65'd1;
-                end
-                kk = kk >> 1;
-            end
-        end
-    endfunction
+    // csd_digits; requant = np_simplex_requant at XW bits
+`include "np_fixed.vh"
     localparam [63:0] KF_P = csd_digits(KF, 0), KF_N = csd_digits(KF, 1);
     localparam [63:0] KD_P = csd_digits(KD, 0), KD_N = csd_digits(KD, 1);
 
@@ -113,36 +93,13 @@ module np_simplex3 #(
     wire [15:0] cx, cy, cz;
     wire [OW-1:0] core_out;
     reg [NB-1:0] v;
-    reg [NB-1:0] en;
-    integer e;
-    always @(*) begin
-        en[NB-1] = !v[NB-1] || core_out_ready;
-        for (e = NB - 2; e >= 0; e = e - 1) en[e] = !v[e] || en[e+1];
-`ifdef NP_FAULT_STALL
-        en[3] = 1'b1;  // fault: bank KT overwrites its content when its successor stalls
-`endif
-    end
-    assign core_in_ready = en[0];
-    assign core_out_valid = v[NB-1];
-    always @(posedge clk) begin
-        if (rst) v <= {NB{1'b0}};
-        else v <= (v & ~en) | ({v[NB-2:0], core_in_valid} & en);
-    end
+    wire [NB-1:0] en, v_next;  // NP_FAULT_STALL: bank KT overwrites its content when its successor stalls
+    np_pipe_ctrl #(.NB(NB), .STALL_BANK(3)) u_ctrl (.v(v), .in_valid(core_in_valid), .out_ready(core_out_ready),
+        .en(en), .v_next(v_next), .in_ready(core_in_ready), .out_valid(core_out_valid));
+    always @(posedge clk) if (rst) v <= {NB{1'b0}}; else v <= v_next;
     // Bank indices.
     localparam integer B_M = 6, B_A = NB - 2, B_O = NB - 1;
 
-    // Round-half-up rescaling of a wide signed value from FROM to TO fraction
-    // bits (np_simplex_requant): shift right with rounding, or exact shift left.
-    function signed [XW-1:0] requant;
-        input signed [XW-1:0] val;
-        input integer from, to;
-        reg signed [XW-1:0] one;
-        begin
-            one = 1;
-            if (from > to) requant = (val + (one <<< (from - to - 1))) >>> (from - to);
-            else requant = val <<< (to - from);
-        end
-    endfunction
 
     // ---------------------------------------------------------------- SK
     // Skewed numerators SX = 4X + (Y + Z) (u19) and cells floor(SX / 768) =
@@ -489,15 +446,12 @@ module np_simplex3 #(
     assign core_out = r9_out;
 
     // ---------------------------------------------------------------- options
-    np_pipe_in_reg #(.W(48), .ON(IN_REG)) u_in (
-        .clk(clk), .rst(rst),
-        .s_valid(in_valid), .s_ready(in_ready), .s_data({x, y, z}),
-        .m_valid(core_in_valid), .m_ready(core_in_ready), .m_data({cx, cy, cz}));
     wire [OW-1:0] out_w;
-    np_pipe_skid #(.W(OW), .ON(OUT_SKID)) u_out (
-        .clk(clk), .rst(rst),
-        .s_valid(core_out_valid), .s_ready(core_out_ready), .s_data(core_out),
-        .m_valid(out_valid), .m_ready(out_ready), .m_data(out_w));
+    np_pipe_opts #(.IW(48), .OW(OW), .IN_REG(IN_REG), .OUT_SKID(OUT_SKID)) u_opts (.clk(clk), .rst(rst),
+        .in_valid(in_valid), .in_ready(in_ready), .in_data({x, y, z}),
+        .core_in_valid(core_in_valid), .core_in_ready(core_in_ready), .core_in_data({cx, cy, cz}),
+        .core_out_valid(core_out_valid), .core_out_ready(core_out_ready), .core_out_data(core_out),
+        .out_valid(out_valid), .out_ready(out_ready), .out_data(out_w));
     assign {f, dfdx, dfdy, dfdz} = out_w;
 endmodule
 /* verilator lint_on UNUSEDSIGNAL */

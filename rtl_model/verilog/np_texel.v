@@ -23,18 +23,8 @@
 // ALW = 20 + 3 WT + W - F (np_texel_al_window), the weight u(WB) Q1.WT with
 // WB = WT + 1 (32 at WT = 32: u32, exact).
 //
-// Ports. Texture registers (np_tex_regs, written by the host between frames,
-// held constant while spans run):
-//   k_reg   [480]  k[i] s48 Q23.24 at [48 i +: 48], order A' B' C' D' E' F' G' H' I' J'
-//   m_reg   [216 N_OCT]  octave o's m[a][b] s24 Q7.16 at [24 (9 o + 3 a + b) +: 24]
-//   o_reg   [144 N_OCT]  o[a] s48 Q15.32 at [48 (3 o + a) +: 48]
-//   amp_reg [32 N_OCT]   a'_o s32 Q17.14 at [32 o +: 32]
-//   cmap    [6144] entry e, channel ch (0 r, 1 g, 2 b) u8 at [24 e + 8 ch +: 8]
-//   cmap_n  u9 N, 2..256; cmap_rep 1: repeat (N a power of two), 0: clamp
-// Span descriptor in (np_span; valid/ready, np_span_seq.v):
-//   in_y, in_x0 u16; in_n u17 (0..65536); in_s, in_t, in_r s48 Q15.32;
-//   in_ds, in_dt, in_dr s41 Q8.32
-// Pixel out (np_tex_pixel; valid/ready): px, py u16; cr, cg, cb u8.
+// Ports: np_span_ports.vh (the texture registers, the span descriptor in,
+// the pixel out; shared with np_fdiff.v).
 //
 // Timing (np_span.h, np_texel.h): 1 clock to accept a descriptor, the front
 // end's set-up stall, then one pixel per clock into the nine banks
@@ -70,6 +60,7 @@
 //   A : N = a' l3 (mod 2^ALW) rounded once to F bits, s(W); q rounded to F, s(W)
 //   S : x = q + sum N (mod 2^W)
 //   C1: seg u8, cw u(Fw+1) (np_tex_colour_split)  C2: prod u(8+Fw) x3  C3: rgb u8 x3
+//       (np_tex_colour.v, shared with np_fdiff.v)
 // Fault copies (the benches and the co-simulation must catch them): NP_FAULT_FLIP
 // flips bit 0 of cr when x's 4 low bits are 0101; NP_FAULT_STALL lets bank I2
 // overwrite its content under a stall; np_span_seq.v's NP_FAULT_SETUP ends a
@@ -87,33 +78,7 @@ module np_texel #(
     parameter integer MULT_LAT = 2,
     parameter integer N_OCT = 1
 ) (
-    input wire clk,
-    input wire rst,
-    input wire [479:0] k_reg,
-    input wire [216*N_OCT-1:0] m_reg,
-    input wire [144*N_OCT-1:0] o_reg,
-    input wire [32*N_OCT-1:0] amp_reg,
-    input wire [6143:0] cmap,
-    input wire [8:0] cmap_n,
-    input wire cmap_rep,
-    input wire in_valid,
-    output wire in_ready,
-    input wire [15:0] in_y,
-    input wire [15:0] in_x0,
-    input wire [16:0] in_n,
-    input wire [47:0] in_s,
-    input wire [47:0] in_t,
-    input wire [47:0] in_r,
-    input wire [40:0] in_ds,
-    input wire [40:0] in_dt,
-    input wire [40:0] in_dr,
-    output wire out_valid,
-    input wire out_ready,
-    output wire [15:0] px,
-    output wire [15:0] py,
-    output wire [7:0] cr,
-    output wire [7:0] cg,
-    output wire [7:0] cb
+`include "np_span_ports.vh"
 );
     localparam integer WT = WEIGHT_FRAC;
     localparam integer FW = W_FRAC;
@@ -125,7 +90,6 @@ module np_texel #(
     localparam integer L1 = 6 + WT, L2 = 6 + 2 * WT, L3 = 6 + 3 * WT;
     localparam integer NF = 20 + 3 * WT;          // fraction bits of a' l3: 6 + 3 WT + 14
     localparam integer ALW = NF + W - F;          // np_texel_al_window
-    localparam integer PW = 8 + FW;               // prod
     localparam integer STALL_W = 16;
     localparam integer PAY_W = 3 * 48 + 3 * 41;
     localparam integer P = SETUP_MULTS, LM = MULT_LAT;
@@ -192,21 +156,10 @@ module np_texel #(
 
     // ---------------------------------------------------------------- handshake (np_pipe)
     reg [NB-1:0] bv;
-    reg [NB-1:0] en;
-    integer e;
-    always @(*) begin
-        en[NB-1] = !bv[NB-1] || out_ready;
-        for (e = NB - 2; e >= 0; e = e - 1) en[e] = !bv[e] || en[e+1];
-`ifdef NP_FAULT_STALL
-        en[B_I2] = 1'b1;  // fault: bank I2 overwrites its content when its successor stalls
-`endif
-    end
-    assign iss_ready = en[0];
-    assign out_valid = bv[NB-1];
-    always @(posedge clk) begin
-        if (rst) bv <= {NB{1'b0}};
-        else bv <= (bv & ~en) | ({bv[NB-2:0], iss_valid} & en);
-    end
+    wire [NB-1:0] en, bv_next;  // NP_FAULT_STALL: bank I2 overwrites its content when its successor stalls
+    np_pipe_ctrl #(.NB(NB), .STALL_BANK(B_I2)) u_ctrl (.v(bv), .in_valid(iss_valid), .out_ready(out_ready),
+        .en(en), .v_next(bv_next), .in_ready(iss_ready), .out_valid(out_valid));
+    always @(posedge clk) if (rst) bv <= {NB{1'b0}}; else bv <= bv_next;
     wire ld_l = en[B_L] && iss_valid, ld_i1 = en[B_I1] && bv[B_L], ld_i2 = en[B_I2] && bv[B_I1];
     wire ld_i3 = en[B_I3] && bv[B_I2], ld_a = en[B_A] && bv[B_I3], ld_s = en[B_S] && bv[B_A];
     wire ld_c1 = en[B_C1] && bv[B_S], ld_c2 = en[B_C2] && bv[B_C1], ld_c3 = en[NB-1] && bv[B_C2];
@@ -225,43 +178,8 @@ module np_texel #(
         if (ld_c3) begin xb[8] <= xb[7]; yb[8] <= yb[7]; end
     end
 
-    // ---------------------------------------------------------------- the begun descriptor
-    // Sign-extended to 128 bits: the C model's np_s128, modulo 2^128.
-    wire [127:0] sv[0:2], dsv[0:2];
-    genvar ax;
-    generate
-        for (ax = 0; ax < 3; ax = ax + 1) begin : g_desc
-            wire [47:0] s48 = bg_pay[48*ax +: 48];
-            wire [40:0] d41 = bg_pay[144 + 41*ax +: 41];
-            assign sv[ax] = {{80{s48[47]}}, s48};
-            assign dsv[ax] = {{87{d41[40]}}, d41};
-        end
-    endgenerate
-
-    // ---------------------------------------------------------------- quadric: set-up and D
-    // np_tex_quadric_exact modulo 2^128 (kept modulo 2^QW): M_q = [[A B C] [B E F] [C F H]], b = (D, G, I).
-    function [127:0] kx;
-        input integer i;
-        begin
-            kx = {{80{k_reg[48*i+47]}}, k_reg[48*i +: 48]};
-        end
-    endfunction
-    wire [127:0] mq00 = kx(0), mq01 = kx(1), mq02 = kx(2), mq11 = kx(4), mq12 = kx(5), mq22 = kx(7);
-    wire [127:0] bq0 = kx(3), bq1 = kx(6), bq2 = kx(8), kj = kx(9);
-    wire [127:0] ms0 = mq00 * sv[0] + mq01 * sv[1] + mq02 * sv[2];
-    wire [127:0] ms1 = mq01 * sv[0] + mq11 * sv[1] + mq12 * sv[2];
-    wire [127:0] ms2 = mq02 * sv[0] + mq12 * sv[1] + mq22 * sv[2];
-    wire [127:0] mds0 = mq00 * dsv[0] + mq01 * dsv[1] + mq02 * dsv[2];
-    wire [127:0] mds1 = mq01 * dsv[0] + mq11 * dsv[1] + mq12 * dsv[2];
-    wire [127:0] mds2 = mq02 * dsv[0] + mq12 * dsv[1] + mq22 * dsv[2];
-    wire [127:0] sms = sv[0] * ms0 + sv[1] * ms1 + sv[2] * ms2;            // Q.88
-    wire [127:0] smds = sv[0] * mds0 + sv[1] * mds1 + sv[2] * mds2;        // Q.88
-    wire [127:0] dsmds = dsv[0] * mds0 + dsv[1] * mds1 + dsv[2] * mds2;    // Q.88
-    wire [127:0] bs = bq0 * sv[0] + bq1 * sv[1] + bq2 * sv[2];             // Q.56
-    wire [127:0] bds = bq0 * dsv[0] + bq1 * dsv[1] + bq2 * dsv[2];         // Q.56
-    wire [127:0] q0_w = sms + (bs << 33) + (kj << 64);
-    wire [127:0] q1_w = (smds << 1) + dsmds + (bds << 33);
-    wire [127:0] q2_w = dsmds << 1;
+    // ---------------------------------------------------------------- the begun descriptor, the quadric's set-up
+`include "np_tex_quad.vh"
     reg [QW-1:0] q_r, dq_r, d2q_r;
     always @(posedge clk) begin
         if (bg_job) begin
@@ -303,29 +221,16 @@ module np_texel #(
     genvar o, ab, a, pp;
     generate
         for (o = 0; o < N_OCT; o = o + 1) begin : g_oct
-            // --- registers of octave o
-            wire [127:0] mv[0:8];
-            for (ab = 0; ab < 9; ab = ab + 1) begin : g_m
-                wire [23:0] m24 = m_reg[24*(9*o + ab) +: 24];
-                assign mv[ab] = {{104{m24[23]}}, m24};
-            end
-            assign offdiag[o] = m_reg[24*(9*o + 1) +: 24] != 24'd0 || m_reg[24*(9*o + 2) +: 24] != 24'd0 ||
-                                m_reg[24*(9*o + 3) +: 24] != 24'd0 || m_reg[24*(9*o + 5) +: 24] != 24'd0 ||
-                                m_reg[24*(9*o + 6) +: 24] != 24'd0 || m_reg[24*(9*o + 7) +: 24] != 24'd0;
-            wire [31:0] amp = amp_reg[32*o +: 32];
-            // --- front end: u0 = round(M s + o), du = round(M ds), at 48 fraction bits (np_tex_octave_span)
+            // --- octave o's registers and front end (mv, offdiag, amp; u0, du0)
+`include "np_tex_front.vh"
+            // --- the DDA
             wire [39:0] u_r[0:2];
             for (a = 0; a < 3; a = a + 1) begin : g_axis
-                wire [47:0] o48 = o_reg[48*(3*o + a) +: 48];
-                wire [127:0] uu = ({{80{o48[47]}}, o48} << 16) + mv[3*a] * sv[0] + mv[3*a+1] * sv[1] + mv[3*a+2] * sv[2];
-                wire [127:0] dd = mv[3*a] * dsv[0] + mv[3*a+1] * dsv[1] + mv[3*a+2] * dsv[2];
-                wire [127:0] u_rnd = (uu + (128'd1 << 15)) >> 16;
-                wire [127:0] d_rnd = (dd + (128'd1 << 15)) >> 16;
                 reg [39:0] u_q, du_q;
                 always @(posedge clk) begin
                     if (bg_job) begin
-                        u_q <= u_rnd[39:0];
-                        du_q <= d_rnd[39:0];
+                        u_q <= u0[a];
+                        du_q <= du0[a];
                     end else if (adv) begin
                         u_q <= u_q + du_q;  // the DDA, mod 256 (u40 Q8.32)
                     end
@@ -411,69 +316,10 @@ module np_texel #(
     reg [W-1:0] x5;
     always @(posedge clk) if (ld_s) x5 <= xsum;
 
-    // ---------------------------------------------------------------- C1: split (np_tex_colour_split)
-    // x sign-extended to XW bits: (N - 1) 2^F fits below bit XW - 1 unless XW = 128, where it wraps
-    // modulo 2^128 as np_shl128 does.
-    localparam integer XW = W + 9 < 128 ? W + 9 : 128;
-    localparam integer RW = (F > FW ? F : FW) + 1;
-    wire [XW-1:0] xs = {{(XW - W){x5[W-1]}}, x5};
-    wire [7:0] nm1 = cmap_n[7:0] - 8'd1;          // N - 1 (N = 256: 255)
-    wire [XW-1:0] top = {{(XW - 8){1'b0}}, nm1} << F;
-    wire [RW-1:0] xfr = {{(RW - F){1'b0}}, x5[F-1:0]};
-    wire [XW-1:0] xint = xs >> F;
-    wire [RW-1:0] wround;
-    generate
-        if (F > FW) begin : g_wround
-            assign wround = (xfr + ({{(RW - 1){1'b0}}, 1'b1} << (F - FW - 1))) >> (F - FW);
-        end else begin : g_wshift
-            assign wround = xfr << (FW - F);
-        end
-    endgenerate
-    wire neg = x5[W-1];
-    wire over = $signed(xs) >= $signed(top);
-    wire [7:0] seg_w = cmap_rep ? xint[7:0] & nm1 : neg ? 8'd0 : over ? cmap_n[7:0] - 8'd2 : xint[7:0];
-    wire [FW:0] cw_w = cmap_rep ? wround[FW:0] : neg ? {(FW + 1){1'b0}} : over ? {1'b1, {FW{1'b0}}} : wround[FW:0];
-    reg [7:0] seg6;
-    reg [FW:0] cw6;
-    always @(posedge clk) if (ld_c1) begin seg6 <= seg_w; cw6 <= cw_w; end
-
-    // ---------------------------------------------------------------- C2: mix (np_tex_colour_mix)
-    wire [7:0] nxt = cmap_rep ? (seg6 + 8'd1) & nm1 : seg6 + 8'd1;
-    reg [PW-1:0] prod7[0:2];
-    genvar ch;
-    generate
-        for (ch = 0; ch < 3; ch = ch + 1) begin : g_mix
-            wire [7:0] c0 = cmap[24*seg6 + 8*ch +: 8], c1 = cmap[24*nxt + 8*ch +: 8];
-            wire signed [63:0] c0s = {56'd0, c0}, c1s = {56'd0, c1};
-            wire signed [63:0] cws = {{(63 - FW){1'b0}}, cw6};
-            wire signed [63:0] pv = (c0s <<< FW) + cws * (c1s - c0s);  // s(10+Fw), in [0, 255 2^Fw]
-            always @(posedge clk) if (ld_c2) prod7[ch] <= pv[PW-1:0];
-        end
-    endgenerate
-
-    // ---------------------------------------------------------------- C3: round (np_tex_colour_round)
-    reg [7:0] rgb8[0:2];
-`ifdef NP_FAULT_FLIP
-    wire flip = x5[3:0] == 4'h5;  // fault: bit 0 of cr, 1 pixel in 16 (x's low bits are the C1 bank's input)
-`else
-    wire flip = 1'b0;
-`endif
-    reg [3:0] flip7, flip6;
-    always @(posedge clk) begin
-        if (ld_c1) flip6 <= {3'd0, flip};
-        if (ld_c2) flip7 <= flip6;
-    end
-    generate
-        for (ch = 0; ch < 3; ch = ch + 1) begin : g_round
-            wire [PW:0] pr = {1'b0, prod7[ch]} + ({{PW{1'b0}}, 1'b1} << (FW - 1));
-            wire [7:0] rv = pr[FW +: 8];
-            always @(posedge clk) if (ld_c3) rgb8[ch] <= ch == 0 ? {rv[7:1], rv[0] ^ flip7[0]} : rv;
-        end
-    endgenerate
+    // ---------------------------------------------------------------- C1 C2 C3: the colour map
+    np_tex_colour #(.W(W), .F(F), .FW(FW)) u_colour (.clk(clk), .x(x5), .ld_c1(ld_c1), .ld_c2(ld_c2), .ld_c3(ld_c3),
+        .cmap(cmap), .cmap_n(cmap_n), .cmap_rep(cmap_rep), .cr(cr), .cg(cg), .cb(cb));
     assign px = xb[NB-1];
     assign py = yb[NB-1];
-    assign cr = rgb8[0];
-    assign cg = rgb8[1];
-    assign cb = rgb8[2];
 endmodule
 /* verilator lint_on UNUSEDSIGNAL */

@@ -87,8 +87,7 @@ module np_wave #(
     parameter integer IN_REG = 0,
     parameter integer OUT_SKID = 0
 ) (
-    input wire clk,
-    input wire rst,
+`include "np_pipe_ports.vh"
     // the box's registers
     input wire [2:0] n,
     input wire [32*TRAINS-1:0] kx,
@@ -109,8 +108,6 @@ module np_wave #(
     input wire [14:0] b,
     input wire [14:0] gcap,
     // transactions
-    input wire in_valid,
-    output wire in_ready,
     input wire [15:0] i,
     input wire [15:0] j,
     input wire [31:0] t,
@@ -119,8 +116,6 @@ module np_wave #(
     input wire [15:0] v,
     input wire [7:0] r,
     input wire [14:0] g,
-    output wire out_valid,
-    input wire out_ready,
     output wire [15:0] y,
     output wire [15:0] dx,
     output wire [15:0] dz,
@@ -145,21 +140,10 @@ module np_wave #(
     wire [14:0] cg;
     wire [OW-1:0] core_out;
     reg [NB-1:0] bv;  // each bank's valid bit
-    reg [NB-1:0] en;
-    integer e;
-    always @(*) begin
-        en[NB-1] = !bv[NB-1] || core_out_ready;
-        for (e = NB - 2; e >= 0; e = e - 1) en[e] = !bv[e] || en[e+1];
-`ifdef NP_FAULT_STALL
-        en[B_M] = 1'b1;  // fault: bank M overwrites its content when its successor stalls
-`endif
-    end
-    assign core_in_ready = en[0];
-    assign core_out_valid = bv[NB-1];
-    always @(posedge clk) begin
-        if (rst) bv <= {NB{1'b0}};
-        else bv <= (bv & ~en) | ({bv[NB-2:0], core_in_valid} & en);
-    end
+    wire [NB-1:0] en, bv_next;  // NP_FAULT_STALL: bank M overwrites its content when its successor stalls
+    np_pipe_ctrl #(.NB(NB), .STALL_BANK(B_M)) u_ctrl (.v(bv), .in_valid(core_in_valid), .out_ready(core_out_ready),
+        .en(en), .v_next(bv_next), .in_ready(core_in_ready), .out_valid(core_out_valid));
+    always @(posedge clk) if (rst) bv <= {NB{1'b0}}; else bv <= bv_next;
     wire ld_p = en[B_P] && core_in_valid, ld_s = en[B_S] && bv[B_P], ld_a = en[B_A] && bv[B_S];
     wire ld_m = en[B_M] && bv[B_A], ld_t = en[B_T] && bv[B_M], ld_g = en[B_G] && bv[B_T];
 
@@ -455,13 +439,10 @@ module np_wave #(
     assign core_out = o_core;
 
     // ---------------------------------------------------------------- options
-    np_pipe_in_reg #(.W(IW), .ON(IN_REG)) u_in (
-        .clk(clk), .rst(rst),
-        .s_valid(in_valid), .s_ready(in_ready), .s_data({i, j, t, ph, u, v, r, g}),
-        .m_valid(core_in_valid), .m_ready(core_in_ready), .m_data({ci, cj, ct, cph, cu, cv, cr, cg}));
-    np_pipe_skid #(.W(OW), .ON(OUT_SKID)) u_out (
-        .clk(clk), .rst(rst),
-        .s_valid(core_out_valid), .s_ready(core_out_ready), .s_data(core_out),
-        .m_valid(out_valid), .m_ready(out_ready), .m_data({y, dx, dz, nx, ny, nz, fold}));
+    np_pipe_opts #(.IW(IW), .OW(OW), .IN_REG(IN_REG), .OUT_SKID(OUT_SKID)) u_opts (.clk(clk), .rst(rst),
+        .in_valid(in_valid), .in_ready(in_ready), .in_data({i, j, t, ph, u, v, r, g}),
+        .core_in_valid(core_in_valid), .core_in_ready(core_in_ready), .core_in_data({ci, cj, ct, cph, cu, cv, cr, cg}),
+        .core_out_valid(core_out_valid), .core_out_ready(core_out_ready), .core_out_data(core_out),
+        .out_valid(out_valid), .out_ready(out_ready), .out_data({y, dx, dz, nx, ny, nz, fold}));
 endmodule
 /* verilator lint_on UNUSEDSIGNAL */

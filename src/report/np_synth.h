@@ -41,6 +41,11 @@ enum {
 int np_synth_has_rtl(const np_unit *u);
 /* 1 when a run without --unit synthesises u (classic3, simplex3: not the by-name units). */
 int np_synth_in_default_set(const np_unit *u);
+/*
+ * The units a run synthesises, one a call: with only (--unit) that unit, else the
+ * default set, in registry order from *i (0 before the first call); NULL after the last.
+ */
+const np_unit *np_synth_unit_next(const np_unit *only, size_t *i);
 
 /*
  * Synthesise u's RTL (files in rtl_dir) at configuration cfg with the

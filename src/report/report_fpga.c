@@ -694,9 +694,8 @@ int np_report_fpga(const np_unit *only, const char *spec, const np_fpga_opts *o)
         return NP_EXIT_USAGE;
     }
     const np_unit *u;
-    for (size_t i = 0; (u = np_unit_at(i)) != NULL; i++) {
-        if ((only && u != only) || (!only && !np_synth_in_default_set(u)))
-            continue;
+    size_t next = 0;
+    while ((u = np_synth_unit_next(only, &next)) != NULL) {
         any = 1;
         char err[512];
         if (!np_synth_has_rtl(u)) {

@@ -66,9 +66,11 @@ typedef int (*rtl_params_fn)(const void *cfg, char *buf, size_t len, char *err, 
  * and aacount: a run over every unit, and report fpga, keep classic3 and
  * simplex3, whose syntheses the docs and tests time; aacount alone takes 30 min).
  */
+enum { RTL_FILES = 8 }; /* a unit's RTL files at the most, NULL-terminated when fewer */
+
 typedef struct rtl_desc {
     const char *unit, *top;
-    const char *files[6];
+    const char *files[RTL_FILES];
     struct { const char *stage, *prefix; } bank[12];
     const char *not_params[4];
     rtl_params_fn params;
@@ -169,6 +171,13 @@ static void hatch_bank_sel(unsigned k, unsigned n_stages, char *buf, size_t len)
         snprintf(buf, len, "w:g_st?*?.g_carry.r w:rc_out %%u");
 }
 
+/*
+ * The pipe around every unit but classic3, simplexn and classicn: handshake and
+ * options (np_pipe_ctrl.v, np_pipe_opts.v). classic3 and the n-D units place the
+ * two options themselves.
+ */
+#define NP_PIPE_RTL "np_pipe_ctrl.v", "np_pipe_opts.v", "np_pipe_in_reg.v", "np_pipe_skid.v"
+
 #define NP_SIMPLEXN_RTL(name)                                                                                 \
     { name, "np_simplexn", { "np_simplexn.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },                  \
       { { "SK", "r0" }, { "RK", "r1" }, { "CH", "r2" }, { "KT", "r3" }, { "P2", "r4" }, { "P4", "r5" },        \
@@ -182,18 +191,18 @@ static const rtl_desc rtl_units[] = {
       { { "L", "r0" }, { "H", "r1" }, { "I1m", "r2" }, { "I1a", "r3" }, { "I2m", "r4" }, { "I2a", "r5" },
         { "I3m", "r6" }, { "I3a", "r7" }, { "O", "r8" }, { NULL, NULL } }, { NULL }, NULL, NULL, NULL, 0 },
     /* simplex3 names its banks by the derivative datapath's numbering; without it there is no r7 (M2). */
-    { "simplex3", "np_simplex3", { "np_simplex3.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },
+    { "simplex3", "np_simplex3", { "np_simplex3.v", NP_PIPE_RTL, NULL },
       { { "SK", "r0" }, { "RK", "r1" }, { "CH", "r2" }, { "KT", "r3" }, { "P2", "r4" }, { "P4", "r5" },
         { "M", "r6" }, { "M2", "r7" }, { "A", "r8" }, { "O", "r9" }, { NULL, NULL } }, { NULL }, NULL, NULL, NULL, 0 },
-    { "wave", "np_wave", { "np_wave.v", "np_wave_sin.v", "np_wave_rom.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },
+    { "wave", "np_wave", { "np_wave.v", "np_wave_sin.v", "np_wave_rom.v", NP_PIPE_RTL, NULL },
       { { "P", "r0" }, { "S", "r1" }, { "A", "r2" }, { "M", "r3" }, { "T", "r4" }, { "G", "r5" }, { "N", "r6" },
         { NULL, NULL } },
       { "sincos", "reset", "regs", NULL }, wave_params, "bv", NULL, 1 },
-    { "aacount", "np_aacount", { "np_aacount.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },
+    { "aacount", "np_aacount", { "np_aacount.v", NP_PIPE_RTL, NULL },
       { { "A", "ra" }, { "V", "rv" }, { "P", "rp" }, { "C", "rc" }, { NULL, NULL } },
       { "tile", NULL }, aacount_params, NULL, NULL, 1 },
     /* hatch: millions of gates at every registry configuration (docs/hatch.md, "Synthesis"). */
-    { "hatch", "np_hatch", { "np_hatch.v", "np_hatch_seed.v", "np_pipe_in_reg.v", "np_pipe_skid.v", NULL },
+    { "hatch", "np_hatch", { "np_hatch.v", "np_hatch_seed.v", NP_PIPE_RTL, NULL },
       { { NULL, NULL } }, { NULL }, hatch_params, NULL, hatch_bank_sel, 1 },
     /* The n-D units (np_simplexn.v, np_classicn.v; every key, DIMS included, is a parameter). */
     NP_CLASSICN_RTL("classic2"), NP_CLASSICN_RTL("classic4"), NP_CLASSICN_RTL("classic5"),
@@ -219,6 +228,15 @@ int np_synth_in_default_set(const np_unit *u)
 {
     const rtl_desc *d = rtl_of(u);
     return d != NULL && !d->by_name;
+}
+
+const np_unit *np_synth_unit_next(const np_unit *only, size_t *i)
+{
+    const np_unit *u;
+    while ((u = np_unit_at((*i)++)) != NULL)
+        if (only ? u == only : np_synth_in_default_set(u))
+            return u;
+    return NULL;
 }
 
 /*
@@ -325,7 +343,7 @@ static int not_param(const rtl_desc *d, const char *key)
 /* Every file of the unit's RTL is readable in dir (else a message naming it). */
 static int rtl_readable(const rtl_desc *d, const char *dir, char *err, size_t errlen)
 {
-    for (unsigned i = 0; i < 6 && d->files[i]; i++) {
+    for (unsigned i = 0; i < RTL_FILES && d->files[i]; i++) {
         char path[4096];
         snprintf(path, sizeof path, "%s/%s", dir, d->files[i]);
         if (access(path, R_OK) != 0) {
@@ -347,7 +365,7 @@ static int write_read(FILE *f, const rtl_desc *d, const np_unit *u, const void *
     if (d->params && d->params(cfg, derived, sizeof derived, err, errlen) != 0)
         return -1;
     fprintf(f, "read_verilog -I%s", dir);
-    for (unsigned i = 0; i < 6 && d->files[i]; i++)
+    for (unsigned i = 0; i < RTL_FILES && d->files[i]; i++)
         fprintf(f, " %s/%s", dir, d->files[i]);
     fprintf(f, "\nchparam");
     size_t nk = np_unit_key_count(u);
@@ -597,6 +615,25 @@ static uint64_t fnv1a(uint64_t h, const void *p, size_t n)
     return h;
 }
 
+/* 1 when one of d's files (in dir) has the line `include "name"`. */
+static int rtl_includes(const rtl_desc *d, const char *dir, const char *name)
+{
+    char want[128];
+    snprintf(want, sizeof want, "`include \"%s\"", name);
+    int found = 0;
+    for (unsigned i = 0; i < RTL_FILES && d->files[i] && !found; i++) {
+        char path[4096], line[4096];
+        snprintf(path, sizeof path, "%s/%s", dir, d->files[i]);
+        FILE *f = fopen(path, "r");
+        if (!f)
+            continue;
+        while (!found && fgets(line, sizeof line, f))
+            found = strncmp(line, want, strlen(want)) == 0;
+        fclose(f);
+    }
+    return found;
+}
+
 int np_synth_key(const np_unit *u, const void *cfg, const char *rtl_dir, int flags, char key[17], char *err,
                  size_t errlen)
 {
@@ -608,7 +645,7 @@ int np_synth_key(const np_unit *u, const void *cfg, const char *rtl_dir, int fla
     uint64_t h = UINT64_C(0xcbf29ce484222325);
     char buf[4096];
     /* The files by name and content (not by folder: a worktree's copy is the same RTL). */
-    for (unsigned i = 0; i < 6 && d->files[i]; i++) {
+    for (unsigned i = 0; i < RTL_FILES && d->files[i]; i++) {
         char path[4096];
         snprintf(path, sizeof path, "%s/%s", rtl_dir, d->files[i]);
         FILE *f = fopen(path, "rb");
@@ -622,9 +659,17 @@ int np_synth_key(const np_unit *u, const void *cfg, const char *rtl_dir, int fla
             h = fnv1a(h, buf, n);
         fclose(f);
     }
-    /* np_hashn.vh and np_hash.vh are included by the n-D RTL: part of it too. */
-    static const char *const includes[] = { "np_hashn.vh", "np_hash.vh" };
-    for (unsigned i = 0; i < 2; i++) {
+    /*
+     * The headers the RTL includes are part of it too. np_hashn.vh and
+     * np_hash.vh count whenever they are present, as they always have, so
+     * that an unchanged unit keeps its key (docs/synth-cache); the shared
+     * pipe and texturing headers count for a unit whose files include them.
+     */
+    static const char *const includes[] = { "np_hashn.vh", "np_hash.vh", "np_fixed.vh", "np_pipe_ports.vh",
+                                            "np_span_ports.vh", "np_tex_quad.vh", "np_tex_front.vh" };
+    for (unsigned i = 0; i < sizeof includes / sizeof includes[0]; i++) {
+        if (i >= 2 && !rtl_includes(d, rtl_dir, includes[i]))
+            continue;
         char path[4096];
         snprintf(path, sizeof path, "%s/%s", rtl_dir, includes[i]);
         FILE *f = fopen(path, "rb");
@@ -709,9 +754,8 @@ int np_report_gates_synth(const np_unit *only, const char *spec, const char *rtl
         rtl_dir = np_synth_default_rtl_dir();
     int rc = NP_EXIT_OK, any = 0;
     const np_unit *u;
-    for (size_t i = 0; (u = np_unit_at(i)) != NULL; i++) {
-        if ((only && u != only) || (!only && !np_synth_in_default_set(u)))
-            continue;
+    size_t next = 0;
+    while ((u = np_synth_unit_next(only, &next)) != NULL) {
         any = 1;
         char err[512];
         np_unit_cfg cfg;
