@@ -32,6 +32,24 @@ static void cfg_of(const np_unit *u, np_unit_cfg *c, const char *spec)
     }
 }
 
+/* A job of n random vectors (seed) for classic3 at spec (NULL: its default configuration). */
+static void classic_job(np_link_job *j, const char *spec, uint64_t n, uint64_t seed)
+{
+    np_unit_cfg cfg;
+    cfg_of(classic(), &cfg, spec);
+    np_link_job_random(j, classic(), &cfg, n, seed);
+}
+
+/* A host with the default options on job j, its journal jn in memory. */
+static np_host *memory_host(const np_link_job *j, np_journal *jn)
+{
+    char err[256];
+    np_journal_open(jn, NULL, j, 0, err, sizeof err);
+    np_host_opts ho;
+    memset(&ho, 0, sizeof ho);
+    return np_host_new(j, jn, &ho);
+}
+
 /* A per-test scratch path in the build tree's working directory. */
 static void tmp_path(char *buf, size_t len, const char *name)
 {
@@ -572,11 +590,7 @@ static int t_hunting(void)
 static np_link_fault session_with(const np_link_job *j, const np_board_opts *bo, char *msg, size_t msglen)
 {
     np_journal jn;
-    char err[256];
-    np_journal_open(&jn, NULL, j, 0, err, sizeof err);
-    np_host_opts ho;
-    memset(&ho, 0, sizeof ho);
-    np_host *h = np_host_new(j, &jn, &ho);
+    np_host *h = memory_host(j, &jn);
     np_board *b = np_board_new(bo);
     np_loop_opts lo;
     memset(&lo, 0, sizeof lo);
@@ -597,9 +611,7 @@ static np_link_fault session_with(const np_link_job *j, const np_board_opts *bo,
 static int t_hello_bad_version(void)
 {
     np_link_job j;
-    np_unit_cfg cfg;
-    cfg_of(classic(), &cfg, NULL);
-    np_link_job_random(&j, classic(), &cfg, 1000, 17);
+    classic_job(&j, NULL, 1000, 17);
     np_board_opts bo;
     memset(&bo, 0, sizeof bo);
     bo.version = 2;
@@ -621,9 +633,7 @@ static int t_hello_bad_version(void)
 static int t_min_payload(void)
 {
     np_link_job j;
-    np_unit_cfg cfg;
-    cfg_of(classic(), &cfg, "out_bits=16,s_frac=16,lerp_frac=16");
-    np_link_job_random(&j, classic(), &cfg, 5000, 18);
+    classic_job(&j, "out_bits=16,s_frac=16,lerp_frac=16", 5000, 18);
     np_board_opts bo;
     memset(&bo, 0, sizeof bo);
     bo.max_payload = NP_LINK_MIN_PAYLOAD;
@@ -647,9 +657,7 @@ static int t_min_payload(void)
 static int t_stale_error(void)
 {
     np_link_job j;
-    np_unit_cfg cfg;
-    cfg_of(classic(), &cfg, NULL);
-    np_link_job_random(&j, classic(), &cfg, 3000, 19);
+    classic_job(&j, NULL, 3000, 19);
     np_board_opts bo;
     memset(&bo, 0, sizeof bo);
     static chat c;
@@ -660,11 +668,7 @@ static int t_stale_error(void)
     chat_send(&c, NP_LINK_DATA, 0, 1, p, 8); /* DATA before CONFIG: ERROR NOT_CONFIGURED queued */
     NP_CHECK(np_board_get_stats(c.b)->errors_sent == 1, "an ERROR is queued");
     np_journal jn;
-    char err[256];
-    np_journal_open(&jn, NULL, &j, 0, err, sizeof err);
-    np_host_opts ho;
-    memset(&ho, 0, sizeof ho);
-    np_host *h = np_host_new(&j, &jn, &ho);
+    np_host *h = memory_host(&j, &jn);
     np_loop_opts lo;
     memset(&lo, 0, sizeof lo);
     np_link_loopback(h, c.b, &lo);
@@ -705,11 +709,7 @@ static int t_board_vs_model(void)
         }
         np_link_job_seal(&j);
         np_journal jn;
-        char err[256];
-        np_journal_open(&jn, NULL, &j, 0, err, sizeof err);
-        np_host_opts ho;
-        memset(&ho, 0, sizeof ho);
-        np_host *h = np_host_new(&j, &jn, &ho);
+        np_host *h = memory_host(&j, &jn);
         np_board_opts bo;
         memset(&bo, 0, sizeof bo);
         np_board *b = np_board_new(&bo);
@@ -796,9 +796,7 @@ static void end_session(session *s)
 static int t_e2e(void)
 {
     np_link_job j;
-    np_unit_cfg cfg;
-    cfg_of(classic(), &cfg, NULL);
-    np_link_job_random(&j, classic(), &cfg, 200000, 7);
+    classic_job(&j, NULL, 200000, 7);
     session s;
     double t0 = np_now();
     run_session(&s, &j, NULL, 0, NULL, 1000, 0, 2.0);
@@ -819,9 +817,7 @@ static int t_e2e(void)
 static int t_e2e_wrong_bit(void)
 {
     np_link_job j;
-    np_unit_cfg cfg;
-    cfg_of(classic(), &cfg, NULL);
-    np_link_job_random(&j, classic(), &cfg, 100000, 8);
+    classic_job(&j, NULL, 100000, 8);
     np_board_fault f = { NP_BOARD_WRONG_BIT, 77777, 5 };
     session s;
     run_session(&s, &j, NULL, 0, &f, 0, 0, 2.0);
@@ -854,9 +850,7 @@ static int t_e2e_faults(void)
         { NP_BOARD_SILENT, NP_FAULT_TIMEOUT, "timeout: the board sent nothing" },
     };
     np_link_job j;
-    np_unit_cfg cfg;
-    cfg_of(classic(), &cfg, NULL);
-    np_link_job_random(&j, classic(), &cfg, 60000, 9);
+    classic_job(&j, NULL, 60000, 9);
     char path[256];
     tmp_path(path, sizeof path, "faults.journal");
     for (unsigned k = 0; k < sizeof cases / sizeof cases[0]; k++) {
@@ -890,9 +884,7 @@ static int t_e2e_faults(void)
 static int t_stale_input(void)
 {
     np_link_job j;
-    np_unit_cfg cfg;
-    cfg_of(classic(), &cfg, NULL);
-    np_link_job_random(&j, classic(), &cfg, 5000, 10);
+    classic_job(&j, NULL, 5000, 10);
     np_board_opts bo;
     memset(&bo, 0, sizeof bo);
     np_board *b = np_board_new(&bo);
@@ -909,11 +901,7 @@ static int t_stale_input(void)
     chat_send(&c, NP_LINK_DATA, 0, 16, p, 16 * 8);
     NP_CHECK(np_board_tx_pending(b) > 0, "stale bytes queued");
     np_journal jn;
-    char err[256];
-    np_journal_open(&jn, NULL, &j, 0, err, sizeof err);
-    np_host_opts ho;
-    memset(&ho, 0, sizeof ho);
-    np_host *h = np_host_new(&j, &jn, &ho);
+    np_host *h = memory_host(&j, &jn);
     np_loop_opts lo;
     memset(&lo, 0, sizeof lo);
     lo.chunk = 333;
@@ -932,15 +920,9 @@ static int t_stale_input(void)
 static int t_board_reports(void)
 {
     np_link_job j;
-    np_unit_cfg cfg;
-    cfg_of(classic(), &cfg, NULL);
-    np_link_job_random(&j, classic(), &cfg, 20000, 11);
+    classic_job(&j, NULL, 20000, 11);
     np_journal jn;
-    char err[256];
-    np_journal_open(&jn, NULL, &j, 0, err, sizeof err);
-    np_host_opts ho;
-    memset(&ho, 0, sizeof ho);
-    np_host *h = np_host_new(&j, &jn, &ho);
+    np_host *h = memory_host(&j, &jn);
     np_board_opts bo;
     memset(&bo, 0, sizeof bo);
     np_board *b = np_board_new(&bo);
@@ -973,15 +955,9 @@ static int t_board_reports(void)
 static int t_config_refused(void)
 {
     np_link_job j;
-    np_unit_cfg cfg;
-    cfg_of(classic(), &cfg, "out_bits=10");
-    np_link_job_random(&j, classic(), &cfg, 100, 12);
+    classic_job(&j, "out_bits=10", 100, 12);
     np_journal jn;
-    char err[256];
-    np_journal_open(&jn, NULL, &j, 0, err, sizeof err);
-    np_host_opts ho;
-    memset(&ho, 0, sizeof ho);
-    np_host *h = np_host_new(&j, &jn, &ho);
+    np_host *h = memory_host(&j, &jn);
     np_board_opts bo;
     memset(&bo, 0, sizeof bo);
     bo.board_id = "classic3 on a test board";
@@ -1017,10 +993,8 @@ static void append_text(const char *path, const char *text)
 static int t_journal(void)
 {
     np_link_job j, other;
-    np_unit_cfg cfg;
-    cfg_of(classic(), &cfg, NULL);
-    np_link_job_random(&j, classic(), &cfg, 10000, 13);
-    np_link_job_random(&other, classic(), &cfg, 10000, 14);
+    classic_job(&j, NULL, 10000, 13);
+    classic_job(&other, NULL, 10000, 14);
     char path[256], err[1024];
     tmp_path(path, sizeof path, "journal");
     np_journal jn;
@@ -1136,9 +1110,7 @@ static int t_kill_resume(void)
     np_rng r;
     np_rng_seed(&r, seed);
     np_link_job j;
-    np_unit_cfg cfg;
-    cfg_of(classic(), &cfg, NULL);
-    np_link_job_random(&j, classic(), &cfg, 300000, 15);
+    classic_job(&j, NULL, 300000, 15);
     char path[256];
     tmp_path(path, sizeof path, "kill.journal");
     for (int trial = 0; trial < 6; trial++) {
@@ -1184,7 +1156,7 @@ static int t_kill_resume(void)
     }
     /* And in process, at every frame boundary of a small job: stop, resume. */
     np_link_job small;
-    np_link_job_random(&small, classic(), &cfg, 9000, 16);
+    classic_job(&small, NULL, 9000, 16);
     for (uint64_t stop = 1; stop <= 8; stop++) {
         unlink(path);
         session s;
