@@ -621,6 +621,30 @@ static int t_config_refused(void)
 }
 
 /*
+ * --resume of journal, a run of n random classic3 vectors of which it holds
+ * held, on d's board as it now is: exit 0 with the verdict, exactly the rest
+ * sent, every vector once (*once). The records the board saw; what names the
+ * case in the messages.
+ */
+static uint64_t resume_rest(dev *d, const char *journal, uint64_t n, uint64_t held, const char *what, int *once)
+{
+    char count[24], verdict[64];
+    snprintf(count, sizeof count, "%llu", (unsigned long long)n);
+    snprintf(verdict, sizeof verdict, "In %llu tests, no errors found", (unsigned long long)n);
+    run r;
+    run_cli(d, &r, "--unit", "classic3", "--random", count, "--journal", journal, "--resume", NULL);
+    NP_CHECK(r.status == 0, "%s resumed: exit %d", what, r.status);
+    NP_CHECK(strstr(r.out, verdict), "%s resumed: verdict", what);
+    NP_CHECK(r.board_records == n - held, "%s resumed: sent %llu, the journal held %llu of %llu", what,
+             (unsigned long long)r.board_records, (unsigned long long)held, (unsigned long long)n);
+    journal_count(journal, n, once);
+    NP_CHECK(*once, "%s: the journal does not hold every vector exactly once", what);
+    uint64_t sent = r.board_records;
+    run_free(&r);
+    return sent;
+}
+
+/*
  * A fault mid-stream, then --resume on a healthy board: the fault's message
  * and status, nothing verified lost, nothing sent twice, every vector once.
  */
@@ -650,14 +674,7 @@ static void fault_then_resume(const char *name, np_board_fault bf, uint64_t gone
 
     np_board_opts healthy = plain_board();
     dev_board(d, &healthy);
-    run_cli(d, &r, "--unit", "classic3", "--random", "200000", "--journal", journal, "--resume", NULL);
-    NP_CHECK(r.status == 0, "%s resumed: exit %d", name, r.status);
-    NP_CHECK(strstr(r.out, "In 200000 tests, no errors found"), "%s resumed: verdict", name);
-    NP_CHECK(r.board_records == N - held, "%s resumed: sent %llu, the journal held %llu of %d", name,
-             (unsigned long long)r.board_records, (unsigned long long)held, N);
-    journal_count(journal, N, &once);
-    NP_CHECK(once, "%s: the journal does not hold every vector exactly once", name);
-    run_free(&r);
+    resume_rest(d, journal, N, held, name, &once);
     unlink(journal);
     dev_free(d);
 }
@@ -771,13 +788,7 @@ static int t_journal_target(void)
     run_free(&r);
     /* ...the same board does, sending exactly the rest. */
     snprintf(d->serial, sizeof d->serial, "NP-0001");
-    run_cli(d, &r, "--unit", "classic3", "--random", "200000", "--journal", journal, "--resume", NULL);
-    NP_CHECK(r.status == 0 && strstr(r.out, "In 200000 tests, no errors found"), "exit %d", r.status);
-    NP_CHECK(r.board_records == N - held, "resume sent %llu, journal held %llu", (unsigned long long)r.board_records,
-             (unsigned long long)held);
-    journal_count(journal, N, &once);
-    NP_CHECK(once, "every vector once");
-    run_free(&r);
+    resume_rest(d, journal, N, held, "the same board", &once);
     unlink(journal);
     dev_free(d);
     return 0;
@@ -802,13 +813,7 @@ static int t_interrupt(void)
     uint64_t held = journal_count(journal, N, &once);
     run_free(&r);
     dev_board(d, &bo);
-    run_cli(d, &r, "--unit", "classic3", "--random", "300000", "--journal", journal, "--resume", NULL);
-    NP_CHECK(r.status == 0 && strstr(r.out, "In 300000 tests, no errors found"), "resumed: exit %d", r.status);
-    NP_CHECK(r.board_records == N - held, "resume sent %llu, journal held %llu", (unsigned long long)r.board_records,
-             (unsigned long long)held);
-    journal_count(journal, N, &once);
-    NP_CHECK(once, "every vector once");
-    run_free(&r);
+    resume_rest(d, journal, N, held, "SIGINT", &once);
     unlink(journal);
     dev_free(d);
     return 0;
@@ -879,17 +884,12 @@ static int t_kill_resume(void)
         uint64_t held = journal_count(journal, N, &once);
         run_free(&r);
         dev_board(d, &bo);
-        run_cli(d, &r, "--unit", "classic3", "--random", "300000", "--journal", journal, "--resume", NULL);
-        NP_CHECK(r.status == 0 && strstr(r.out, "In 300000 tests, no errors found"), "trial %d resumed: exit %d",
-                 trial, r.status);
-        NP_CHECK(r.board_records == N - held, "trial %d: resume sent %llu, journal held %llu", trial,
-                 (unsigned long long)r.board_records, (unsigned long long)held);
-        journal_count(journal, N, &once);
-        NP_CHECK(once, "trial %d: not every vector exactly once", trial);
+        char what[32];
+        snprintf(what, sizeof what, "trial %d", trial);
+        uint64_t sent = resume_rest(d, journal, N, held, what, &once);
         printf("trial %d: killed near record %llu with %llu journaled; resume sent %llu; every vector once: %s\n",
-               trial, (unsigned long long)kill_at, (unsigned long long)held,
-               (unsigned long long)r.board_records, once ? "yes" : "NO");
-        run_free(&r);
+               trial, (unsigned long long)kill_at, (unsigned long long)held, (unsigned long long)sent,
+               once ? "yes" : "NO");
     }
     unlink(journal);
     dev_free(d);
