@@ -741,6 +741,19 @@ static unsigned rot_adders(int c, int s, int sub, unsigned *bits, unsigned *neg)
 }
 
 /*
+ * The live bits of q = R r for one layer (c, s its Q1.14 constants, |r| <= 2^31): the
+ * trailing zeros common to c and s are zero bits of q (at 0 and 90 degrees, c or s = 2^14
+ * and the other 0, q is r << 14), which Yosys drops from the product q k.
+ */
+static unsigned q_live_bits(int c, int s)
+{
+    unsigned m = (unsigned)abs(c) | (unsigned)abs(s), tz = 0;
+    while (tz < 15u && !(m >> tz & 1u))
+        tz++;
+    return sbits((((uint64_t)abs(c) + (uint64_t)abs(s)) >> tz) << 31);
+}
+
+/*
  * Stages A and S; the G = layers N / P seed stages S0..S(G-1) of the pipe are
  * identical, so they are declared as one row "S" whose counts are G times one
  * stage's (the gate report's stages are the declaration's: unit_hatch.c's
@@ -754,7 +767,9 @@ static unsigned rot_adders(int c, int s, int sub, unsigned *bits, unsigned *neg)
  * multiply too (rows of pm). The squares of the profile are squarers; mul30's
  * operands are the RTL's 32-bit words (u2, u4 are not known to Yosys to be
  * <= 2^30); at is 29 live bits (al's two low bits are 0), am 17 (oms << 14,
- * or 2^30 for a survivor); |Q| is the RTL's 44-bit word, and "|Q| < 1" a
+ * or 2^30 for a survivor); q k is at q's live width (q_live_bits: r << 14
+ * at 0 and 90 degrees); the one-by-one fades are at their inputs' live bits
+ * (al's 2 low zeros, m's 14); |Q| is the RTL's 44-bit word, and "|Q| < 1" a
  * zero test of its 14 integer bits. docs/hatch.md, "Synthesis", has the lane
  * against Yosys.
  */
@@ -811,9 +826,18 @@ size_t np_hatch_datapath(const np_hatch_cfg *cfg, np_op *ops, size_t max)
     }
     OP("S", "q", NP_OP_ADD, radd, radd ? (rbits + radd / 2u) / radd : qb, 0, qb, 1, lv);
     OP("S", NULL, NP_OP_INC, rneg, ROT_W, 0, 0, 0, lv++);
-    /* q k: a signed product (k zero-extended), each axis at its k's live width. */
-    OP("S", NULL, NP_OP_SMUL, gp, qb, kbu, 0, 0, lv);
-    OP("S", NULL, NP_OP_SMUL, gp, qb, kbv, 0, 0, lv++);
+    /*
+     * q k: a signed product (k zero-extended), each axis at its k's live width, q at its layer's
+     * live width (q_live_bits: at 0 and 90 degrees q is r << 14, and the product is r's 33 bits).
+     */
+    for (unsigned l = 0; l < cfg->layers; l++) {
+        int16_t r[2][2];
+        np_hatch_layer_r(cfg, l, r);
+        unsigned ql = q_live_bits(r[0][0], r[0][1]);
+        OP("S", NULL, NP_OP_SMUL, slots, ql, kbu, 0, 0, lv);
+        OP("S", NULL, NP_OP_SMUL, slots, ql, kbv, 0, 0, lv);
+    }
+    lv++;
     OP("S", "Q", NP_OP_INC, 2 * gp, Qb + 1u, 0, Qb, 1, lv++);     /* + 2^38: the rounding constant */
     OP("S", NULL, NP_OP_NEG, 2 * gp, qw, 0, 0, 0, lv++);           /* |Q| */
     OP("S", NULL, NP_OP_CMPK, 2 * gp, qint, 0, 0, 0, lv++);        /* |Q| < 1: integer bits 0 */
@@ -825,18 +849,25 @@ size_t np_hatch_datapath(const np_hatch_cfg *cfg, np_op *ops, size_t max)
     OP("S", "profile", NP_OP_MUL, gp, 32, 32, 31, 0, lv++);
     if (obo) {
         /*
-         * Tone and level beside the stroke, each clamp((N+1) x - i, 0, 1) then S(t) = t^2 (3 - 2t):
-         * (N+1) x is two rows of x (N + 1 = 2^K + 1), - i 2^30 a constant on its top 10 bits, the
-         * clamp a test against 2^30 (the sign is a bit) and a 3:1 choice; t^2 a squarer, 3 - 2t a
-         * constant minus a shift, the product of 32-bit words; 1 - S for the level.
+         * Tone and level beside the stroke, each clamp((N+1) x - i, 0, 1) then S(t) = t^2 (3 - 2t),
+         * at the live bits of x: the tone's al has its two low bits 0 (bits 2..30), the level's
+         * m = (1 - oms) << 14 its 14 (bits 14..30), and those zeros pass to t (bits z..31), 3 - 2t
+         * (bits z+1..31) and t^2. (N+1) x is two rows of x (N + 1 = 2^K + 1): an add over x's
+         * live bits; - i 2^30 a constant on the top 10 bits, the clamp a test against 2^30 (the
+         * sign is a bit) and a 3:1 choice; t^2 a squarer, 3 - 2t a constant minus a shift, the
+         * product of t^2's 32-bit word by it; 1 - S for the level.
          */
-        OP("S", NULL, NP_OP_ADD, 2 * gp, 38, 0, 0, 0, 1);
-        OP("S", NULL, NP_OP_INC, 2 * gp, 10, 0, 0, 0, 1);
-        OP("S", NULL, NP_OP_CMPK, 2 * gp, 40, 0, 0, 0, 2);
-        OP("S", NULL, NP_OP_MUX, 2 * gp, 32, 3, 0, 0, 2);
-        OP("S", NULL, NP_OP_SQR, 2 * gp, 32, 0, 0, 0, 3);
-        OP("S", NULL, NP_OP_INC, 2 * gp, 32, 0, 0, 0, 3);
-        OP("S", NULL, NP_OP_MUL, 2 * gp, 32, 32, 0, 0, 4);
+        static const unsigned fz[2] = { 2u, 14u }; /* the low zero bits of al and of m */
+        for (unsigned t = 0; t < 2; t++) {
+            unsigned z = fz[t];
+            OP("S", NULL, NP_OP_ADD, gp, 31u - z, 0, 0, 0, 1);
+            OP("S", NULL, NP_OP_INC, gp, 10, 0, 0, 0, 1);
+            OP("S", NULL, NP_OP_CMPK, gp, 40, 0, 0, 0, 2);
+            OP("S", NULL, NP_OP_MUX, gp, 32u - z, 3, 0, 0, 2);
+            OP("S", NULL, NP_OP_SQR, gp, 32u - z, 0, 0, 0, 3);
+            OP("S", NULL, NP_OP_INC, gp, 31u - z, 0, 0, 0, 3);
+            OP("S", NULL, NP_OP_MUL, gp, 32, 31u - z, 0, 0, 4);
+        }
         OP("S", NULL, NP_OP_INC, gp, 32, 0, 0, 0, 5);
         OP("S", NULL, NP_OP_MUX, gp, 32, 2, 0, 0, 5);              /* am: 1 for a survivor, or the fade */
         OP("S", NULL, NP_OP_MUL, gp, 32, 32, 0, 0, 6);             /* at am */
